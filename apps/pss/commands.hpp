@@ -1,0 +1,20 @@
+// The subcommands of `pss`. Each file adds one to the app and runs it when chosen.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+
+namespace pss::app {
+
+// Options every compute subcommand shares.
+struct ComputeOptions {
+  std::string backend = "auto";
+  int threads = 0;
+  std::string stats_path;
+};
+void add_compute_options(CLI::App& command, ComputeOptions& options);
+
+void add_info_command(CLI::App& app);
+void add_project_command(CLI::App& app);
+
+}  // namespace pss::app

@@ -1,0 +1,32 @@
+// pss: extract and render point set surfaces (Hardware-accelerated Extraction and Rendering
+// of Point Set Surfaces, §3–§5) on CPUs and GPUs.
+#include <cstdio>
+#include <exception>
+
+#include "commands.hpp"
+#include "pss/core/error.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"pss: point set surfaces of point clouds and volumes, on CPUs and GPUs"};
+  app.require_subcommand(1, 1);
+  app.set_version_flag("--version", "pss 0.1.0");
+  pss::app::add_info_command(app);
+  pss::app::add_project_command(app);
+
+  // Usage errors: one line, then exit 2.
+  app.failure_message([](const CLI::App* command, const CLI::Error& e) {
+    return "pss " + command->get_name() + ": error: " + std::string(e.what()) + " (see --help)\n";
+  });
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const pss::Error& e) {
+    std::fprintf(stderr, "pss: error: %s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "pss: internal error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,98 @@
+// pss project FILE -o OUT.ply: every point moved onto the PSS, with its normal.
+#include <chrono>
+#include <cstdio>
+
+#include "commands.hpp"
+#include "pss/core/error.hpp"
+#include "pss/io/ply.hpp"
+#include "pss/io/point_cloud_file.hpp"
+#include "pss/points/project_cloud.hpp"
+#include "pss/points/spacing.hpp"
+
+namespace pss::app {
+
+namespace {
+
+struct ProjectOptions {
+  std::string input, output;
+  float h = 0, rho = 0;
+  std::string method = "mls";
+  int iterations = 4;
+  ComputeOptions compute;
+};
+
+void run_project(const ProjectOptions& o) {
+  const auto start = std::chrono::steady_clock::now();
+  set_cpu_threads(o.compute.threads);
+  const Backend backend = select_backend(o.compute.backend);
+  Stats stats;
+  PointCloud cloud;
+  {
+    ScopedPhase phase(stats, "read");
+    cloud = read_point_cloud(o.input);
+  }
+  float h = o.h;
+  if (h == 0) {
+    ScopedPhase phase(stats, "estimate h");
+    h = float(estimate_spacing(cloud.positions).suggested_h);
+  }
+  ProjectionParams params =
+      ProjectionParams::from_h(h, o.method == "wls" ? PlaneFitMethod::wls : PlaneFitMethod::mls);
+  if (o.rho != 0) params.rho = o.rho;
+  params.max_mls_iterations = o.iterations;
+
+  const CloudProjection result = project_cloud(cloud, params, backend, stats);
+  {
+    ScopedPhase phase(stats, "write");
+    write_ply(o.output, result.cloud);
+  }
+  const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats.add_time("total", total);
+
+  const double projection_s = stats.time("projection");
+  const auto& c = result.counts;
+  std::printf("projected %zu points onto the PSS in %.3f s (%.0f points/s, %s backend, %d threads)\n", cloud.size(),
+              projection_s, double(cloud.size()) / projection_s, backend_name(backend), cpu_threads());
+  std::printf("h = %g, rho = %g, plane fit %s; converged %lld, not converged %lld, too few neighbours %lld, "
+              "degenerate normal %lld\n", params.h, params.rho, o.method.c_str(), (long long)c.converged,
+              (long long)c.not_converged, (long long)c.too_few_neighbours, (long long)c.degenerate_normal);
+  std::printf("wrote %s\n", o.output.c_str());
+
+  if (!o.compute.stats_path.empty()) {
+    auto& v = stats.values();
+    v["command"] = "project";
+    v["input"] = o.input;
+    v["output"] = o.output;
+    v["points"] = cloud.size();
+    v["backend"] = backend_name(backend);
+    v["threads"] = cpu_threads();
+    v["params"] = {{"h", params.h}, {"rho", params.rho}, {"plane_fit", o.method},
+                   {"max_mls_iterations", params.max_mls_iterations}, {"t_tolerance", params.t_tolerance}};
+    v["status"] = {{"converged", c.converged}, {"not_converged", c.not_converged},
+                   {"too_few_neighbours", c.too_few_neighbours}, {"degenerate_normal", c.degenerate_normal}};
+    v["points_per_second"] = double(cloud.size()) / projection_s;
+    stats.write(o.compute.stats_path);
+  }
+}
+
+}  // namespace
+
+void add_project_command(CLI::App& app) {
+  auto* command = app.add_subcommand("project", "Move every point onto the point set surface (MLS projection)");
+  auto o = std::make_shared<ProjectOptions>();
+  command->add_option("file", o->input, "point cloud (.ply, .xyz, .txt, .pts)")->required();
+  command->add_option("-o,--output", o->output, "output binary PLY with x y z nx ny nz")->required();
+  command->add_option("--h", o->h, "Gaussian width h (default: estimated from the spacing, see pss info)")
+      ->check(CLI::PositiveNumber);
+  command->add_option("--rho", o->rho, "range-query radius (default 2h)")->check(CLI::PositiveNumber);
+  command->add_option("--method", o->method, "plane fit: mls (Eq. 2, default) or wls (Eq. 1)")
+      ->check(CLI::IsMember({"mls", "wls"}))
+      ->capture_default_str();
+  command->add_option("--iterations", o->iterations, "most MLS alternations of t and n")
+      ->check(CLI::Range(1, 100))
+      ->capture_default_str();
+  add_compute_options(*command, o->compute);
+  command->callback([o] { run_project(*o); });
+}
+
+}  // namespace pss::app

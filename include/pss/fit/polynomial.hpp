@@ -1,0 +1,113 @@
+// The local bivariate polynomial g(x, y) = Ax² + By² + Cxy + D on the plane H(n, q)
+// (paper §3, §4), its weighted least-squares fit, the orthogonal projection of a point onto
+// its graph, and the intersection of a ray with it. Coordinates are local to a Frame.
+#pragma once
+
+#include "pss/fit/conjugate_gradient.hpp"
+
+namespace pss {
+
+struct Polynomial {
+  float a = 0, b = 0, c = 0, d = 0;
+
+  PSS_HOST_DEVICE float operator()(float x, float y) const { return a * x * x + b * y * y + c * x * y + d; }
+  PSS_HOST_DEVICE vec2 gradient(float x, float y) const { return vec2(2 * a * x + c * y, 2 * b * y + c * x); }
+  // Unit normal of the graph z = g(x, y), in local coordinates, pointing to +z.
+  PSS_HOST_DEVICE vec3 normal(float x, float y) const {
+    const vec2 g = gradient(x, y);
+    return glm::normalize(vec3(-g.x, -g.y, 1.0f));
+  }
+};
+
+// Accumulates the normal equations Σw·aaᵀ c = Σw·a·z with a = [x², y², xy, 1]. x and y are
+// divided by `scale` (h) first, so the matrix entries are of order one for any units.
+struct PolynomialFit {
+  float inv_scale;
+  glm::mat4 normal_matrix{0.0f};
+  vec4 rhs{0.0f};
+  float weight_sum = 0;
+  float weighted_height = 0;
+  int count = 0;
+
+  PSS_HOST_DEVICE explicit PolynomialFit(float scale) : inv_scale(1.0f / scale) {}
+
+  PSS_HOST_DEVICE void add(vec3 local, float w) {
+    const float x = local.x * inv_scale, y = local.y * inv_scale;
+    const vec4 row(x * x, y * y, x * y, 1.0f);
+    for (int c = 0; c < 4; ++c) normal_matrix[c] += (w * row[c]) * row;
+    rhs += (w * local.z) * row;
+    weight_sum += w;
+    weighted_height += w * local.z;
+    ++count;
+  }
+
+  // With fewer than six neighbours the three curvature terms are not determined: fall back
+  // to the plane through the weighted mean height (A = B = C = 0).
+  PSS_HOST_DEVICE Polynomial solve() const {
+    Polynomial g;
+    if (!(weight_sum > 0)) return g;
+    if (count < 6) {
+      g.d = weighted_height / weight_sum;
+      return g;
+    }
+    const vec4 x = conjugate_gradient(normal_matrix, rhs).x;
+    const float s2 = inv_scale * inv_scale;
+    g.a = x.x * s2;
+    g.b = x.y * s2;
+    g.c = x.z * s2;
+    g.d = x.w;
+    return g;
+  }
+};
+
+// The point of the graph of g nearest to `p` (local coordinates): minimises
+// (x - px)² + (y - py)² + (g(x, y) - pz)² by Newton's method, falling back to the always
+// positive definite Gauss-Newton matrix when the full Hessian is not.
+PSS_INLINE vec3 closest_point_on_graph(const Polynomial& g, vec3 p, int max_iterations = 16) {
+  float x = p.x, y = p.y;
+  for (int it = 0; it < max_iterations; ++it) {
+    const float r = g(x, y) - p.z;
+    const vec2 gr = g.gradient(x, y);
+    const float fx = (x - p.x) + r * gr.x;
+    const float fy = (y - p.y) + r * gr.y;
+    float hxx = 1 + gr.x * gr.x, hxy = gr.x * gr.y, hyy = 1 + gr.y * gr.y;
+    const float nxx = hxx + r * 2 * g.a, nxy = hxy + r * g.c, nyy = hyy + r * 2 * g.b;
+    if (nxx > 0 && nxx * nyy - nxy * nxy > 0) {
+      hxx = nxx;
+      hxy = nxy;
+      hyy = nyy;
+    }
+    const float det = hxx * hyy - hxy * hxy;
+    const float dx = (hyy * fx - hxy * fy) / det;
+    const float dy = (hxx * fy - hxy * fx) / det;
+    x -= dx;
+    y -= dy;
+    if (dx * dx + dy * dy < 1e-14f * (1 + x * x + y * y)) break;
+  }
+  return vec3(x, y, g(x, y));
+}
+
+// Roots t of g(o + t·d) = (o + t·d).z in increasing order (local coordinates); returns how
+// many (0, 1 or 2). Uses the cancellation-free form of the quadratic formula.
+PSS_INLINE int intersect_graph(const Polynomial& g, vec3 o, vec3 d, float roots[2]) {
+  const float a2 = g.a * d.x * d.x + g.b * d.y * d.y + g.c * d.x * d.y;
+  const float a1 = 2 * g.a * o.x * d.x + 2 * g.b * o.y * d.y + g.c * (o.x * d.y + o.y * d.x) - d.z;
+  const float a0 = g(o.x, o.y) - o.z;
+  const float linear_scale = abs(a1) + abs(a0);
+  if (abs(a2) <= 1e-7f * linear_scale) {  // (nearly) a plane: one root
+    if (a1 == 0) return 0;
+    roots[0] = -a0 / a1;
+    return 1;
+  }
+  const float disc = a1 * a1 - 4 * a2 * a0;
+  if (disc < 0) return 0;
+  const float qq = -0.5f * (a1 + copysign(sqrt(disc), a1));
+  float t0 = qq / a2;
+  float t1 = qq != 0 ? a0 / qq : t0;
+  if (t0 > t1) swap(t0, t1);
+  roots[0] = t0;
+  roots[1] = t1;
+  return 2;
+}
+
+}  // namespace pss

@@ -1,0 +1,12 @@
+// Weight functions of the paper. θ3 is the Gaussian of §3/§4; the volume features θ1, θ2
+// live with the volume code because they read voxel values.
+#pragma once
+
+#include "pss/core/platform.hpp"
+
+namespace pss {
+
+// θ3(d) = exp(-d²/h²), taking d² so callers never need the square root.
+PSS_INLINE float gaussian_weight(float distance2, float h) { return exp(-distance2 / (h * h)); }
+
+}  // namespace pss

@@ -1,0 +1,19 @@
+// Reading a point cloud whatever its file format, chosen by extension.
+#pragma once
+
+#include <filesystem>
+
+#include "pss/points/cloud.hpp"
+
+namespace pss {
+
+// .ply → read_ply; .xyz, .txt, .pts → read_xyz (case-insensitive); anything else is a
+// file_error naming the formats we know.
+PointCloud read_point_cloud(const std::filesystem::path& path);
+
+// The readers' common normal policy. Normals become unit length; zero ones stay zero (no
+// direction to recover, and dropping one would misalign the arrays). One non-finite normal
+// drops them all: a cloud has usable normals throughout or none.
+void tidy_normals(PointCloud& cloud);
+
+}  // namespace pss

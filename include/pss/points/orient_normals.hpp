@@ -1,0 +1,14 @@
+// Consistent orientation of unoriented normals (Hoppe et al. 1992): a minimum spanning tree
+// over the neighbour graph with edge cost 1 − |nᵢ·nⱼ| propagates the sign along the
+// smoothest paths; each connected part starts from its highest point, oriented to +z.
+#pragma once
+
+#include <span>
+
+#include "pss/core/types.hpp"
+
+namespace pss {
+
+void orient_normals_consistently(std::span<const vec3> points, std::span<vec3> normals, float radius);
+
+}  // namespace pss

@@ -1,0 +1,48 @@
+// Projecting every point of a cloud onto its PSS (what `pss project` does): the grid, the
+// projection kernel on the chosen backend, and consistently oriented normals.
+#pragma once
+
+#include <span>
+
+#include "pss/backend/backend.hpp"
+#include "pss/core/progress.hpp"
+#include "pss/core/stats.hpp"
+#include "pss/points/cloud.hpp"
+#include "pss/points/projection.hpp"
+
+namespace pss {
+
+struct ProjectedPoint {
+  vec3 point;
+  vec3 normal;
+  ProjectionStatus status;
+};
+
+// The per-point kernel both backends run.
+PSS_INLINE ProjectedPoint project_point(const GridView& grid, vec3 r, vec3 hint, const ProjectionParams& params) {
+  const Projection p = project_to_pss(grid, r, params, hint);
+  return {p.point, p.normal, p.status};
+}
+
+struct StatusCounts {
+  std::int64_t converged = 0, not_converged = 0, too_few_neighbours = 0, degenerate_normal = 0;
+};
+
+struct CloudProjection {
+  PointCloud cloud;  // projected points, with normals
+  StatusCounts counts;
+};
+
+// Throws Error for invalid parameters (h or ρ not positive and finite).
+CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& params, Backend backend,
+                              Stats& stats);
+
+void validate(const ProjectionParams& params);
+
+namespace cuda {
+// Runs project_point for each query on the GPU; `grid` is a host view that is uploaded.
+void project_points(const GridView& grid, std::span<const vec3> queries, std::span<const vec3> hints,
+                    const ProjectionParams& params, std::span<ProjectedPoint> out, Progress* progress);
+}  // namespace cuda
+
+}  // namespace pss

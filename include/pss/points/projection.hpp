@@ -1,0 +1,141 @@
+// The PSS projection operator P(r) of a point cloud (paper §3): a local plane H(n, q),
+// q = r + t·n, by WLS (Eq. 1) or MLS (Eq. 2); the polynomial g(x, y) fitted by WLS on it;
+// P(r) = q + g(0, 0)·n. Every sum runs over N(r), the samples within ρ of r.
+#pragma once
+
+#include "pss/core/frame.hpp"
+#include "pss/fit/brent.hpp"
+#include "pss/fit/inverse_power.hpp"
+#include "pss/fit/polynomial.hpp"
+#include "pss/fit/weights.hpp"
+#include "pss/spatial/uniform_grid.hpp"
+
+namespace pss {
+
+enum class PlaneFitMethod : unsigned char { wls, mls };
+
+enum class ProjectionStatus : unsigned char {
+  converged,
+  not_converged,       // MLS alternation still moving after max_mls_iterations
+  too_few_neighbours,  // fewer than 3 samples within ρ: no plane; point and normal unchanged
+  degenerate_normal,   // neighbours (nearly) on a line: the normal is the start vector's
+};
+
+struct ProjectionParams {
+  float h = 0;    // Gaussian width of θ3, the local level of detail
+  float rho = 0;  // range-query radius, 2h in the paper
+  PlaneFitMethod plane = PlaneFitMethod::mls;
+  int max_mls_iterations = 4;
+  float t_tolerance = 0;  // MLS stops when t moves less than this (default 1e-3·h)
+
+  static ProjectionParams from_h(float h, PlaneFitMethod plane = PlaneFitMethod::mls) {
+    ProjectionParams p;
+    p.h = h;
+    p.rho = 2 * h;
+    p.plane = plane;
+    p.t_tolerance = 1e-3f * h;
+    return p;
+  }
+};
+
+struct Projection {
+  vec3 point;   // P(r)
+  vec3 normal;  // n of the final plane: g has no linear terms, so this is also the normal
+                // of the graph of g at P(r)
+  Frame frame;  // at q, with n; g lives in it
+  Polynomial polynomial;
+  float t;
+  int neighbours;
+  ProjectionStatus status;
+};
+
+namespace detail {
+
+// Eq. 2's energy along n for fixed n: E(t) = Σ θ3(‖pᵢ − q‖)·⟨pᵢ − q, n⟩², q = r + t·n,
+// and its derivative, with zᵢ = ⟨pᵢ − r, n⟩ and ‖pᵢ − q‖² = ‖pᵢ − r‖² − 2t·zᵢ + t².
+struct MlsEnergy {
+  const GridView& grid;
+  vec3 r, n;
+  float rho, h;
+
+  PSS_HOST_DEVICE float operator()(float t, float& derivative) const {
+    float e = 0, de = 0;
+    const float inv_h2 = 1.0f / (h * h);
+    grid.for_each_in_radius(r, rho, [&](vec3 p, float d2, int) {
+      const float z = glm::dot(p - r, n);
+      const float s = z - t;
+      const float w = exp(-(d2 - 2 * t * z + t * t) * inv_h2);
+      e += w * s * s;
+      de += w * s * 2 * (s * s * inv_h2 - 1);
+    });
+    derivative = de;
+    return e;
+  }
+};
+
+}  // namespace detail
+
+PSS_INLINE Projection project_to_pss(const GridView& grid, vec3 r, const ProjectionParams& params,
+                                     vec3 normal_hint) {
+  Projection out;
+  out.point = r;
+  out.normal = length2(normal_hint) > 0 ? glm::normalize(normal_hint) : vec3(0, 0, 1);
+  out.t = 0;
+  out.frame = Frame::from_normal(r, out.normal);
+  out.status = ProjectionStatus::too_few_neighbours;
+
+  // Eq. 1 with the weighter at r: for fixed weights the best plane passes through the
+  // weighted mean m, its normal is the smallest eigenvector of the covariance about m.
+  WeightedMoments moments(r);
+  grid.for_each_in_radius(r, params.rho, [&](vec3 p, float d2, int) { moments.add(p, gaussian_weight(d2, params.h)); });
+  out.neighbours = moments.count;
+  if (moments.count < 3 || !(moments.weight_sum > 0)) return out;
+
+  EigenResult eig = smallest_eigenvector(moments.covariance_about_mean(), out.normal);
+  vec3 n = eig.vector;
+  float t = glm::dot(moments.mean() - r, n);
+  ProjectionStatus status = ProjectionStatus::converged;
+
+  if (params.plane == PlaneFitMethod::mls) {
+    // Eq. 2 by alternation: t along n by Brent with derivative, then n as the smallest
+    // eigenvector of C(q) = Σ θ3(‖pᵢ − q‖)(pᵢ − q)(pᵢ − q)ᵀ, the plane through q.
+    status = ProjectionStatus::not_converged;
+    for (int it = 0; it < params.max_mls_iterations; ++it) {
+      const detail::MlsEnergy energy{grid, r, n, params.rho, params.h};
+      const float t_next = brent_minimize(energy, t - params.h, t + params.h, t, params.t_tolerance).x;
+      const vec3 q = r + t_next * n;
+      WeightedMoments at_q(q);
+      grid.for_each_in_radius(r, params.rho, [&](vec3 p, float, int) {
+        at_q.add(p, gaussian_weight(length2(p - q), params.h));
+      });
+      eig = smallest_eigenvector(at_q.covariance_about_origin(), n);
+      const float moved = abs(t_next - t) + params.h * glm::length(eig.vector - n);
+      n = eig.vector;
+      t = t_next;
+      if (moved < params.t_tolerance) {
+        status = ProjectionStatus::converged;
+        break;
+      }
+    }
+  }
+  if (eig.status == EigenStatus::degenerate) status = ProjectionStatus::degenerate_normal;
+
+  // The polynomial, weighted from r (WLS) or from q (MLS) like the plane, in the frame of
+  // H(n, q).
+  const vec3 q = r + t * n;
+  const Frame frame = Frame::from_normal(q, n);
+  const vec3 weighter = params.plane == PlaneFitMethod::mls ? q : r;
+  PolynomialFit fit(params.h);
+  grid.for_each_in_radius(r, params.rho, [&](vec3 p, float, int) {
+    fit.add(frame.to_local(p), gaussian_weight(length2(p - weighter), params.h));
+  });
+  out.polynomial = fit.solve();
+  out.frame = frame;
+  out.t = t;
+  out.point = q + out.polynomial.d * n;
+  out.normal = n;
+  out.status = status;
+  return out;
+}
+
+}  // namespace pss

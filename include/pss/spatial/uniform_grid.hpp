@@ -1,0 +1,71 @@
+// Uniform grid for fixed-radius range queries: points sorted by cell (a counting sort), one
+// offset per cell. Kernels see a GridView (pointers and sizes, passed by value); owners on
+// the host (UniformGrid) and on the GPU (DeviceGrid) hand out views of their arrays.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "pss/core/types.hpp"
+
+namespace pss {
+
+struct GridView {
+  const vec3* points = nullptr;     // sorted by cell
+  const int* cell_start = nullptr;  // cells + 1 offsets into points
+  int count = 0;
+  vec3 origin{0.0f};
+  float inv_cell = 1.0f;
+  ivec3 dims{1};
+
+  PSS_HOST_DEVICE ivec3 cell_of(vec3 p) const {
+    const vec3 c = (p - origin) * inv_cell;
+    return ivec3(clamp(int(floor(c.x)), 0, dims.x - 1), clamp(int(floor(c.y)), 0, dims.y - 1),
+                 clamp(int(floor(c.z)), 0, dims.z - 1));
+  }
+
+  // Calls f(point, squared distance, sorted index) for every point within `radius` of c.
+  // Cells of one row are contiguous in the sorted order, so each row is one loop.
+  template <class F>
+  PSS_HOST_DEVICE void for_each_in_radius(vec3 c, float radius, F&& f) const {
+    const float r2 = radius * radius;
+    const ivec3 lo = cell_of(c - vec3(radius)), hi = cell_of(c + vec3(radius));
+    for (int z = lo.z; z <= hi.z; ++z) {
+      for (int y = lo.y; y <= hi.y; ++y) {
+        const int row = (z * dims.y + y) * dims.x;
+        const int end = cell_start[row + hi.x + 1];
+        for (int i = cell_start[row + lo.x]; i < end; ++i) {
+          const vec3 p = points[i];
+          const float d2 = length2(p - c);
+          if (d2 <= r2) f(p, d2, i);
+        }
+      }
+    }
+  }
+};
+
+class UniformGrid {
+ public:
+  // Cells of `cell_size` (the query radius makes queries touch at most 3³ cells), grown
+  // when the box would need more than `max_cells` cells.
+  UniformGrid(std::span<const vec3> points, float cell_size, long long max_cells = 1ll << 25);
+
+  GridView view() const;
+  std::span<const vec3> sorted_points() const { return sorted_; }
+  std::span<const int> cell_start() const { return cell_start_; }
+  // original_index()[i] is the input index of sorted point i.
+  std::span<const int> original_index() const { return original_index_; }
+  float cell_size() const { return cell_size_; }
+  ivec3 dims() const { return dims_; }
+  vec3 origin() const { return origin_; }
+
+ private:
+  std::vector<vec3> sorted_;
+  std::vector<int> cell_start_;
+  std::vector<int> original_index_;
+  vec3 origin_{0.0f};
+  float cell_size_ = 1.0f;
+  ivec3 dims_{1};
+};
+
+}  // namespace pss

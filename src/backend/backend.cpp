@@ -1,0 +1,28 @@
+#include "pss/backend/backend.hpp"
+
+#include <omp.h>
+
+#include "pss/core/error.hpp"
+
+namespace pss {
+
+Backend select_backend(std::string_view choice) {
+  if (choice == "cpu") return Backend::cpu;
+  if (choice == "auto") return cuda::built() && cuda::device_count() > 0 ? Backend::cuda : Backend::cpu;
+  if (choice == "cuda") {
+    if (!cuda::built()) throw Error("--backend cuda: this pss was built without CUDA (nvcc was not found)");
+    if (cuda::device_count() == 0) throw Error("--backend cuda: no CUDA device found");
+    return Backend::cuda;
+  }
+  throw Error("--backend: unknown backend '" + std::string(choice) + "' (expected cpu, cuda or auto)");
+}
+
+const char* backend_name(Backend backend) { return backend == Backend::cuda ? "cuda" : "cpu"; }
+
+void set_cpu_threads(int threads) {
+  if (threads > 0) omp_set_num_threads(threads);
+}
+
+int cpu_threads() { return omp_get_max_threads(); }
+
+}  // namespace pss

@@ -1,0 +1,416 @@
+#include "pss/io/ply.hpp"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "pss/core/error.hpp"
+#include "pss/io/output_file.hpp"
+#include "pss/io/point_cloud_file.hpp"
+
+namespace pss {
+namespace {
+
+namespace fs = std::filesystem;
+
+enum class Scalar { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64 };
+
+std::optional<Scalar> scalar_named(std::string_view name) {
+  struct Entry {
+    std::string_view name;
+    Scalar type;
+  };
+  // Both the original PLY names and the sized ones that newer writers use.
+  static constexpr Entry kTypes[] = {
+      {"char", Scalar::Int8},     {"int8", Scalar::Int8},       {"uchar", Scalar::UInt8},
+      {"uint8", Scalar::UInt8},   {"short", Scalar::Int16},     {"int16", Scalar::Int16},
+      {"ushort", Scalar::UInt16}, {"uint16", Scalar::UInt16},   {"int", Scalar::Int32},
+      {"int32", Scalar::Int32},   {"uint", Scalar::UInt32},     {"uint32", Scalar::UInt32},
+      {"float", Scalar::Float32}, {"float32", Scalar::Float32}, {"double", Scalar::Float64},
+      {"float64", Scalar::Float64}};
+  for (const Entry& e : kTypes)
+    if (e.name == name) return e.type;
+  return std::nullopt;
+}
+
+std::size_t size_of(Scalar type) {
+  switch (type) {
+    case Scalar::Int8:
+    case Scalar::UInt8: return 1;
+    case Scalar::Int16:
+    case Scalar::UInt16: return 2;
+    case Scalar::Int32:
+    case Scalar::UInt32:
+    case Scalar::Float32: return 4;
+    case Scalar::Float64: return 8;
+  }
+  return 0;
+}
+
+struct Property {
+  std::string name;
+  Scalar type;                  // the value's type, or a list's item type
+  std::optional<Scalar> count;  // set for lists: the type of the item count
+};
+
+struct Element {
+  std::string name;
+  std::uint64_t count = 0;
+  std::vector<Property> properties;
+};
+
+enum class Format { Ascii, BinaryLittleEndian, BinaryBigEndian };
+
+struct Header {
+  Format format = Format::Ascii;
+  std::vector<Element> elements;
+  std::size_t data_begin = 0;  // first byte after the end_header line
+  int lines = 0;               // so that ascii errors can name file lines
+};
+
+std::string quoted(std::string_view text) {
+  // A binary file misread as text can yield huge "words": keep messages to one short line.
+  constexpr std::size_t kMax = 40;
+  std::string out = "'";
+  out += text.substr(0, kMax);
+  out += text.size() > kMax ? "...'" : "'";
+  return out;
+}
+
+std::vector<std::string_view> split_words(std::string_view line) {
+  std::vector<std::string_view> words;
+  std::size_t i = 0;
+  while (true) {
+    i = line.find_first_not_of(" \t", i);
+    if (i == std::string_view::npos) return words;
+    const std::size_t end = std::min(line.find_first_of(" \t", i), line.size());
+    words.push_back(line.substr(i, end - i));
+    i = end;
+  }
+}
+
+Header parse_header(const fs::path& path, std::string_view file) {
+  if (!file.starts_with("ply\n") && !file.starts_with("ply\r\n"))
+    throw file_error(path, "not a PLY file (missing 'ply' magic)");
+  Header header;
+  bool has_format = false;
+  std::size_t pos = 0;
+  int line_number = 0;
+  const auto fail = [&](const std::string& problem) {
+    return file_error(path, "line " + std::to_string(line_number) + ": " + problem);
+  };
+  const auto scalar = [&](std::string_view name) {
+    const std::optional<Scalar> type = scalar_named(name);
+    if (!type) throw fail("unknown property type " + quoted(name));
+    return *type;
+  };
+  // Every header line, end_header's included, ends with '\n' (CRLF tolerated).
+  for (std::size_t end; (end = file.find('\n', pos)) != std::string_view::npos;) {
+    std::string_view line = file.substr(pos, end - pos);
+    if (line.ends_with('\r')) line.remove_suffix(1);
+    pos = end + 1;
+    if (++line_number == 1) continue;  // the magic
+    const std::vector<std::string_view> words = split_words(line);
+    if (words.empty() || words[0] == "comment" || words[0] == "obj_info") continue;
+    if (words[0] == "format" && words.size() >= 2) {
+      if (words[1] == "ascii") header.format = Format::Ascii;
+      else if (words[1] == "binary_little_endian") header.format = Format::BinaryLittleEndian;
+      else if (words[1] == "binary_big_endian") header.format = Format::BinaryBigEndian;
+      else throw file_error(path, "unknown format " + quoted(words[1]));
+      has_format = true;
+    } else if (words[0] == "element" && words.size() == 3) {
+      Element element{std::string(words[1]), 0, {}};
+      const auto [end_of_count, ec] =
+          std::from_chars(words[2].data(), words[2].data() + words[2].size(), element.count);
+      if (ec != std::errc() || end_of_count != words[2].data() + words[2].size())
+        throw fail("malformed element count " + quoted(words[2]));
+      header.elements.push_back(std::move(element));
+    } else if (words[0] == "property" && (words.size() == 3 || words.size() == 5)) {
+      if (header.elements.empty()) throw fail("property before any element");
+      Property property;
+      if (words.size() == 5 && words[1] == "list")
+        property = {std::string(words[4]), scalar(words[3]), scalar(words[2])};
+      else if (words.size() == 3)
+        property = {std::string(words[2]), scalar(words[1]), std::nullopt};
+      else
+        throw fail("malformed property line " + quoted(line));
+      header.elements.back().properties.push_back(std::move(property));
+    } else if (words[0] == "end_header") {
+      if (!has_format) throw file_error(path, "header has no 'format' line");
+      header.data_begin = pos;
+      header.lines = line_number;
+      return header;
+    } else {
+      throw fail("unexpected header line " + quoted(line));
+    }
+  }
+  throw file_error(path, "header has no 'end_header' line");
+}
+
+// Thrown by the cursors when the data ends early; the record loop, which knows what was
+// expected, turns it into the message.
+struct EndOfData {};
+
+bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
+
+// Whitespace-separated tokens; records usually sit one per line, but PLY does not require it.
+class AsciiCursor {
+ public:
+  AsciiCursor(const fs::path& path, std::string_view data, int first_line)
+      : path_(path), data_(data), line_(first_line) {}
+
+  std::size_t remaining() const { return data_.size() - pos_; }
+  // The shortest a value can be: one character and a separator.
+  static std::size_t min_bytes(Scalar) { return 2; }
+
+  double value(Scalar) {
+    std::string_view token = next();
+    if (token.size() > 1 && token[0] == '+') token.remove_prefix(1);  // from_chars rejects '+'
+    double v = 0;
+    const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), v);
+    if (ec == std::errc::result_out_of_range) fail("number out of range " + quoted(token));
+    if (ec != std::errc() || end != token.data() + token.size())
+      fail("malformed number " + quoted(token));
+    return v;
+  }
+  void skip(Scalar, std::uint64_t n = 1) {
+    for (std::uint64_t i = 0; i < n; ++i) next();
+  }
+  [[noreturn]] void fail(const std::string& problem) const {
+    throw file_error(path_, "line " + std::to_string(line_) + ": " + problem);
+  }
+
+ private:
+  std::string_view next() {
+    while (pos_ < data_.size() && is_space(data_[pos_])) line_ += data_[pos_++] == '\n';
+    if (pos_ == data_.size()) throw EndOfData{};
+    const std::size_t begin = pos_;
+    while (pos_ < data_.size() && !is_space(data_[pos_])) ++pos_;
+    return data_.substr(begin, pos_ - begin);
+  }
+
+  const fs::path& path_;
+  std::string_view data_;
+  std::size_t pos_ = 0;
+  int line_;
+};
+
+template <class T>
+T load(const char* bytes, bool swap) {
+  std::array<char, sizeof(T)> raw;
+  std::memcpy(raw.data(), bytes, sizeof(T));
+  if (swap) std::reverse(raw.begin(), raw.end());
+  return std::bit_cast<T>(raw);
+}
+
+class BinaryCursor {
+ public:
+  BinaryCursor(const fs::path& path, std::string_view data, std::endian endian)
+      : path_(path), data_(data), swap_(endian != std::endian::native) {}
+
+  std::size_t remaining() const { return data_.size() - pos_; }
+  static std::size_t min_bytes(Scalar type) { return size_of(type); }
+
+  double value(Scalar type) {
+    const char* p = take(size_of(type));
+    switch (type) {
+      case Scalar::Int8: return load<std::int8_t>(p, swap_);
+      case Scalar::UInt8: return load<std::uint8_t>(p, swap_);
+      case Scalar::Int16: return load<std::int16_t>(p, swap_);
+      case Scalar::UInt16: return load<std::uint16_t>(p, swap_);
+      case Scalar::Int32: return load<std::int32_t>(p, swap_);
+      case Scalar::UInt32: return load<std::uint32_t>(p, swap_);
+      case Scalar::Float32: return load<float>(p, swap_);
+      case Scalar::Float64: return load<double>(p, swap_);
+    }
+    return 0;
+  }
+  void skip(Scalar type, std::uint64_t n = 1) { take(n * size_of(type)); }
+  [[noreturn]] void fail(const std::string& problem) const {
+    throw file_error(path_, "byte " + std::to_string(pos_) + " of the data: " + problem);
+  }
+
+ private:
+  const char* take(std::uint64_t bytes) {
+    if (bytes > remaining()) throw EndOfData{};
+    const char* p = data_.data() + pos_;
+    pos_ += bytes;
+    return p;
+  }
+
+  const fs::path& path_;
+  std::string_view data_;
+  std::size_t pos_ = 0;
+  bool swap_;
+};
+
+// Lists are never needed (faces, or per-vertex lists): only their length is read.
+template <class Cursor>
+void skip_list(Cursor& in, const Property& list) {
+  const double n = in.value(*list.count);
+  if (!(n >= 0 && n <= 4294967295.0 && n == std::floor(n))) {
+    char text[32];
+    in.fail("malformed list count " + std::string(text, std::to_chars(text, text + 32, n).ptr));
+  }
+  in.skip(list.type, static_cast<std::uint64_t>(n));
+}
+
+std::string describe(const Element& element) {
+  const std::string n = std::to_string(element.count);
+  return element.name == "vertex" ? n + " vertices" : n + " '" + element.name + "' elements";
+}
+
+// Runs read_record for each record, reporting truncation as "expected N, read M".
+template <class ReadRecord>
+void for_each_record(const fs::path& path, const Element& element, ReadRecord read_record) {
+  if (element.properties.empty()) return;  // no bytes to read, however large the count
+  std::uint64_t i = 0;
+  try {
+    for (; i < element.count; ++i) read_record(i);
+  } catch (const EndOfData&) {
+    throw file_error(path,
+                     "truncated: expected " + describe(element) + ", read " + std::to_string(i));
+  }
+}
+
+constexpr std::string_view kVertexNames[] = {"x", "y", "z", "nx", "ny", "nz"};
+
+// Which of x y z nx ny nz each vertex property is (-1: skipped). Normals count only when
+// all three are present.
+std::vector<int> vertex_slots(const fs::path& path, const Element& vertex) {
+  std::vector<int> slots(vertex.properties.size(), -1);
+  std::array<bool, 6> found{};
+  for (std::size_t i = 0; i < slots.size(); ++i) {
+    if (vertex.properties[i].count) continue;
+    for (int k = 0; k < 6; ++k)
+      if (vertex.properties[i].name == kVertexNames[k]) slots[i] = k, found[k] = true;
+  }
+  for (int k = 0; k < 3; ++k)
+    if (!found[k])
+      throw file_error(path, "vertex element has no '" + std::string(kVertexNames[k]) + "' property");
+  if (!(found[3] && found[4] && found[5]))
+    for (int& s : slots) s = s >= 3 ? -1 : s;
+  return slots;
+}
+
+// The most records of an element the remaining bytes could hold. Reserving no more than
+// that keeps a corrupt count from allocating gigabytes before the truncation shows.
+template <class Cursor>
+std::uint64_t max_records(const Cursor& in, const Element& element) {
+  std::uint64_t min_record = 0;
+  for (const Property& p : element.properties) min_record += in.min_bytes(p.count.value_or(p.type));
+  return min_record == 0 ? 0 : (in.remaining() + 1) / min_record;
+}
+
+template <class Cursor>
+PointCloud read_data(const fs::path& path, const Header& header, Cursor in) {
+  const auto vertex = std::find_if(header.elements.begin(), header.elements.end(),
+                                   [](const Element& e) { return e.name == "vertex"; });
+  if (vertex == header.elements.end()) throw file_error(path, "no vertex element");
+  const std::vector<int> slots = vertex_slots(path, *vertex);
+  if (vertex->count == 0) throw file_error(path, "no vertices");
+
+  for (auto e = header.elements.begin(); e != vertex; ++e) {
+    for_each_record(path, *e, [&](std::uint64_t) {
+      for (const Property& p : e->properties) {
+        if (p.count) skip_list(in, p);
+        else in.skip(p.type);
+      }
+    });
+  }
+  const bool normals = std::find(slots.begin(), slots.end(), 3) != slots.end();
+  PointCloud cloud;
+  const std::uint64_t capacity = std::min(vertex->count, max_records(in, *vertex));
+  cloud.positions.reserve(capacity);
+  if (normals) cloud.normals.reserve(capacity);
+  for_each_record(path, *vertex, [&](std::uint64_t i) {
+    double v[6] = {};
+    for (std::size_t j = 0; j < slots.size(); ++j) {
+      const Property& p = vertex->properties[j];
+      if (p.count) skip_list(in, p);
+      else if (slots[j] >= 0) v[slots[j]] = in.value(p.type);
+      else in.skip(p.type);
+    }
+    // A double beyond float range becomes infinite here, and is refused with the NaNs.
+    const vec3 position(glm::dvec3(v[0], v[1], v[2]));
+    if (!is_finite(position))
+      throw file_error(path, "vertex " + std::to_string(i) + " has a non-finite coordinate");
+    cloud.positions.push_back(position);
+    if (normals) cloud.normals.push_back(vec3(glm::dvec3(v[3], v[4], v[5])));
+  });
+  // Elements after the vertices are not read: nothing there is needed.
+  tidy_normals(cloud);
+  return cloud;
+}
+
+template <class T>
+char* store_little_endian(char* out, T value) {
+  auto raw = std::bit_cast<std::array<char, sizeof(T)>>(value);
+  if (std::endian::native != std::endian::little) std::reverse(raw.begin(), raw.end());
+  return std::copy(raw.begin(), raw.end(), out);
+}
+
+}  // namespace
+
+PointCloud read_ply(const fs::path& path) {
+  const std::string file = read_file(path);
+  const Header header = parse_header(path, file);
+  const std::string_view data = std::string_view(file).substr(header.data_begin);
+  switch (header.format) {
+    case Format::Ascii: return read_data(path, header, AsciiCursor(path, data, header.lines + 1));
+    case Format::BinaryLittleEndian:
+      return read_data(path, header, BinaryCursor(path, data, std::endian::little));
+    case Format::BinaryBigEndian:
+      return read_data(path, header, BinaryCursor(path, data, std::endian::big));
+  }
+  return {};
+}
+
+void write_ply(const fs::path& path, const PointCloud& cloud, std::span<const PlyIntProperty> extra) {
+  const std::size_t n = cloud.size();
+  if (cloud.has_normals() && cloud.normals.size() != n)
+    throw file_error(path, "cannot write: " + std::to_string(n) + " positions but " +
+                               std::to_string(cloud.normals.size()) + " normals");
+  for (const PlyIntProperty& p : extra) {
+    if (p.values.size() != n)
+      throw file_error(path, "cannot write: " + std::to_string(n) + " positions but " +
+                                 std::to_string(p.values.size()) + " values of '" + p.name + "'");
+    // A name with blanks would split into extra words and corrupt the header.
+    if (p.name.empty() || std::any_of(p.name.begin(), p.name.end(),
+                                      [](unsigned char c) { return c <= ' ' || c >= 127; }))
+      throw file_error(path, "cannot write: invalid property name '" + p.name + "'");
+  }
+
+  OutputFile file(path);
+  std::ostream& out = file.stream();
+  out << "ply\nformat binary_little_endian 1.0\ncomment written by pss\nelement vertex " << n
+      << "\nproperty float x\nproperty float y\nproperty float z\n";
+  if (cloud.has_normals()) out << "property float nx\nproperty float ny\nproperty float nz\n";
+  for (const PlyIntProperty& p : extra) out << "property int " << p.name << "\n";
+  out << "end_header\n";
+
+  // Records go out in chunks: one write per chunk, without a second copy of a large cloud.
+  const std::size_t stride = (cloud.has_normals() ? 24 : 12) + 4 * extra.size();
+  constexpr std::size_t kChunk = 1 << 16;
+  std::vector<char> buffer(std::min(n, kChunk) * stride);
+  for (std::size_t begin = 0; begin < n; begin += kChunk) {
+    const std::size_t end = std::min(n, begin + kChunk);
+    char* o = buffer.data();
+    for (std::size_t i = begin; i < end; ++i) {
+      for (int k = 0; k < 3; ++k) o = store_little_endian(o, cloud.positions[i][k]);
+      if (cloud.has_normals())
+        for (int k = 0; k < 3; ++k) o = store_little_endian(o, cloud.normals[i][k]);
+      for (const PlyIntProperty& p : extra) o = store_little_endian(o, p.values[i]);
+    }
+    out.write(buffer.data(), o - buffer.data());
+  }
+  file.commit();
+}
+
+}  // namespace pss

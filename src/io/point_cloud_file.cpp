@@ -1,0 +1,39 @@
+#include "pss/io/point_cloud_file.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <string>
+
+#include "pss/core/error.hpp"
+#include "pss/io/ply.hpp"
+#include "pss/io/xyz.hpp"
+
+namespace pss {
+
+PointCloud read_point_cloud(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext == ".ply") return read_ply(path);
+  if (ext == ".xyz" || ext == ".txt" || ext == ".pts") return read_xyz(path);
+  throw file_error(path, "unknown point cloud format '" + path.extension().string() +
+                             "' (expected .ply, .xyz, .txt or .pts)");
+}
+
+void tidy_normals(PointCloud& cloud) {
+  if (!std::all_of(cloud.normals.begin(), cloud.normals.end(),
+                   [](vec3 n) { return is_finite(n); })) {
+    cloud.normals.clear();
+    return;
+  }
+  for (vec3& n : cloud.normals) {
+    // In double: the squared length of a huge or tiny float normal over- or underflows.
+    const double len2 = double(n.x) * n.x + double(n.y) * n.y + double(n.z) * n.z;
+    // Already unit within rounding: leave the bits alone, so write/read round trips are exact.
+    if (len2 > 0.0 && std::abs(len2 - 1.0) > 1e-6)
+      n = vec3(glm::dvec3(n) / std::sqrt(len2));
+  }
+}
+
+}  // namespace pss

@@ -1,0 +1,75 @@
+#include "pss/io/xyz.hpp"
+
+#include <charconv>
+#include <string>
+#include <string_view>
+
+#include "pss/core/error.hpp"
+#include "pss/io/output_file.hpp"
+#include "pss/io/point_cloud_file.hpp"
+
+namespace pss {
+namespace {
+
+bool is_separator(char c) { return c == ' ' || c == '\t' || c == ',' || c == '\r'; }
+
+}  // namespace
+
+PointCloud read_xyz(const std::filesystem::path& path) {
+  const std::string file = read_file(path);
+  const std::string_view text = file;
+  PointCloud cloud;
+  std::size_t columns = 0;  // fixed by the first point line
+  int first_point_line = 0;
+  int line_number = 0;
+  for (std::size_t pos = 0; pos < text.size();) {
+    const std::size_t end = std::min(text.find('\n', pos), text.size());
+    const std::string_view line = text.substr(pos, end - pos);
+    pos = end + 1;
+    ++line_number;
+    const auto fail = [&](const std::string& problem) {
+      return file_error(path, "line " + std::to_string(line_number) + ": " + problem);
+    };
+
+    float v[6];
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < line.size();) {
+      if (is_separator(line[i])) {
+        ++i;
+        continue;
+      }
+      if (count == 0 && line[i] == '#') break;  // a comment line
+      std::size_t j = i;
+      while (j < line.size() && !is_separator(line[j])) ++j;
+      std::string_view token = line.substr(i, j - i);
+      i = j;
+      if (count == 6) throw fail("more than 6 numbers");
+      if (token.size() > 1 && token[0] == '+') token.remove_prefix(1);  // from_chars rejects '+'
+      const auto [stop, ec] = std::from_chars(token.data(), token.data() + token.size(), v[count]);
+      if (ec == std::errc::result_out_of_range)
+        throw fail("number out of range '" + std::string(token.substr(0, 40)) + "'");
+      if (ec != std::errc() || stop != token.data() + token.size())
+        throw fail("malformed number '" + std::string(token.substr(0, 40)) + "'");
+      ++count;
+    }
+    if (count == 0) continue;  // blank or comment
+    if (columns == 0) {
+      if (count != 3 && count != 6)
+        throw fail("expected 3 or 6 numbers (x y z [nx ny nz]), found " + std::to_string(count));
+      columns = count;
+      first_point_line = line_number;
+    } else if (count != columns) {
+      throw fail("found " + std::to_string(count) + " numbers, but line " +
+                 std::to_string(first_point_line) + " has " + std::to_string(columns));
+    }
+    const vec3 position(v[0], v[1], v[2]);
+    if (!is_finite(position)) throw fail("non-finite coordinate");
+    cloud.positions.push_back(position);
+    if (columns == 6) cloud.normals.emplace_back(v[3], v[4], v[5]);
+  }
+  if (cloud.positions.empty()) throw file_error(path, "no points");
+  tidy_normals(cloud);
+  return cloud;
+}
+
+}  // namespace pss

@@ -1,0 +1,49 @@
+#include "pss/points/orient_normals.hpp"
+
+#include <algorithm>
+#include <numeric>
+#include <queue>
+#include <vector>
+
+#include "pss/spatial/uniform_grid.hpp"
+
+namespace pss {
+
+void orient_normals_consistently(std::span<const vec3> points, std::span<vec3> normals, float radius) {
+  const UniformGrid grid(points, radius);
+  const GridView view = grid.view();
+  const std::span<const int> original = grid.original_index();
+
+  std::vector<int> by_height(points.size());
+  std::iota(by_height.begin(), by_height.end(), 0);
+  std::stable_sort(by_height.begin(), by_height.end(), [&](int a, int b) { return points[a].z > points[b].z; });
+
+  struct Edge {
+    float cost;
+    int node;
+    int parent;  // oriented already; -1 for a seed
+    bool operator>(const Edge& o) const { return cost > o.cost || (cost == o.cost && node > o.node); }
+  };
+  std::vector<char> done(points.size(), 0);
+  std::priority_queue<Edge, std::vector<Edge>, std::greater<>> frontier;
+  for (int seed : by_height) {
+    if (done[seed]) continue;
+    if (normals[seed].z < 0) normals[seed] = -normals[seed];
+    frontier.push({0.0f, seed, -1});
+    while (!frontier.empty()) {
+      const Edge e = frontier.top();
+      frontier.pop();
+      const int i = e.node;
+      if (done[i]) continue;
+      done[i] = 1;
+      // Prim's order: the edge that reaches i first is its tree edge to the parent.
+      if (e.parent >= 0 && glm::dot(normals[e.parent], normals[i]) < 0) normals[i] = -normals[i];
+      view.for_each_in_radius(points[i], radius, [&](vec3, float, int sorted) {
+        const int j = original[sorted];
+        if (!done[j]) frontier.push({1.0f - std::abs(glm::dot(normals[i], normals[j])), j, i});
+      });
+    }
+  }
+}
+
+}  // namespace pss

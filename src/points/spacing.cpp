@@ -1,0 +1,57 @@
+#include "pss/points/spacing.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <nanoflann.hpp>
+#include <vector>
+
+#include "pss/core/error.hpp"
+
+namespace pss {
+
+namespace {
+
+struct CloudAdaptor {
+  std::span<const vec3> points;
+  std::size_t kdtree_get_point_count() const { return points.size(); }
+  float kdtree_get_pt(std::size_t i, std::size_t dim) const { return points[i][int(dim)]; }
+  template <class Box>
+  bool kdtree_get_bbox(Box&) const {
+    return false;
+  }
+};
+
+using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, CloudAdaptor>, CloudAdaptor, 3>;
+
+}  // namespace
+
+SpacingEstimate estimate_spacing(std::span<const vec3> points, int k, std::size_t max_samples) {
+  if (points.size() < 2) throw Error("cannot estimate the sample spacing of fewer than two points");
+  k = std::min<int>(k, int(points.size()) - 1);
+  CloudAdaptor adaptor{points};
+  KdTree tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+  tree.buildIndex();
+
+  const std::size_t stride = std::max<std::size_t>(1, points.size() / max_samples);
+  std::vector<unsigned> index(k + 1);
+  std::vector<float> dist2(k + 1);
+  std::vector<double> kth;
+  double nearest_sum = 0;
+  for (std::size_t i = 0; i < points.size(); i += stride) {
+    // k + 1 because the query point finds itself at distance 0.
+    const std::size_t found = tree.knnSearch(&points[i].x, k + 1, index.data(), dist2.data());
+    nearest_sum += std::sqrt(double(dist2[std::min<std::size_t>(1, found - 1)]));
+    kth.push_back(std::sqrt(double(dist2[found - 1])));
+  }
+  std::nth_element(kth.begin(), kth.begin() + kth.size() / 2, kth.end());
+  SpacingEstimate e;
+  e.k = k;
+  e.mean_nearest = nearest_sum / double(kth.size());
+  e.median_kth = kth[kth.size() / 2];
+  e.suggested_h = e.median_kth;
+  if (!(e.suggested_h > 0))
+    throw Error("cannot estimate the sample spacing: the points coincide (pass --h explicitly)");
+  return e;
+}
+
+}  // namespace pss

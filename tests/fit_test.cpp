@@ -1,0 +1,238 @@
+// The numerical building blocks against closed-form truth.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "pss/fit/brent.hpp"
+#include "pss/fit/conjugate_gradient.hpp"
+#include "pss/fit/inverse_power.hpp"
+#include "pss/fit/polynomial.hpp"
+#include "pss/core/frame.hpp"
+
+namespace pss {
+namespace {
+
+// Q·diag(l)·Qᵀ for the rotation Q = [u v n] of a random frame.
+Sym3 matrix_with_spectrum(const Frame& f, vec3 l) {
+  Sym3 m;
+  m.add_outer(f.u, l.x);
+  m.add_outer(f.v, l.y);
+  m.add_outer(f.n, l.z);
+  return m;
+}
+
+Frame random_frame(std::mt19937& rng) {
+  std::normal_distribution<float> g;
+  return Frame::from_normal(vec3(0.0f), glm::normalize(vec3(g(rng), g(rng), g(rng))));
+}
+
+TEST(InversePower, FindsSmallestEigenvectorOfRandomSpectra) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(0.05f, 1.0f);
+  for (int trial = 0; trial < 200; ++trial) {
+    const Frame f = random_frame(rng);
+    const float small = 0.2f * u(rng) * 0.04f;  // well separated: λ0 ≤ 0.008 < 0.05 ≤ λ1
+    const EigenResult r = smallest_eigenvector(matrix_with_spectrum(f, vec3(u(rng), u(rng), small)), vec3(0.0f));
+    ASSERT_EQ(r.status, EigenStatus::converged);
+    // The wanted vector is f.n up to sign; float rounding bounds the angle by ~1e-3 rad.
+    EXPECT_GT(std::abs(glm::dot(r.vector, f.n)), 1 - 1e-6f);
+    EXPECT_NEAR(r.eigenvalue, small, 1e-5f);
+  }
+}
+
+TEST(InversePower, PlanarNeighbourhoodHasZeroEigenvalue) {
+  std::mt19937 rng(3);
+  const Frame f = random_frame(rng);
+  // Exactly singular: the shift keeps the factorisation valid.
+  const EigenResult r = smallest_eigenvector(matrix_with_spectrum(f, vec3(1.0f, 0.3f, 0.0f)), vec3(0.0f));
+  EXPECT_EQ(r.status, EigenStatus::converged);
+  EXPECT_GT(std::abs(glm::dot(r.vector, f.n)), 1 - 1e-6f);
+}
+
+TEST(InversePower, LinearNeighbourhoodIsDegenerateAndStaysNearStart) {
+  std::mt19937 rng(5);
+  const Frame f = random_frame(rng);
+  // Points on a line along u: any normal orthogonal to u fits; we get the one nearest the start.
+  const vec3 start = glm::normalize(f.v + 0.3f * f.u);
+  const EigenResult r = smallest_eigenvector(matrix_with_spectrum(f, vec3(1.0f, 0.0f, 0.0f)), start);
+  EXPECT_EQ(r.status, EigenStatus::degenerate);
+  EXPECT_NEAR(glm::dot(r.vector, f.u), 0.0f, 1e-4f);
+  EXPECT_GT(glm::dot(r.vector, f.v), 0.99f);
+}
+
+TEST(InversePower, IsotropicSpectrumIsDegenerate) {
+  Sym3 m;
+  m.xx = m.yy = m.zz = 2.0f;
+  EXPECT_EQ(smallest_eigenvector(m, vec3(0, 0, 1)).status, EigenStatus::degenerate);
+}
+
+TEST(InversePower, ZeroAndNonFiniteMatricesAreInvalid) {
+  EXPECT_EQ(smallest_eigenvector(Sym3{}, vec3(0, 1, 0)).status, EigenStatus::invalid);
+  Sym3 m;
+  m.xx = NAN;
+  const EigenResult r = smallest_eigenvector(m, vec3(0, 1, 0));
+  EXPECT_EQ(r.status, EigenStatus::invalid);
+  EXPECT_EQ(r.vector, vec3(0, 1, 0));
+}
+
+TEST(InversePower, OrientsAlongStartVector) {
+  std::mt19937 rng(9);
+  const Frame f = random_frame(rng);
+  const EigenResult r = smallest_eigenvector(matrix_with_spectrum(f, vec3(1.0f, 0.5f, 0.01f)), -f.n);
+  EXPECT_LT(glm::dot(r.vector, f.n), -0.999f);
+}
+
+// Gaussian elimination in double: the direct solve CG is checked against.
+glm::dvec4 direct_solve(const glm::mat4& m, vec4 b) {
+  double a[4][5];
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 4; ++c) a[r][c] = m[c][r];
+    a[r][4] = b[r];
+  }
+  for (int k = 0; k < 4; ++k) {
+    int p = k;
+    for (int r = k + 1; r < 4; ++r)
+      if (std::abs(a[r][k]) > std::abs(a[p][k])) p = r;
+    for (int c = 0; c < 5; ++c) std::swap(a[k][c], a[p][c]);
+    for (int r = k + 1; r < 4; ++r) {
+      const double f = a[r][k] / a[k][k];
+      for (int c = k; c < 5; ++c) a[r][c] -= f * a[k][c];
+    }
+  }
+  glm::dvec4 x;
+  for (int k = 3; k >= 0; --k) {
+    double s = a[k][4];
+    for (int c = k + 1; c < 4; ++c) s -= a[k][c] * x[c];
+    x[k] = s / a[k][k];
+  }
+  return x;
+}
+
+TEST(ConjugateGradient, MatchesDirectSolveOnRandomSpdSystems) {
+  std::mt19937 rng(11);
+  std::normal_distribution<float> g;
+  for (int trial = 0; trial < 500; ++trial) {
+    // M = BᵀB + 0.1·I: SPD with condition number up to ~10³.
+    glm::mat4 b;
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) b[c][r] = g(rng);
+    glm::mat4 m = glm::transpose(b) * b;
+    for (int i = 0; i < 4; ++i) m[i][i] += 0.1f;
+    const vec4 rhs(g(rng), g(rng), g(rng), g(rng));
+    const CgResult cg = conjugate_gradient(m, rhs, 16, 1e-7f);
+    const glm::dvec4 x = direct_solve(m, rhs);
+    // Forward error ≤ cond·ε_float ≈ 10³·6e-8 relative to ‖x‖.
+    const double scale = glm::length(x);
+    for (int i = 0; i < 4; ++i) EXPECT_NEAR(cg.x[i], x[i], 1e-3 * scale) << "trial " << trial;
+  }
+}
+
+TEST(ConjugateGradient, SingularConsistentSystemGivesMinimumNormSolution) {
+  // Rank 2: x and y each appear in one equation, z and w in none.
+  glm::mat4 m(0.0f);
+  m[0][0] = 2;
+  m[1][1] = 4;
+  const CgResult r = conjugate_gradient(m, vec4(2, 8, 0, 0));
+  EXPECT_NEAR(r.x.x, 1, 1e-6);
+  EXPECT_NEAR(r.x.y, 2, 1e-6);
+  EXPECT_EQ(r.x.z, 0);
+  EXPECT_EQ(r.x.w, 0);
+}
+
+TEST(PolynomialFit, RecoversExactQuadraticAtAnyScale) {
+  for (float scale : {1e-3f, 1.0f, 1e3f}) {
+    const Polynomial truth{0.7f / scale, -0.4f / scale, 0.25f / scale, 0.1f * scale};
+    PolynomialFit fit(scale);
+    std::mt19937 rng(2);
+    std::uniform_real_distribution<float> u(-2 * scale, 2 * scale);
+    for (int i = 0; i < 50; ++i) {
+      const float x = u(rng), y = u(rng);
+      fit.add(vec3(x, y, truth(x, y)), 0.5f + 0.01f * i);
+    }
+    const Polynomial g = fit.solve();
+    EXPECT_NEAR(g.a * scale, truth.a * scale, 1e-4);
+    EXPECT_NEAR(g.b * scale, truth.b * scale, 1e-4);
+    EXPECT_NEAR(g.c * scale, truth.c * scale, 1e-4);
+    EXPECT_NEAR(g.d / scale, truth.d / scale, 1e-5);
+  }
+}
+
+TEST(PolynomialFit, FewNeighboursFallBackToWeightedPlane) {
+  PolynomialFit fit(1.0f);
+  fit.add(vec3(0, 0, 1), 1);
+  fit.add(vec3(1, 0, 3), 1);
+  const Polynomial g = fit.solve();
+  EXPECT_FLOAT_EQ(g.d, 2);
+  EXPECT_EQ(g.a, 0);
+}
+
+TEST(ClosestPointOnGraph, ResidualIsAlongTheGraphNormal) {
+  const Polynomial g{0.5f, -0.3f, 0.2f, 0.1f};
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<float> u(-0.5f, 0.5f);
+  for (int i = 0; i < 100; ++i) {
+    const vec3 p(u(rng), u(rng), u(rng));
+    const vec3 c = closest_point_on_graph(g, p);
+    EXPECT_NEAR(c.z, g(c.x, c.y), 1e-6);
+    // First-order optimality: p − c is parallel to the normal at c.
+    const vec3 d = p - c;
+    if (glm::length(d) > 1e-4f) EXPECT_GT(std::abs(glm::dot(glm::normalize(d), g.normal(c.x, c.y))), 1 - 1e-5f);
+  }
+}
+
+TEST(ClosestPointOnGraph, SphereCapProjectsRadially) {
+  // Near the pole the graph of g = −x²/2 − y²/2 + 1 osculates the unit sphere; the closest
+  // point from the centre's side lies on the same ray up to the quartic difference.
+  const Polynomial g{-0.5f, -0.5f, 0.0f, 1.0f};
+  const vec3 c = closest_point_on_graph(g, vec3(0.01f, 0.02f, 0.9f));
+  EXPECT_NEAR(c.x / c.z, 0.01f / 0.9f, 1e-4);
+}
+
+TEST(IntersectGraph, RootsSolveTheEquation) {
+  const Polynomial g{0.5f, 0.2f, -0.1f, 0.05f};
+  const vec3 o(0.1f, -0.2f, 2.0f), d = glm::normalize(vec3(0.1f, 0.05f, -1.0f));
+  float t[2];
+  const int n = intersect_graph(g, o, d, t);
+  ASSERT_EQ(n, 2);
+  for (int i = 0; i < n; ++i) {
+    const vec3 p = o + t[i] * d;
+    EXPECT_NEAR(p.z, g(p.x, p.y), 1e-6f * (1 + std::abs(p.z)));
+  }
+  // The near root: the graph is ~0.07 high around (0.3, −0.1), 2 − 0.07 below the origin
+  // along a direction with d.z ≈ −0.994. The far root is behind the origin.
+  EXPECT_LT(t[0], 0);
+  EXPECT_NEAR(t[1], 1.93f / 0.994f, 0.03f);
+}
+
+TEST(IntersectGraph, PlaneAndMiss) {
+  float t[2];
+  EXPECT_EQ(intersect_graph(Polynomial{0, 0, 0, 1}, vec3(0, 0, 3), vec3(0, 0, -1), t), 1);
+  EXPECT_FLOAT_EQ(t[0], 2);
+  // Paraboloid opening up, ray above it going sideways: no root.
+  EXPECT_EQ(intersect_graph(Polynomial{1, 1, 0, 0}, vec3(0, 0, -1), vec3(1, 0, 0), t), 0);
+}
+
+TEST(Brent, MinimisesWithDerivative) {
+  int calls = 0;
+  auto f = [&](float x, float& df) {
+    ++calls;
+    df = 4 * (x - 0.3f) * (x - 0.3f) * (x - 0.3f) + 2 * (x - 0.3f);
+    return (x - 0.3f) * (x - 0.3f) * (x - 0.3f) * (x - 0.3f) + (x - 0.3f) * (x - 0.3f);
+  };
+  const BrentResult r = brent_minimize(f, -1.0f, 2.0f, -0.8f, 1e-6f);
+  EXPECT_NEAR(r.x, 0.3f, 1e-5);
+  EXPECT_EQ(r.evaluations, calls);
+  EXPECT_LT(calls, 32);
+}
+
+TEST(Brent, MinimumAtTheIntervalEnd) {
+  auto f = [](float x, float& df) {
+    df = 1;
+    return x;
+  };
+  EXPECT_NEAR(brent_minimize(f, 0.0f, 1.0f, 0.5f, 1e-6f).x, 0.0f, 1e-5);
+}
+
+}  // namespace
+}  // namespace pss

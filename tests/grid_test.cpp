@@ -1,0 +1,58 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+
+#include "pss/spatial/uniform_grid.hpp"
+
+namespace pss {
+namespace {
+
+TEST(UniformGrid, RangeQueriesEqualBruteForce) {
+  std::mt19937 rng(1);
+  for (int trial = 0; trial < 8; ++trial) {
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f + trial);
+    std::vector<vec3> pts(2000 + 500 * trial);
+    for (vec3& p : pts) p = vec3(u(rng), u(rng), 0.1f * u(rng));
+    const float radius = 0.05f + 0.05f * trial;
+    const UniformGrid grid(pts, radius);
+    const GridView view = grid.view();
+    for (int q = 0; q < 200; ++q) {
+      const vec3 c(u(rng) * 1.2f, u(rng) * 1.2f, u(rng));  // some queries outside the box
+      std::vector<int> found;
+      view.for_each_in_radius(c, radius, [&](vec3 p, float d2, int i) {
+        EXPECT_EQ(p, pts[grid.original_index()[i]]);
+        EXPECT_FLOAT_EQ(d2, length2(p - c));
+        found.push_back(grid.original_index()[i]);
+      });
+      std::vector<int> brute;
+      for (int i = 0; i < int(pts.size()); ++i)
+        if (length2(pts[i] - c) <= radius * radius) brute.push_back(i);
+      std::sort(found.begin(), found.end());
+      ASSERT_EQ(found, brute) << "trial " << trial << " query " << q;
+    }
+  }
+}
+
+TEST(UniformGrid, CapsTheNumberOfCells) {
+  const std::vector<vec3> pts{vec3(0.0f), vec3(1000.0f)};
+  const UniformGrid grid(pts, 0.001f, 1 << 20);
+  const ivec3 d = grid.dims();
+  EXPECT_LE((long long)d.x * d.y * d.z, 1 << 20);
+  int found = 0;
+  grid.view().for_each_in_radius(vec3(0.0f), 0.5f, [&](vec3, float, int) { ++found; });
+  EXPECT_EQ(found, 1);
+}
+
+TEST(UniformGrid, EmptyAndSinglePoint) {
+  const UniformGrid empty(std::vector<vec3>{}, 1.0f);
+  int found = 0;
+  empty.view().for_each_in_radius(vec3(0.0f), 10.0f, [&](vec3, float, int) { ++found; });
+  EXPECT_EQ(found, 0);
+  const UniformGrid one(std::vector<vec3>{vec3(1, 2, 3)}, 1.0f);
+  one.view().for_each_in_radius(vec3(1, 2, 3), 0.1f, [&](vec3, float, int) { ++found; });
+  EXPECT_EQ(found, 1);
+}
+
+}  // namespace
+}  // namespace pss

@@ -1,0 +1,188 @@
+// The projection operator on clean and noisy samples of analytic shapes.
+//
+// Tolerances. σ is the noise (0.5% of the radius). With the default h a ball of radius
+// ρ = 2h holds ~60 samples, ~20 of them with weight above e⁻¹; fitting 4 coefficients to
+// them leaves D with a standard deviation near σ·√(4/20) ≈ 0.45σ, a mean absolute value
+// near 0.36σ: we assert a mean error below 0.4σ. Without noise the error is the fit's bias:
+// a quadratic cannot follow the quartic term of the surface, of order κ³h⁴ for curvature κ,
+// so we assert a mean below 2κ³h⁴. Normals: noise tilts the plane by about
+// σ/(h·√N_eff) ≈ 0.5°, uneven sampling by κ·h/√N_eff ≈ 0.6°: mean below 2°.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "pss/core/error.hpp"
+#include "pss/points/project_cloud.hpp"
+#include "pss/points/spacing.hpp"
+#include "support/shapes.hpp"
+
+namespace pss {
+namespace {
+
+struct Errors {
+  double mean_distance = 0, max_distance = 0, mean_angle_deg = 0, p99_angle_deg = 0;
+};
+
+template <class Shape>
+Errors measure(const Shape& shape, const CloudProjection& out) {
+  Errors e;
+  const std::size_t n = out.cloud.size();
+  std::vector<double> angles;
+  for (std::size_t i = 0; i < n; ++i) {
+    const vec3 p = out.cloud.positions[i];
+    const double d = std::abs(shape.distance(p));
+    const double cosine = std::abs(glm::dot(out.cloud.normals[i], shape.normal(p)));
+    angles.push_back(std::acos(std::min(1.0, cosine)) * 180.0 / M_PI);
+    e.mean_distance += d / n;
+    e.max_distance = std::max(e.max_distance, d);
+    e.mean_angle_deg += angles.back() / n;
+  }
+  std::nth_element(angles.begin(), angles.begin() + n * 99 / 100, angles.end());
+  e.p99_angle_deg = angles[n * 99 / 100];
+  return e;
+}
+
+CloudProjection run(const PointCloud& cloud, float h, PlaneFitMethod plane) {
+  Stats stats;
+  return project_cloud(cloud, ProjectionParams::from_h(h, plane), Backend::cpu, stats);
+}
+
+float suggested_h(const PointCloud& cloud) { return float(estimate_spacing(cloud.positions).suggested_h); }
+
+struct Case {
+  const char* name;
+  bool torus;
+  bool nonuniform;
+  float noise;  // relative to the radius (sphere) or tube radius (torus)
+};
+
+class ProjectionAccuracy : public testing::TestWithParam<Case> {};
+
+TEST_P(ProjectionAccuracy, LiesOnTheSurfaceWithAnalyticNormals) {
+  const Case c = GetParam();
+  const test::Sphere sphere;
+  const test::Torus torus;
+  const float radius = c.torus ? torus.minor : sphere.radius;
+  const float kappa = 1.0f / radius;  // largest principal curvature
+  test::SampleOptions o;
+  o.count = c.torus ? 12000 : 5000;
+  o.noise = c.noise * radius;
+  o.nonuniform = c.nonuniform;
+  const PointCloud cloud = c.torus ? test::sample(torus, o) : test::sample(sphere, o);
+  const float h = suggested_h(cloud);
+  const CloudProjection wls = run(cloud, h, PlaneFitMethod::wls);
+  const CloudProjection mls = run(cloud, h, PlaneFitMethod::mls);
+  const Errors ew = c.torus ? measure(torus, wls) : measure(sphere, wls);
+  const Errors em = c.torus ? measure(torus, mls) : measure(sphere, mls);
+
+  const double bias = 2 * std::pow(kappa, 3) * std::pow(h, 4);
+  EXPECT_LT(em.mean_distance, c.noise > 0 ? 0.4 * o.noise : bias) << "h = " << h;
+  EXPECT_LT(em.mean_angle_deg, 2.0);
+  if (c.nonuniform) {
+    // The sparse side holds a tenth of the density: a few samples there have too few
+    // neighbours for any plane and are left in place. The rest must be as good.
+    EXPECT_LT(mls.counts.too_few_neighbours, std::int64_t(cloud.size() / 100));
+    EXPECT_LT(em.p99_angle_deg, 10.0);
+  } else {
+    EXPECT_EQ(mls.counts.too_few_neighbours, 0);
+    EXPECT_LT(em.p99_angle_deg, 5.0);
+    EXPECT_LT(em.max_distance, c.noise > 0 ? 3 * o.noise : 10 * bias);
+  }
+  // MLS (Eq. 2) is at least as accurate as WLS (Eq. 1) on curved shapes.
+  EXPECT_LE(em.mean_distance, ew.mean_distance);
+  EXPECT_LE(em.mean_angle_deg, ew.mean_angle_deg);
+}
+
+INSTANTIATE_TEST_SUITE_P(Shapes, ProjectionAccuracy,
+                         testing::Values(Case{"SphereClean", false, false, 0.0f},
+                                         Case{"SphereNoisy", false, false, 0.005f},
+                                         Case{"SphereNoisyNonuniform", false, true, 0.005f},
+                                         Case{"TorusClean", true, false, 0.0f},
+                                         Case{"TorusNoisy", true, false, 0.005f},
+                                         Case{"TorusNoisyNonuniform", true, true, 0.005f}),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+TEST(Projection, NoisyPlaneIsFlattened) {
+  test::SampleOptions o;
+  o.count = 4000;
+  o.noise = 0.005f;
+  const PointCloud cloud = test::sample_plane(1.0f, o);
+  const CloudProjection out = run(cloud, suggested_h(cloud), PlaneFitMethod::mls);
+  double mean = 0;
+  std::size_t tilted = 0;  // more than 5° off; only samples at the square's edge, with half a
+                           // neighbourhood, come near that
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    mean += std::abs(out.cloud.positions[i].z) / cloud.size();
+    if (std::abs(out.cloud.normals[i].z) < std::cos(5 * M_PI / 180)) ++tilted;
+  }
+  EXPECT_LT(mean, 0.4 * o.noise);
+  EXPECT_LT(tilted, cloud.size() / 100);
+}
+
+TEST(Projection, ProjectedPointsAreNearlyFixed) {
+  // The PSS is the set of fixed points of P: projecting an output again moves it by far
+  // less than the first projection moved the noisy input.
+  test::SampleOptions o;
+  o.noise = 0.005f;
+  const PointCloud cloud = test::sample(test::Sphere{}, o);
+  const float h = suggested_h(cloud);
+  const CloudProjection once = run(cloud, h, PlaneFitMethod::mls);
+  const UniformGrid grid(cloud.positions, 2 * h);
+  const ProjectionParams params = ProjectionParams::from_h(h);
+  double first = 0, second = 0;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const Projection again = project_to_pss(grid.view(), once.cloud.positions[i], params, once.cloud.normals[i]);
+    first += glm::length(once.cloud.positions[i] - cloud.positions[i]);
+    second += glm::length(again.point - once.cloud.positions[i]);
+  }
+  EXPECT_LT(second, 0.1 * first);
+}
+
+TEST(Projection, TooFewNeighboursLeavesThePointAlone) {
+  PointCloud cloud;
+  cloud.positions = {vec3(0.0f), vec3(10.0f, 0.0f, 0.0f)};
+  const CloudProjection out = run(cloud, 0.1f, PlaneFitMethod::mls);
+  EXPECT_EQ(out.counts.too_few_neighbours, 2);
+  EXPECT_EQ(out.cloud.positions[1], cloud.positions[1]);
+  EXPECT_FLOAT_EQ(glm::length(out.cloud.normals[1]), 1.0f);
+}
+
+TEST(Projection, ResultDoesNotDependOnThreadCount) {
+  test::SampleOptions o;
+  o.noise = 0.005f;
+  o.count = 6000;
+  const PointCloud cloud = test::sample(test::Torus{}, o);
+  const float h = suggested_h(cloud);
+  set_cpu_threads(1);
+  const CloudProjection one = run(cloud, h, PlaneFitMethod::mls);
+  set_cpu_threads(3);
+  const CloudProjection three = run(cloud, h, PlaneFitMethod::mls);
+  set_cpu_threads(0);
+  EXPECT_EQ(one.cloud.positions, three.cloud.positions);
+  EXPECT_EQ(one.cloud.normals, three.cloud.normals);
+}
+
+TEST(Projection, NormalsAreConsistentlyOrientedOutward) {
+  // Without input normals the eigenvectors' signs are arbitrary; the spanning-tree pass
+  // must make all of them agree. On a sphere that means all outward or all inward, and
+  // starting from the top at +z, outward.
+  test::SampleOptions o;
+  o.noise = 0.005f;
+  const PointCloud cloud = test::sample(test::Sphere{}, o);
+  const CloudProjection out = run(cloud, suggested_h(cloud), PlaneFitMethod::mls);
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    ASSERT_GT(glm::dot(out.cloud.normals[i], out.cloud.positions[i]), 0) << i;
+}
+
+TEST(Projection, RejectsInvalidParameters) {
+  PointCloud cloud;
+  cloud.positions = {vec3(0.0f), vec3(1.0f)};
+  Stats stats;
+  EXPECT_THROW(project_cloud(cloud, ProjectionParams::from_h(0.0f), Backend::cpu, stats), Error);
+  EXPECT_THROW(project_cloud(cloud, ProjectionParams::from_h(NAN), Backend::cpu, stats), Error);
+  EXPECT_THROW(project_cloud(cloud, ProjectionParams::from_h(-1.0f), Backend::cpu, stats), Error);
+}
+
+}  // namespace
+}  // namespace pss

@@ -1,0 +1,78 @@
+#include "support/shapes.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+namespace pss::test {
+
+namespace {
+
+constexpr float kPi = std::numbers::pi_v<float>;
+
+// Rejection keeps a sample with probability density(p) / 1; nonuniform densities fall
+// from 1 to 0.1 along x, so the sparse side has ~10x fewer samples per area.
+float density(vec3 unit_position, bool nonuniform) {
+  return nonuniform ? 0.1f + 0.9f * (0.5f + 0.5f * unit_position.x) : 1.0f;
+}
+
+}  // namespace
+
+float Torus::distance(vec3 p) const {
+  const float q = std::sqrt(p.x * p.x + p.y * p.y) - major;
+  return std::sqrt(q * q + p.z * p.z) - minor;
+}
+
+vec3 Torus::normal(vec3 p) const {
+  const float rho = std::sqrt(p.x * p.x + p.y * p.y);
+  const vec3 ring(major * p.x / rho, major * p.y / rho, 0.0f);
+  return glm::normalize(p - ring);
+}
+
+PointCloud sample(const Sphere& s, const SampleOptions& o) {
+  std::mt19937 rng(o.seed);
+  std::normal_distribution<float> gauss(0.0f, 1.0f);
+  std::uniform_real_distribution<float> uni(0.0f, 1.0f);
+  PointCloud cloud;
+  while (cloud.size() < o.count) {
+    vec3 d(gauss(rng), gauss(rng), gauss(rng));
+    if (glm::length(d) < 1e-6f) continue;
+    d = glm::normalize(d);
+    if (uni(rng) > density(d, o.nonuniform)) continue;
+    cloud.positions.push_back(s.center + (s.radius + o.noise * gauss(rng)) * d);
+  }
+  return cloud;
+}
+
+PointCloud sample(const Torus& t, const SampleOptions& o) {
+  std::mt19937 rng(o.seed);
+  std::normal_distribution<float> gauss(0.0f, 1.0f);
+  std::uniform_real_distribution<float> uni(0.0f, 1.0f);
+  PointCloud cloud;
+  while (cloud.size() < o.count) {
+    const float u = 2 * kPi * uni(rng), v = 2 * kPi * uni(rng);
+    // Area element ∝ R + r cos v: accept with that weight for uniform density on the surface.
+    if (uni(rng) * (t.major + t.minor) > t.major + t.minor * std::cos(v)) continue;
+    const vec3 n(std::cos(v) * std::cos(u), std::cos(v) * std::sin(u), std::sin(v));
+    const vec3 p((t.major + t.minor * std::cos(v)) * std::cos(u), (t.major + t.minor * std::cos(v)) * std::sin(u),
+                 t.minor * std::sin(v));
+    if (uni(rng) > density(vec3(std::cos(u), 0, 0), o.nonuniform)) continue;
+    cloud.positions.push_back(p + o.noise * gauss(rng) * n);
+  }
+  return cloud;
+}
+
+PointCloud sample_plane(float half_size, const SampleOptions& o) {
+  std::mt19937 rng(o.seed);
+  std::normal_distribution<float> gauss(0.0f, 1.0f);
+  std::uniform_real_distribution<float> uni(-1.0f, 1.0f);
+  PointCloud cloud;
+  while (cloud.size() < o.count) {
+    const vec3 unit(uni(rng), uni(rng), 0.0f);
+    if (0.5f * (uni(rng) + 1) > density(unit, o.nonuniform)) continue;
+    cloud.positions.push_back(vec3(half_size * unit.x, half_size * unit.y, o.noise * gauss(rng)));
+  }
+  return cloud;
+}
+
+}  // namespace pss::test

@@ -1,0 +1,42 @@
+// Analytic shapes for tests: seeded samplers (uniform or strongly non-uniform density, with
+// optional Gaussian noise along the normal) and exact distances and normals to check against.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "pss/points/cloud.hpp"
+
+namespace pss::test {
+
+struct Sphere {
+  vec3 center{0.0f};
+  float radius = 1.0f;
+  float distance(vec3 p) const { return glm::length(p - center) - radius; }
+  vec3 normal(vec3 p) const { return glm::normalize(p - center); }
+};
+
+// Torus around the z axis: R from the axis to the tube's centre line, tube radius r.
+struct Torus {
+  float major = 1.0f, minor = 0.35f;
+  float distance(vec3 p) const;
+  vec3 normal(vec3 p) const;
+};
+
+struct Plane {  // z = 0
+  float distance(vec3 p) const { return p.z; }
+  vec3 normal(vec3) const { return vec3(0, 0, 1); }
+};
+
+struct SampleOptions {
+  std::size_t count = 4000;
+  float noise = 0;            // standard deviation of the offset along the normal
+  bool nonuniform = false;    // density varying about 10× across the shape
+  std::uint32_t seed = 1;
+};
+
+PointCloud sample(const Sphere& s, const SampleOptions& o);
+PointCloud sample(const Torus& t, const SampleOptions& o);
+PointCloud sample_plane(float half_size, const SampleOptions& o);  // square [-a, a]² at z = 0
+
+}  // namespace pss::test
