@@ -23,7 +23,7 @@ void add_info_command(CLI::App& app) {
     if (cloud.size() >= 2) {
       const SpacingEstimate s = estimate_spacing(cloud.positions);
       std::printf("spacing         %g mean nearest-neighbour distance\n", s.mean_nearest);
-      std::printf("suggested h     %g (median distance to the %d-th neighbour; rho = 2h = %g)\n", s.suggested_h,
+      std::printf("suggested h     %g (median distance to the %dth nearest neighbour; rho = 2h = %g)\n", s.suggested_h,
                   s.k, 2 * s.suggested_h);
     }
   });

@@ -1,0 +1,126 @@
+// `pss info` and `pss project` as a user runs them: outputs that other tools can read, and
+// for every bad input one line naming the file and the problem, a non-zero exit, no output.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "pss/io/ply.hpp"
+#include "support/cli.hpp"
+#include "support/shapes.hpp"
+
+namespace pss {
+namespace {
+
+namespace fs = std::filesystem;
+
+class CliProject : public testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("pss-cli-project-" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string write(const std::string& name, const std::string& text) const {
+    std::ofstream(path(name), std::ios::binary) << text;
+    return path(name);
+  }
+  // The failure contract: exit non-zero, one line on stderr naming `names`, no output file.
+  void expect_clean_failure(const std::string& args, const std::string& names, const std::string& output) {
+    const test::CliResult r = test::run_pss(args);
+    EXPECT_NE(r.exit_code, 0) << args;
+    EXPECT_EQ(test::line_count(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(names), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(output)) << output;
+    for (const auto& entry : fs::directory_iterator(dir_))
+      EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
+  }
+  fs::path dir_;
+};
+
+const std::string kHeader = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
+
+TEST_F(CliProject, ProjectsASphereAndWritesAReadablePly) {
+  test::SampleOptions o;
+  o.noise = 0.005f;
+  write_ply(path("sphere.ply"), test::sample(test::Sphere{}, o));
+  const test::CliResult r = test::run_pss("project " + path("sphere.ply") + " -o " + path("out.ply") +
+                                          " --backend cpu --stats " + path("stats.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("wrote " + path("out.ply")), std::string::npos);
+  const PointCloud out = read_ply(path("out.ply"));
+  ASSERT_EQ(out.size(), 4000u);
+  ASSERT_TRUE(out.has_normals());
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    EXPECT_NEAR(glm::length(out.positions[i]), 1.0f, 0.01f);  // 2σ of the input noise
+    EXPECT_GT(glm::dot(out.normals[i], glm::normalize(out.positions[i])), 0.98f);
+  }
+  std::ifstream stats(path("stats.json"));
+  std::string json((std::istreambuf_iterator<char>(stats)), {});
+  EXPECT_NE(json.find("\"projection\""), std::string::npos);
+  EXPECT_NE(json.find("\"points\": 4000"), std::string::npos);
+}
+
+TEST_F(CliProject, InfoReportsSizeAndSuggestedH) {
+  write_ply(path("sphere.ply"), test::sample(test::Sphere{}, {}));
+  const test::CliResult r = test::run_pss("info " + path("sphere.ply"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("points          4000"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("suggested h"), std::string::npos);
+}
+
+TEST_F(CliProject, MissingFile) {
+  expect_clean_failure("project " + path("nope.ply") + " -o " + path("out.ply"), path("nope.ply"), path("out.ply"));
+  expect_clean_failure("info " + path("nope.ply"), path("nope.ply"), path("out.ply"));
+}
+
+TEST_F(CliProject, MalformedAndTruncatedPly) {
+  const std::string garbage = write("garbage.ply", "this is not a ply file\n");
+  expect_clean_failure("project " + garbage + " -o " + path("out.ply"), garbage, path("out.ply"));
+  const std::string truncated = write("truncated.ply", kHeader + "0 0 0\n1 1 1\n");
+  expect_clean_failure("project " + truncated + " -o " + path("out.ply"), "truncated", path("out.ply"));
+}
+
+TEST_F(CliProject, NonFiniteCoordinates) {
+  const std::string nan = write("nan.ply", kHeader + "0 0 0\nnan 1 1\n2 2 2\n");
+  expect_clean_failure("project " + nan + " -o " + path("out.ply"), "non-finite", path("out.ply"));
+  const std::string inf = write("inf.xyz", "0 0 0\n1 inf 1\n");
+  expect_clean_failure("project " + inf + " -o " + path("out.ply"), "non-finite", path("out.ply"));
+}
+
+TEST_F(CliProject, EmptyCloud) {
+  const std::string empty = write("empty.ply", "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\n"
+                                               "property float y\nproperty float z\nend_header\n");
+  expect_clean_failure("project " + empty + " -o " + path("out.ply"), empty, path("out.ply"));
+}
+
+TEST_F(CliProject, AbsurdParameters) {
+  write_ply(path("sphere.ply"), test::sample(test::Sphere{}, {}));
+  const std::string in = path("sphere.ply"), out = path("out.ply");
+  expect_clean_failure("project " + in + " -o " + out + " --h 0", "--h", out);
+  expect_clean_failure("project " + in + " -o " + out + " --h -1", "--h", out);
+  expect_clean_failure("project " + in + " -o " + out + " --h nan", "h must be a positive number", out);
+  expect_clean_failure("project " + in + " -o " + out + " --backend quantum", "--backend", out);
+  expect_clean_failure("project " + in + " -o " + out + " --bogus", "--bogus", out);
+}
+
+TEST_F(CliProject, CudaWithoutADeviceIsAClearError) {
+  write_ply(path("sphere.ply"), test::sample(test::Sphere{}, {}));
+  // This machine has no GPU in CI: the build either lacks CUDA or finds no device.
+  const test::CliResult probe = test::run_pss("project " + path("sphere.ply") + " -o " + path("out.ply") +
+                                              " --backend cuda");
+  if (probe.exit_code == 0) GTEST_SKIP() << "a CUDA device is present";
+  fs::remove(path("out.ply"));
+  expect_clean_failure("project " + path("sphere.ply") + " -o " + path("out.ply") + " --backend cuda", "cuda",
+                       path("out.ply"));
+}
+
+TEST_F(CliProject, UnwritableOutput) {
+  write_ply(path("sphere.ply"), test::sample(test::Sphere{}, {}));
+  const std::string out = path("no-such-dir/out.ply");
+  expect_clean_failure("project " + path("sphere.ply") + " -o " + out, out, out);
+}
+
+}  // namespace
+}  // namespace pss
