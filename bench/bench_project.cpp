@@ -1,0 +1,67 @@
+// Projection throughput of `pss project` (points per second): the bunny and a 10⁶-point
+// torus, on the CPU and, when there is one, the GPU. Median of --runs runs.
+//   build/bench/bench_project [--runs 5] [--json out/bench/project.json]
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "pss/backend/backend.hpp"
+#include "pss/io/output_file.hpp"
+#include "pss/io/ply.hpp"
+#include "pss/points/project_cloud.hpp"
+#include "pss/points/spacing.hpp"
+#include "support/shapes.hpp"
+
+using namespace pss;
+
+int main(int argc, char** argv) {
+  int runs = 5;
+  std::string json_path = "out/bench/project.json";
+  for (int i = 1; i + 1 < argc; i += 2) {
+    if (!std::strcmp(argv[i], "--runs")) runs = std::max(1, std::atoi(argv[i + 1]));
+    if (!std::strcmp(argv[i], "--json")) json_path = argv[i + 1];
+  }
+  struct Dataset {
+    std::string name;
+    PointCloud cloud;
+  };
+  std::vector<Dataset> datasets;
+  datasets.push_back({"bunny (data/bun_zipper.ply)", read_ply(PSS_SOURCE_DIR "/data/bun_zipper.ply")});
+  test::SampleOptions torus;
+  torus.count = 1000000;
+  torus.noise = 0.005f * test::Torus{}.minor;
+  datasets.push_back({"torus, 10^6 points, noise 0.5%", test::sample(test::Torus{}, torus)});
+
+  std::vector<Backend> backends{Backend::cpu};
+  if (cuda::built() && cuda::device_count() > 0) backends.push_back(Backend::cuda);
+
+  nlohmann::json rows = nlohmann::json::array();
+  std::printf("| dataset | points | backend | h | median s | points/s |\n|---|---|---|---|---|---|\n");
+  for (const Dataset& d : datasets) {
+    const float h = float(estimate_spacing(d.cloud.positions).suggested_h);
+    const ProjectionParams params = ProjectionParams::from_h(h);
+    for (Backend b : backends) {
+      std::vector<double> seconds;
+      for (int r = 0; r < runs; ++r) {
+        Stats stats;
+        project_cloud(d.cloud, params, b, stats);
+        seconds.push_back(stats.time("projection"));
+      }
+      std::sort(seconds.begin(), seconds.end());
+      const double median = seconds[seconds.size() / 2];
+      const std::string backend = b == Backend::cuda ? "cuda (" + cuda::device_name() + ")"
+                                                     : "cpu (" + std::to_string(cpu_threads()) + " threads)";
+      std::printf("| %s | %zu | %s | %.5g | %.4f | %.0f |\n", d.name.c_str(), d.cloud.size(), backend.c_str(), h,
+                  median, double(d.cloud.size()) / median);
+      std::fflush(stdout);
+      rows.push_back({{"dataset", d.name}, {"points", d.cloud.size()}, {"backend", backend}, {"h", h},
+                      {"runs", runs}, {"median_seconds", median}, {"points_per_second", d.cloud.size() / median},
+                      {"all_seconds", seconds}});
+    }
+  }
+  std::filesystem::create_directories(std::filesystem::path(json_path).parent_path());
+  write_text_file(json_path, nlohmann::json{{"benchmark", "project"}, {"rows", rows}}.dump(2) + "\n");
+  std::printf("wrote %s\n", json_path.c_str());
+}
