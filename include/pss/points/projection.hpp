@@ -51,17 +51,49 @@ struct Projection {
 
 namespace detail {
 
+// N(r), the samples within ρ of r, gathered once: every sum of one projection runs over the
+// same set, so later passes read this buffer instead of walking the grid again. A larger
+// neighbourhood than the buffer holds is walked from the grid each time (never truncated).
+struct Neighbourhood {
+  static constexpr int kCapacity = 128;
+  vec3 points[kCapacity];
+  float distance2[kCapacity];  // ‖pᵢ − r‖²
+  int count = 0;
+  const GridView* grid;
+  vec3 r;
+  float rho;
+
+  PSS_HOST_DEVICE Neighbourhood(const GridView& g, vec3 center, float radius) : grid(&g), r(center), rho(radius) {
+    g.for_each_in_radius(r, rho, [&](vec3 p, float d2, int) {
+      if (count < kCapacity) {
+        points[count] = p;
+        distance2[count] = d2;
+      }
+      ++count;
+    });
+  }
+  // f(p, ‖p − r‖²) for every sample of N(r).
+  template <class F>
+  PSS_HOST_DEVICE void for_each(F&& f) const {
+    if (count <= kCapacity) {
+      for (int i = 0; i < count; ++i) f(points[i], distance2[i]);
+    } else {
+      grid->for_each_in_radius(r, rho, [&](vec3 p, float d2, int) { f(p, d2); });
+    }
+  }
+};
+
 // Eq. 2's energy along n for fixed n: E(t) = Σ θ3(‖pᵢ − q‖)·⟨pᵢ − q, n⟩², q = r + t·n,
 // and its derivative, with zᵢ = ⟨pᵢ − r, n⟩ and ‖pᵢ − q‖² = ‖pᵢ − r‖² − 2t·zᵢ + t².
 struct MlsEnergy {
-  const GridView& grid;
+  const Neighbourhood& neighbours;
   vec3 r, n;
-  float rho, h;
+  float h;
 
   PSS_HOST_DEVICE float operator()(float t, float& derivative) const {
     float e = 0, de = 0;
     const float inv_h2 = 1.0f / (h * h);
-    grid.for_each_in_radius(r, rho, [&](vec3 p, float d2, int) {
+    neighbours.for_each([&](vec3 p, float d2) {
       const float z = glm::dot(p - r, n);
       const float s = z - t;
       const float w = exp(-(d2 - 2 * t * z + t * t) * inv_h2);
@@ -86,8 +118,9 @@ PSS_INLINE Projection project_to_pss(const GridView& grid, vec3 r, const Project
 
   // Eq. 1 with the weighter at r: for fixed weights the best plane passes through the
   // weighted mean m, its normal is the smallest eigenvector of the covariance about m.
+  const detail::Neighbourhood neighbours(grid, r, params.rho);
   WeightedMoments moments(r);
-  grid.for_each_in_radius(r, params.rho, [&](vec3 p, float d2, int) { moments.add(p, gaussian_weight(d2, params.h)); });
+  neighbours.for_each([&](vec3 p, float d2) { moments.add(p, gaussian_weight(d2, params.h)); });
   out.neighbours = moments.count;
   if (moments.count < 3 || !(moments.weight_sum > 0)) return out;
 
@@ -101,13 +134,11 @@ PSS_INLINE Projection project_to_pss(const GridView& grid, vec3 r, const Project
     // eigenvector of C(q) = Σ θ3(‖pᵢ − q‖)(pᵢ − q)(pᵢ − q)ᵀ, the plane through q.
     status = ProjectionStatus::not_converged;
     for (int it = 0; it < params.max_mls_iterations; ++it) {
-      const detail::MlsEnergy energy{grid, r, n, params.rho, params.h};
+      const detail::MlsEnergy energy{neighbours, r, n, params.h};
       const float t_next = brent_minimize(energy, t - params.h, t + params.h, t, params.t_tolerance).x;
       const vec3 q = r + t_next * n;
       WeightedMoments at_q(q);
-      grid.for_each_in_radius(r, params.rho, [&](vec3 p, float, int) {
-        at_q.add(p, gaussian_weight(length2(p - q), params.h));
-      });
+      neighbours.for_each([&](vec3 p, float) { at_q.add(p, gaussian_weight(length2(p - q), params.h)); });
       eig = smallest_eigenvector(at_q.covariance_about_origin(), n);
       const float moved = abs(t_next - t) + params.h * glm::length(eig.vector - n);
       n = eig.vector;
@@ -126,9 +157,7 @@ PSS_INLINE Projection project_to_pss(const GridView& grid, vec3 r, const Project
   const Frame frame = Frame::from_normal(q, n);
   const vec3 weighter = params.plane == PlaneFitMethod::mls ? q : r;
   PolynomialFit fit(params.h);
-  grid.for_each_in_radius(r, params.rho, [&](vec3 p, float, int) {
-    fit.add(frame.to_local(p), gaussian_weight(length2(p - weighter), params.h));
-  });
+  neighbours.for_each([&](vec3 p, float) { fit.add(frame.to_local(p), gaussian_weight(length2(p - weighter), params.h)); });
   out.polynomial = fit.solve();
   out.frame = frame;
   out.t = t;
