@@ -8,6 +8,7 @@
 #include "pss/fit/inverse_power.hpp"
 #include "pss/fit/polynomial.hpp"
 #include "pss/fit/weights.hpp"
+#include "pss/points/neighbourhood.hpp"
 #include "pss/spatial/uniform_grid.hpp"
 
 namespace pss {
@@ -51,38 +52,6 @@ struct Projection {
 
 namespace detail {
 
-// N(r), the samples within ρ of r, gathered once: every sum of one projection runs over the
-// same set, so later passes read this buffer instead of walking the grid again. A larger
-// neighbourhood than the buffer holds is walked from the grid each time (never truncated).
-struct Neighbourhood {
-  static constexpr int kCapacity = 128;
-  vec3 points[kCapacity];
-  float distance2[kCapacity];  // ‖pᵢ − r‖²
-  int count = 0;
-  const GridView* grid;
-  vec3 r;
-  float rho;
-
-  PSS_HOST_DEVICE Neighbourhood(const GridView& g, vec3 center, float radius) : grid(&g), r(center), rho(radius) {
-    g.for_each_in_radius(r, rho, [&](vec3 p, float d2, int) {
-      if (count < kCapacity) {
-        points[count] = p;
-        distance2[count] = d2;
-      }
-      ++count;
-    });
-  }
-  // f(p, ‖p − r‖²) for every sample of N(r).
-  template <class F>
-  PSS_HOST_DEVICE void for_each(F&& f) const {
-    if (count <= kCapacity) {
-      for (int i = 0; i < count; ++i) f(points[i], distance2[i]);
-    } else {
-      grid->for_each_in_radius(r, rho, [&](vec3 p, float d2, int) { f(p, d2); });
-    }
-  }
-};
-
 // Eq. 2's energy along n for fixed n: E(t) = Σ θ3(‖pᵢ − q‖)·⟨pᵢ − q, n⟩², q = r + t·n,
 // and its derivative, with zᵢ = ⟨pᵢ − r, n⟩ and ‖pᵢ − q‖² = ‖pᵢ − r‖² − 2t·zᵢ + t².
 struct MlsEnergy {
@@ -93,7 +62,8 @@ struct MlsEnergy {
   PSS_HOST_DEVICE float operator()(float t, float& derivative) const {
     float e = 0, de = 0;
     const float inv_h2 = 1.0f / (h * h);
-    neighbours.for_each([&](vec3 p, float d2) {
+    neighbours.for_each([&](vec3 p, float) {
+      const float d2 = length2(p - r);
       const float z = glm::dot(p - r, n);
       const float s = z - t;
       const float w = exp(-(d2 - 2 * t * z + t * t) * inv_h2);
@@ -118,9 +88,9 @@ PSS_INLINE Projection project_to_pss(const GridView& grid, vec3 r, const Project
 
   // Eq. 1 with the weighter at r: for fixed weights the best plane passes through the
   // weighted mean m, its normal is the smallest eigenvector of the covariance about m.
-  const detail::Neighbourhood neighbours(grid, r, params.rho);
+  // N(r) is gathered once, with its weights θ3(‖pᵢ − r‖); every later pass reads it again.
   WeightedMoments moments(r);
-  neighbours.for_each([&](vec3 p, float d2) { moments.add(p, gaussian_weight(d2, params.h)); });
+  const Neighbourhood neighbours(grid, r, params.rho, params.h, [&](vec3 p, float w) { moments.add(p, w); });
   out.neighbours = moments.count;
   if (moments.count < 3 || !(moments.weight_sum > 0)) return out;
 
@@ -155,9 +125,11 @@ PSS_INLINE Projection project_to_pss(const GridView& grid, vec3 r, const Project
   // H(n, q).
   const vec3 q = r + t * n;
   const Frame frame = Frame::from_normal(q, n);
-  const vec3 weighter = params.plane == PlaneFitMethod::mls ? q : r;
+  const bool mls = params.plane == PlaneFitMethod::mls;
   PolynomialFit fit(params.h);
-  neighbours.for_each([&](vec3 p, float) { fit.add(frame.to_local(p), gaussian_weight(length2(p - weighter), params.h)); });
+  neighbours.for_each([&](vec3 p, float w_r) {
+    fit.add(frame.to_local(p), mls ? gaussian_weight(length2(p - q), params.h) : w_r);
+  });
   out.polynomial = fit.solve();
   out.frame = frame;
   out.t = t;

@@ -1,0 +1,138 @@
+// pss render FILE -o OUT.png: ray tracing the point set surface of a point cloud (§5.2).
+#include <chrono>
+#include <cstdio>
+
+#include "commands.hpp"
+#include "pss/core/error.hpp"
+#include "pss/io/point_cloud_file.hpp"
+#include "pss/points/render_cloud.hpp"
+#include "pss/points/spacing.hpp"
+#include "pss/render/frame_outputs.hpp"
+#include "render_options.hpp"
+
+namespace pss::app {
+
+namespace {
+
+struct RenderCloudOptions {
+  std::string input;
+  float h = 0, rho = 0, b = 0, epsilon = 0;
+  std::string iterations = "2";
+  std::string secondary = "full";
+  RenderOptions render;
+};
+
+int iterations_of(const std::string& text) { return text == "auto" ? kAutoIterations : std::stoi(text); }
+
+void run_render(const RenderCloudOptions& o) {
+  const auto start = std::chrono::steady_clock::now();
+  check_output_paths(o.render);
+  set_cpu_threads(o.render.compute.threads);
+  const Backend backend = select_backend(o.render.compute.backend);
+  Stats stats;
+  PointCloud cloud;
+  {
+    ScopedPhase phase(stats, "read");
+    cloud = read_point_cloud(o.input);
+  }
+  if (cloud.size() == 0) throw file_error(o.input, "has no points");
+  float h = o.h;
+  if (h == 0) {
+    ScopedPhase phase(stats, "estimate h");
+    // A single sample has no spacing, and no surface whatever h is (it has fewer than three
+    // neighbours): it renders as background with h = 1.
+    h = cloud.size() < 2 ? 1.0f : float(estimate_spacing(cloud.positions).suggested_h);
+  }
+  RayPssParams params = RayPssParams::from_h(h);
+  if (o.rho != 0) params.projection.rho = o.rho;
+  if (o.b != 0) params.ball_radius = o.b;
+  if (o.epsilon != 0) params.epsilon = o.epsilon;
+  params.max_iterations = iterations_of(o.iterations);
+  params.secondary = o.secondary == "paper" ? SecondaryMode::paper : SecondaryMode::full;
+  validate(params);
+
+  const Camera camera = Camera::framing(cloud.bounds(), o.render.camera);
+  const TraceSettings settings = trace_settings(o.render, camera);
+  const PreparedCloud prepared(cloud, params, backend, stats);
+  const RenderedFrame frame = render_cloud(prepared, camera, settings, backend, stats);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats.add_time("total", seconds);
+  const double frame_s = stats.time("primary") + stats.time("secondary") + stats.time("shading");
+
+  write_png(o.render.output, frame.image);
+  if (!o.render.hits_path.empty()) write_hits_ply(o.render.hits_path, frame);
+
+  const FrameSummary s = summarize(frame);
+  std::printf("rendered %s (%zu points) at %dx%d in %.3f s: frame %.3f s (%.2f fps), preprocess %.3f s, "
+              "BVH %.3f s (%s backend, %d threads)\n", o.input.c_str(), cloud.size(), camera.width, camera.height,
+              seconds, frame_s, 1.0 / frame_s, stats.time("preprocess"), stats.time("acceleration structure"),
+              backend_name(backend), cpu_threads());
+  std::printf("%lld rays, %lld hits, %.2f projections per hit, %lld secondary rays; h = %g, b = %g, eps = %g\n",
+              (long long)s.rays, (long long)s.hits, s.mean_iterations, (long long)s.secondary_rays, params.projection.h,
+              params.ball_radius, params.epsilon);
+  std::printf("wrote %s\n", o.render.output.c_str());
+  if (!o.render.hits_path.empty()) std::printf("wrote %s\n", o.render.hits_path.c_str());
+
+  if (!o.render.compute.stats_path.empty()) {
+    record_frame(stats, frame);
+    auto& v = stats.values();
+    v["command"] = "render";
+    v["input"] = o.input;
+    v["output"] = o.render.output;
+    v["points"] = cloud.size();
+    v["samples_left_out"] = prepared.left_out();
+    v["backend"] = backend_name(backend);
+    v["threads"] = cpu_threads();
+    v["frame_seconds"] = frame_s;
+    v["fps"] = 1.0 / frame_s;
+    v["params"] = {{"h", params.projection.h}, {"rho", params.projection.rho}, {"b", params.ball_radius},
+                   {"epsilon", params.epsilon}, {"iterations", o.iterations},
+                   {"max_candidates", params.max_candidates}, {"secondary", o.secondary},
+                   {"secondary_offset", params.secondary_offset}, {"shadows", settings.shadows},
+                   {"reflections", settings.reflections}, {"reflectivity", settings.shading.reflectivity},
+                   {"fov_deg", o.render.camera.fov_deg}, {"azimuth_deg", o.render.camera.azimuth_deg},
+                   {"elevation_deg", o.render.camera.elevation_deg}};
+    stats.write(o.render.compute.stats_path);
+    std::printf("wrote %s\n", o.render.compute.stats_path.c_str());
+  }
+}
+
+std::string check_iterations(const std::string& text) {
+  if (text == "auto") return {};
+  std::size_t used = 0;
+  int n = 0;
+  try {
+    n = std::stoi(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || n < 1 || n > kAutoIterations)
+    return "expected a number from 1 to " + std::to_string(kAutoIterations) + " or 'auto' (got '" + text + "')";
+  return {};
+}
+
+}  // namespace
+
+void add_render_command(CLI::App& app) {
+  auto* command = app.add_subcommand("render", "Ray trace the point set surface of a point cloud to a PNG (paper 5.2)");
+  auto o = std::make_shared<RenderCloudOptions>();
+  command->add_option("file", o->input, "point cloud (.ply, .xyz, .txt, .pts)")->required();
+  command->add_option("--h", o->h, "Gaussian width h (default: estimated from the spacing, see pss info)")
+      ->check(CLI::PositiveNumber);
+  command->add_option("--rho", o->rho, "range-query radius of the projection (default 2h)")->check(CLI::PositiveNumber);
+  command->add_option("--b", o->b, "ball radius b around each sample's local polynomial (default h)")
+      ->check(CLI::PositiveNumber);
+  command->add_option("--epsilon", o->epsilon, "a candidate is a hit when its projection moves it less (default 1e-3 h)")
+      ->check(CLI::PositiveNumber);
+  command->add_option("--iterations", o->iterations, "projections per candidate: N, or auto (until |projection - r| < eps)")
+      ->check(CLI::Validator(check_iterations, "N|auto", "iterations"))
+      ->capture_default_str();
+  command->add_option("--secondary", o->secondary,
+                      "secondary rays: full (projected like primary rays) or paper (first local-polynomial hit)")
+      ->check(CLI::IsMember({"full", "paper"}))
+      ->capture_default_str();
+  add_render_options(*command, o->render);
+  command->callback([o] { run_render(*o); });
+}
+
+}  // namespace pss::app

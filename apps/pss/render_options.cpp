@@ -1,0 +1,99 @@
+#include "render_options.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <optional>
+
+#include "pss/core/error.hpp"
+
+namespace pss::app {
+
+namespace {
+
+// "A<sep>B" as two numbers, the whole text consumed.
+template <class T>
+std::optional<std::pair<T, T>> parse_pair(const std::string& text, char separator) {
+  const auto at = text.find(separator);
+  if (at == std::string::npos) return std::nullopt;
+  T a{}, b{};
+  const char* end = text.data() + text.size();
+  const auto ra = std::from_chars(text.data(), text.data() + at, a);
+  const auto rb = std::from_chars(text.data() + at + 1, end, b);
+  if (ra.ec != std::errc() || ra.ptr != text.data() + at || rb.ec != std::errc() || rb.ptr != end) return std::nullopt;
+  return std::make_pair(a, b);
+}
+
+constexpr int kMaxSide = 16384;
+
+std::string check_size(const std::string& text) {
+  const auto wh = parse_pair<int>(text, 'x');
+  if (!wh) return "expected WIDTHxHEIGHT, e.g. 512x512 (got '" + text + "')";
+  if (wh->first < 1 || wh->second < 1 || wh->first > kMaxSide || wh->second > kMaxSide)
+    return "width and height must be between 1 and " + std::to_string(kMaxSide) + " (got '" + text + "')";
+  return {};
+}
+
+std::string check_view(const std::string& text) {
+  const auto ae = parse_pair<float>(text, ',');
+  if (!ae) return "expected AZIMUTH,ELEVATION in degrees, e.g. 30,20 (got '" + text + "')";
+  if (!std::isfinite(ae->first) || !(ae->second >= -90 && ae->second <= 90))
+    return "the elevation must be between -90 and 90 degrees (got '" + text + "')";
+  return {};
+}
+
+}  // namespace
+
+void add_render_options(CLI::App& command, RenderOptions& o) {
+  command.add_option("-o,--output", o.output, "output image (PNG)")->required();
+  command
+      .add_option_function<std::string>(
+          "--size",
+          [&o](const std::string& text) {
+            const auto wh = *parse_pair<int>(text, 'x');
+            o.camera.width = wh.first;
+            o.camera.height = wh.second;
+          },
+          "image size WIDTHxHEIGHT (default 512x512)")
+      ->check(CLI::Validator(check_size, "WxH", "size"));
+  command
+      .add_option_function<std::string>(
+          "--view",
+          [&o](const std::string& text) {
+            const auto ae = *parse_pair<float>(text, ',');
+            o.camera.azimuth_deg = ae.first;
+            o.camera.elevation_deg = ae.second;
+          },
+          "orbit the default camera: AZIMUTH,ELEVATION in degrees (default 0,0: from +z, looking along -z, y up)")
+      ->check(CLI::Validator(check_view, "AZ,EL", "view"));
+  command.add_option("--fov", o.camera.fov_deg, "vertical field of view in degrees")
+      ->check(CLI::Range(1.0f, 170.0f))
+      ->capture_default_str();
+  command.add_option("--hits", o.hits_path,
+                     "write the primary hits as binary PLY: x y z nx ny nz and the pixel's px py");
+  command.add_flag("--shadows", o.shadows, "shadow rays toward the key light");
+  command.add_flag("--reflections", o.reflections, "one mirror reflection per primary hit (ray depth 2)");
+  command.add_option("--reflectivity", o.reflectivity, "Fresnel reflectance at normal incidence, with --reflections")
+      ->check(CLI::Range(0.0f, 1.0f))
+      ->capture_default_str();
+  add_compute_options(command, o.compute);
+}
+
+void check_output_paths(const RenderOptions& o) {
+  for (const std::string& path : {o.output, o.hits_path, o.compute.stats_path}) {
+    if (path.empty()) continue;
+    const std::filesystem::path parent = std::filesystem::absolute(path).parent_path();
+    if (!std::filesystem::is_directory(parent)) throw file_error(path, "cannot write: no directory " + parent.string());
+  }
+}
+
+TraceSettings trace_settings(const RenderOptions& o, const Camera& camera) {
+  TraceSettings s;
+  s.shading = ShadingParams::for_camera(camera);
+  s.shading.reflectivity = o.reflectivity;
+  s.shadows = o.shadows;
+  s.reflections = o.reflections;
+  return s;
+}
+
+}  // namespace pss::app

@@ -1,0 +1,70 @@
+// The "Initial approximation" of paper §5.2, computed once per cloud: at every sample p_i
+// the covariance normal n_i of its ρ-neighbourhood and the WLS polynomial g_i in the frame
+// (p_i, n_i), with t = 0 "since the point to be projected is the sample point itself, and
+// is thus near the PSS". Rays meet these polynomials first, each inside its ball B(p_i, b).
+#pragma once
+
+#include "pss/core/frame.hpp"
+#include "pss/fit/inverse_power.hpp"
+#include "pss/fit/polynomial.hpp"
+#include "pss/points/neighbourhood.hpp"
+
+namespace pss {
+
+// 44 bytes, what the ray tests read first (centre, slab, normal) up front: the BVH leaves
+// touch many of these per ray, so they are kept small; the tangent axes are rebuilt from the
+// normal (Frame::from_normal, the same arithmetic as when g was fitted) only for the few
+// that pass the ball and slab tests.
+struct LocalPolynomial {
+  vec3 origin;  // p_i
+  // A bound on |g| over the disc x² + y² ≤ b²: the graph inside the ball lies in the slab
+  // |z| ≤ height, a cheap test that spares most rays the quadratic (height_bound).
+  float height = kInfinity;
+  vec3 normal;  // n_i
+  Polynomial g;
+
+  PSS_HOST_DEVICE Frame frame() const { return Frame::from_normal(origin, normal); }
+};
+
+// |Ax² + By² + Cxy + D| ≤ |D| + (|A| + |B| + |C|/2)·b² where x² + y² ≤ b², as x², y² ≤ b²
+// and |xy| ≤ b²/2.
+PSS_INLINE float height_bound(const Polynomial& g, float b) {
+  return abs(g.d) + (abs(g.a) + abs(g.b) + 0.5f * abs(g.c)) * b * b;
+}
+
+enum class LocalFitStatus : unsigned char {
+  ok,
+  degenerate_normal,   // neighbours (nearly) on a line: the normal is not defined by the data
+  too_few_neighbours,  // fewer than 3 samples within ρ: no surface here, the sample is left out
+};
+
+struct LocalFit {
+  LocalPolynomial local;
+  LocalFitStatus status;
+};
+
+// The per-sample kernel both backends run. `hint` (the file's normal, or zero) only orients
+// n_i; the covariance decides it.
+PSS_INLINE LocalFit fit_local_polynomial(const GridView& grid, vec3 p, vec3 hint, float h, float rho) {
+  // t = 0: the plane passes through p itself, so the covariance is taken about p (the
+  // paper's C(q) with q = p), not about the weighted mean.
+  WeightedMoments moments(p);
+  const Neighbourhood near(grid, p, rho, h, [&](vec3 q, float w) { moments.add(q, w); });
+  LocalFit out;
+  out.local.origin = p;
+  out.local.normal = vec3(0, 0, 1);
+  if (moments.count < 3 || !(moments.weight_sum > 0)) {
+    out.status = LocalFitStatus::too_few_neighbours;
+    return out;
+  }
+  const EigenResult eig = smallest_eigenvector(moments.covariance_about_origin(), hint);
+  const Frame frame = Frame::from_normal(p, eig.vector);
+  PolynomialFit fit(h);
+  near.for_each([&](vec3 q, float w) { fit.add(frame.to_local(q), w); });
+  out.local.normal = frame.n;
+  out.local.g = fit.solve();
+  out.status = eig.status == EigenStatus::degenerate ? LocalFitStatus::degenerate_normal : LocalFitStatus::ok;
+  return out;
+}
+
+}  // namespace pss

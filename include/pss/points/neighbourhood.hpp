@@ -1,0 +1,51 @@
+// The ρ-neighbourhood N(r) of a point with its Gaussian weights θ3(‖pᵢ − r‖), gathered
+// once: every sum of one projection runs over the same samples (Eq. 1, 2 and the
+// polynomial), so later passes need no grid walk, and those weighted from r no exp().
+// A fixed-size buffer (no allocation, usable in kernels); a neighbourhood larger than it
+// is read from the grid again, with the same result.
+#pragma once
+
+#include "pss/fit/weights.hpp"
+#include "pss/spatial/uniform_grid.hpp"
+
+namespace pss {
+
+struct Neighbourhood {
+  // ρ = 2h around the default h holds ~60 samples (points/spacing.hpp); twice that covers
+  // uneven sampling without spilling in most places.
+  static constexpr int kCapacity = 128;
+
+  const GridView* grid;
+  vec3 center;
+  float rho, h;
+  int count = 0;
+  vec3 point[kCapacity];
+  float weight[kCapacity];
+
+  // Gathers N(center) and calls first(p, w) for each sample as it goes.
+  template <class F>
+  PSS_HOST_DEVICE Neighbourhood(const GridView& g, vec3 c, float radius, float width, F&& first)
+      : grid(&g), center(c), rho(radius), h(width) {
+    grid->for_each_in_radius(center, rho, [&](vec3 p, float d2, int) {
+      const float w = gaussian_weight(d2, h);
+      if (count < kCapacity) {
+        point[count] = p;
+        weight[count] = w;
+      }
+      ++count;
+      first(p, w);
+    });
+  }
+
+  // f(p, w) for every sample again, in the same order.
+  template <class F>
+  PSS_HOST_DEVICE void for_each(F&& f) const {
+    if (count <= kCapacity) {
+      for (int i = 0; i < count; ++i) f(point[i], weight[i]);
+    } else {
+      grid->for_each_in_radius(center, rho, [&](vec3 p, float d2, int) { f(p, gaussian_weight(d2, h)); });
+    }
+  }
+};
+
+}  // namespace pss

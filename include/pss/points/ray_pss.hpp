@@ -1,0 +1,190 @@
+// Intersecting a ray with the PSS of a point cloud (paper §5.2, after Adamson and Alexa
+// [AA03b]): the nearest local polynomial g_i inside its ball B(p_i, b) gives a candidate r;
+// r is projected onto the PSS; if the projection γ is within ε of r, r is the hit;
+// otherwise the ray is intersected with the new polynomial and, while that point stays in
+// B(p_i, b), the projection repeats from it; if it leaves the ball the candidate is
+// rejected and the search goes on to the next ball intersection beyond it.
+#pragma once
+
+#include "pss/points/local_polynomials.hpp"
+#include "pss/points/projection.hpp"
+#include "pss/render/hit.hpp"
+#include "pss/spatial/bvh.hpp"
+
+namespace pss {
+
+enum class SecondaryMode : unsigned char {
+  paper,  // the first local-polynomial hit, no projection (what the paper could afford)
+  full,   // the full projection loop, as for primary rays
+};
+
+struct RayPssParams {
+  ProjectionParams projection;  // WLS plane (paper §5.2 uses WLS for r), ρ = 2h
+  float ball_radius = 0;        // b
+  float epsilon = 0;            // accept r when |γ − r| < ε
+  int max_iterations = 2;       // projections per candidate (paper Table 2: 2 and 3)
+  int max_candidates = 0;       // ball intersections tried per ray before giving up
+  SecondaryMode secondary = SecondaryMode::full;
+  float secondary_offset = 0;   // secondary rays start this far off the surface
+
+  // Defaults from h (docs/paper-notes.md):
+  // - b = h: the polynomial of p_i is fitted with weights exp(−d²/h²), so beyond about h it
+  //   is an extrapolation; b = h also keeps neighbouring balls overlapping (spacing ≈ h/2
+  //   for the default h), so the surface has no gaps between them.
+  // - ε = 1e-3·h: well below a pixel at any scale at which h is resolved, and above the
+  //   float rounding of a projection (~1e-6 of the coordinates).
+  // - offset = b/2: a secondary ray leaves from above the neighbours' polynomials, which
+  //   follow the surface to within noise, and so does not re-hit its own surface.
+  static RayPssParams from_h(float h) {
+    RayPssParams p;
+    p.projection = ProjectionParams::from_h(h, PlaneFitMethod::wls);
+    p.ball_radius = h;
+    p.epsilon = 1e-3f * h;
+    p.max_candidates = 32;
+    p.secondary_offset = 0.5f * h;
+    return p;
+  }
+};
+
+// `--iterations auto`: projections repeat until |γ − r| < ε, up to this many.
+inline constexpr int kAutoIterations = 32;
+
+// What a kernel sees of a prepared cloud: the grid for the range queries of the
+// projection, the BVH over the balls, and the local polynomials in BVH order.
+struct PointSurfaceView {
+  GridView grid;
+  BvhView bvh;
+  const LocalPolynomial* locals = nullptr;  // locals[k] belongs to BVH primitive k
+  RayPssParams params;
+};
+
+struct LocalHit {
+  float t = kInfinity;
+  int local = -1;  // index into PointSurfaceView::locals; -1 when none
+};
+
+// The nearest intersection with t in (t_min, t_max) of the ray and a local polynomial g_i,
+// restricted to its ball (paper §5.2, "Intersection").
+PSS_INLINE LocalHit nearest_local_hit(const PointSurfaceView& s, const Ray& ray, float t_min, float t_max) {
+  LocalHit best;
+  best.t = t_max;
+  const float b = s.params.ball_radius;
+  s.bvh.closest(ray, t_min, best.t, [&](int k, float& t_best) {
+    const LocalPolynomial& lp = s.locals[k];
+    float t0, t1;
+    if (!ray_ball(ray, lp.origin, b, t0, t1)) return;
+    // Plain comparisons: fminf/fmaxf are library calls here, and NaN cannot occur.
+    float lo = t0 > t_min ? t0 : t_min;
+    float hi = t1 < t_best ? t1 : t_best;
+    if (!(lo < hi)) return;
+    // Clip to the slab |z| ≤ height that holds the graph inside the ball.
+    const float z0 = glm::dot(ray.origin - lp.origin, lp.normal);
+    const float dz = glm::dot(ray.dir, lp.normal);
+    if (dz != 0) {
+      const float inv_dz = 1.0f / dz;
+      const float ta = (-lp.height - z0) * inv_dz, tb = (lp.height - z0) * inv_dz;
+      const float enter = ta < tb ? ta : tb, exit = ta < tb ? tb : ta;
+      lo = enter > lo ? enter : lo;
+      hi = exit < hi ? exit : hi;
+      if (!(lo <= hi)) return;
+    } else if (abs(z0) > lp.height) {
+      return;
+    }
+    // Intersect from the ball's entry point, in the sample's frame: coordinates of order b
+    // keep the quadratic's coefficients well scaled however far the camera is.
+    const Frame frame = lp.frame();
+    const vec3 o = frame.to_local(ray.at(lo));
+    const vec3 d = frame.direction_to_local(ray.dir);
+    float roots[2];
+    const int n = intersect_graph(lp.g, o, d, roots);
+    for (int i = 0; i < n; ++i) {
+      const float t = lo + roots[i];
+      if (t > t_min && t >= lo && t <= hi && t < t_best) {
+        t_best = t;
+        best.local = k;
+        break;
+      }
+    }
+  });
+  if (best.local < 0) best.t = kInfinity;
+  return best;
+}
+
+// A rough hit, the paper's choice for secondary rays: the local polynomial's point and
+// normal, no projection.
+PSS_INLINE Hit rough_hit(const PointSurfaceView& s, const Ray& ray, float t_min, float t_max) {
+  Hit hit;
+  const LocalHit c = nearest_local_hit(s, ray, t_min, t_max);
+  if (c.local < 0) return hit;
+  const LocalPolynomial& lp = s.locals[c.local];
+  hit.t = c.t;
+  hit.point = ray.at(c.t);
+  const Frame frame = lp.frame();
+  const vec3 l = frame.to_local(hit.point);
+  hit.normal = frame.direction_to_world(lp.g.normal(l.x, l.y));
+  hit.flags = kHitFound | kHitRough;
+  return hit;
+}
+
+// The full intersection of paper §5.2 (see the file comment). `max_iterations` caps the
+// projections per candidate; when the cap is reached the last ray/polynomial intersection
+// is the hit, as after the paper's last rendering pass.
+PSS_INLINE Hit intersect_pss(const PointSurfaceView& s, const Ray& ray, float t_min, float t_max,
+                             int max_iterations) {
+  Hit hit;
+  const RayPssParams& prm = s.params;
+  const float b2 = prm.ball_radius * prm.ball_radius;
+  float t_from = t_min;
+  for (int candidate = 0; candidate < prm.max_candidates; ++candidate) {
+    const LocalHit c = nearest_local_hit(s, ray, t_from, t_max);
+    if (c.local < 0) break;
+    const LocalPolynomial& lp = s.locals[c.local];
+    float t = c.t;
+    vec3 hint = lp.normal;
+    for (int it = 1;; ++it) {
+      const vec3 r = ray.at(t);
+      const Projection p = project_to_pss(s.grid, r, prm.projection, hint);
+      ++hit.iterations;
+      if (p.status == ProjectionStatus::too_few_neighbours) break;
+      if (length2(p.point - r) < prm.epsilon * prm.epsilon) {
+        hit.t = t;
+        hit.point = r;
+        hit.normal = p.normal;  // g has no linear terms: n is the graph's normal at γ
+        hit.flags = kHitFound | kHitConverged;
+        return hit;
+      }
+      // The ray against the new polynomial, from r in the projection's frame; the root
+      // nearest r keeps the iteration on the same sheet of the surface.
+      const vec3 o = p.frame.to_local(r);
+      const vec3 d = p.frame.direction_to_local(ray.dir);
+      float roots[2];
+      const int n = intersect_graph(p.polynomial, o, d, roots);
+      float step = kInfinity;
+      for (int i = 0; i < n; ++i)
+        if (t + roots[i] > t_min && t + roots[i] < t_max && abs(roots[i]) < abs(step)) step = roots[i];
+      if (!(abs(step) < kInfinity)) break;
+      const float t_next = t + step;
+      if (length2(ray.at(t_next) - lp.origin) > b2) break;  // left B(p_i, b)
+      t = t_next;
+      hint = p.normal;
+      if (it >= max_iterations) {
+        hit.t = t;
+        hit.point = ray.at(t);
+        const vec3 l = p.frame.to_local(hit.point);
+        hit.normal = p.frame.direction_to_world(p.polynomial.normal(l.x, l.y));
+        hit.flags = kHitFound | kHitCapped;
+        return hit;
+      }
+    }
+    t_from = c.t;  // "jump to the next ball"
+  }
+  return hit;
+}
+
+// What secondary rays use: the full loop or the paper's rough hit.
+PSS_INLINE Hit intersect_secondary(const PointSurfaceView& s, const Ray& ray, float t_max, int max_iterations) {
+  return s.params.secondary == SecondaryMode::full ? intersect_pss(s, ray, 0.0f, t_max, max_iterations)
+                                                   : rough_hit(s, ray, 0.0f, t_max);
+}
+
+}  // namespace pss

@@ -1,0 +1,40 @@
+// The pinhole camera of both renderers, and the documented default view that frames an
+// object so that images stay comparable over time:
+// - the bounding sphere of the object's box (centre = box centre, radius = half the
+//   diagonal) fills the smaller of the two fields of view exactly;
+// - the eye orbits that centre: azimuth 0, elevation 0 puts it on +z looking along −z;
+//   positive azimuth turns it toward +x, positive elevation raises it toward +y; y is up;
+// - --fov is the vertical field of view in degrees.
+#pragma once
+
+#include "pss/core/types.hpp"
+
+namespace pss {
+
+struct CameraSettings {
+  int width = 512;
+  int height = 512;
+  float azimuth_deg = 0;
+  float elevation_deg = 0;  // in [−90, 90]
+  float fov_deg = 35;       // vertical, in (0, 180)
+};
+
+struct Camera {
+  vec3 eye{0.0f};
+  vec3 forward{0, 0, -1}, right{1, 0, 0}, up{0, 1, 0};  // orthonormal
+  float tan_half_fov = 0.3f;                            // vertical
+  int width = 1, height = 1;
+
+  // The ray through the centre of pixel (px, py); row 0 is the top of the image.
+  PSS_HOST_DEVICE Ray primary_ray(int px, int py) const {
+    const float aspect = float(width) / float(height);
+    const float x = (2.0f * (float(px) + 0.5f) / float(width) - 1.0f) * tan_half_fov * aspect;
+    const float y = (1.0f - 2.0f * (float(py) + 0.5f) / float(height)) * tan_half_fov;
+    return {eye, glm::normalize(forward + x * right + y * up)};
+  }
+
+  // A degenerate box (one point, or all points equal) is framed as a unit sphere.
+  static Camera framing(const Aabb& box, const CameraSettings& s);
+};
+
+}  // namespace pss

@@ -1,0 +1,118 @@
+// `pss render` end to end: what it writes on success, and that every bad input is a
+// one-line error with a non-zero exit and no output file.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "pss/io/ply.hpp"
+#include "pss/io/xyz.hpp"
+#include "support/shapes.hpp"
+
+namespace pss {
+namespace {
+
+namespace fs = std::filesystem;
+
+class RenderCli : public testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("pss_render_cli_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    test::SampleOptions o;
+    o.count = 2000;
+    const PointCloud cloud = test::sample(test::Sphere{}, o);
+    std::ofstream xyz(dir_ / "sphere.xyz");
+    for (const vec3& p : cloud.positions) xyz << p.x << ' ' << p.y << ' ' << p.z << '\n';
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // Runs `pss render ARGS`; returns the exit status, stderr in `err`.
+  int run(const std::string& args, std::string& err) {
+    const fs::path err_file = dir_ / "stderr.txt";
+    const std::string command = std::string(PSS_CLI) + " render " + args + " >/dev/null 2>" + err_file.string();
+    const int status = std::system(command.c_str());
+    std::ifstream in(err_file);
+    std::stringstream s;
+    s << in.rdbuf();
+    err = s.str();
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+  std::string path(const char* name) const { return (dir_ / name).string(); }
+
+  fs::path dir_;
+};
+
+TEST_F(RenderCli, WritesImageHitsAndStats) {
+  std::string err;
+  ASSERT_EQ(run(path("sphere.xyz") + " -o " + path("out.png") + " --size 48x32 --view 30,20 --shadows --reflections" +
+                    " --hits " + path("hits.ply") + " --stats " + path("stats.json") + " --iterations 3",
+                err),
+            0)
+      << err;
+  EXPECT_TRUE(fs::exists(path("out.png")));
+  const nlohmann::json stats = nlohmann::json::parse(std::ifstream(path("stats.json")));
+  EXPECT_EQ(stats["rays"], 48 * 32);
+  for (const char* phase : {"preprocess", "acceleration structure", "primary", "secondary", "shading", "total"})
+    EXPECT_TRUE(stats["seconds"].contains(phase)) << phase;
+  EXPECT_GT(stats["mean_iterations"].get<double>(), 0.0);
+  const PointCloud hits = read_ply(path("hits.ply"));
+  EXPECT_EQ(std::int64_t(hits.size()), stats["hits"].get<std::int64_t>());
+  EXPECT_GT(hits.size(), 100u);
+  EXPECT_TRUE(hits.has_normals());
+  std::ifstream ply(path("hits.ply"), std::ios::binary);
+  std::string header(400, '\0');
+  ply.read(header.data(), std::streamsize(header.size()));
+  EXPECT_NE(header.find("property int px"), std::string::npos);
+  EXPECT_NE(header.find("property int py"), std::string::npos);
+}
+
+TEST_F(RenderCli, OnePointCloudRendersTheBackground) {
+  std::ofstream(dir_ / "one.xyz") << "1 2 3\n";
+  std::string err;
+  EXPECT_EQ(run(path("one.xyz") + " -o " + path("one.png") + " --size 16x16", err), 0) << err;
+  EXPECT_TRUE(fs::exists(path("one.png")));
+}
+
+TEST_F(RenderCli, BadInputsAreOneLineErrorsWithoutOutput) {
+  std::ofstream(dir_ / "garbage.ply") << "this is not a ply file\n";
+  const std::string input = path("sphere.xyz");
+  const std::string outputs = " -o " + path("bad.png") + " --hits " + path("bad.ply") + " --stats " + path("bad.json");
+  const std::string cases[] = {
+      input + outputs + " --size 0x0",
+      input + outputs + " --size 64",
+      input + outputs + " --size 64x-3",
+      input + outputs + " --view 30",
+      input + outputs + " --view 30,95",
+      input + outputs + " --fov 0",
+      input + outputs + " --iterations 0",
+      input + outputs + " --iterations fast",
+      input + outputs + " --secondary rough",
+      input + outputs + " --backend gpu",
+      input + outputs + " --h -1",
+      input + outputs + " --no-such-flag",
+      path("missing.xyz") + outputs,
+      path("garbage.ply") + outputs,
+      path("") + outputs,  // a directory
+      input + " -o " + path("no/such/dir/out.png"),
+      input + outputs + " --hits " + path("no/such/dir/hits.ply"),
+  };
+  for (const std::string& args : cases) {
+    std::string err;
+    EXPECT_NE(run(args + " --size 16x16", err), 0) << args;
+    EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << args << "\n" << err;
+    EXPECT_NE(err.find("error"), std::string::npos) << err;
+    EXPECT_FALSE(fs::exists(path("bad.png"))) << args;
+    EXPECT_FALSE(fs::exists(path("bad.ply"))) << args;
+    EXPECT_FALSE(fs::exists(path("bad.json"))) << args;
+  }
+}
+
+}  // namespace
+}  // namespace pss

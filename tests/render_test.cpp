@@ -1,0 +1,260 @@
+// Ray tracing the PSS of point clouds (paper §5.2) against analytic truth.
+//
+// Tolerances, for samples of a unit sphere (κ = 1) and a torus (tube radius 0.35, κ ≤ 1/0.35)
+// with the default h (~0.1 of the radius here) and σ = 0.5% of the radius where noisy:
+// - A converged hit r satisfies |P(r) − r| < ε = 1e-3·h, and P(r) lies on the PSS, whose
+//   distance to the analytic surface is what tests/projection_test.cpp bounds: a mean of
+//   0.4σ with noise (the WLS fit averages ~20 effective samples), a bias of order κ³h⁴
+//   without. A capped hit stops one ray/polynomial intersection short of that; along a ray
+//   at angle θ to the surface a height error e becomes e/cos θ along the ray, but
+//   measured as distance to the surface it stays e. So: mean distance below 0.4σ + ε with
+//   noise, below 2κ³h⁴ + ε without; and since silhouette pixels graze the surface, the
+//   95th percentile below 3σ (noisy) or 10 times the bias (clean), the projection tests'
+//   bounds on the maximum.
+// - Normals: the projection's plane normal, so the projection tests' bounds: mean below 2°.
+// - Coverage: a pixel differs from the analytic render only where the silhouette passes
+//   within the surface error of its centre; at 96² the object's outline crosses ~200
+//   pixels and the surface error is a few hundredths of a pixel, so we allow 2% of the
+//   analytic hits (4% for the sparse side of the non-uniform clouds, where the PSS may
+//   shrink at rims by up to h/4, the gap the balls of radius b = h leave between samples
+//   spaced ~1.5h apart).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+
+#include "pss/io/ply.hpp"
+#include "pss/points/render_cloud.hpp"
+#include "pss/points/spacing.hpp"
+#include "pss/render/frame_outputs.hpp"
+#include "support/shapes.hpp"
+
+namespace pss {
+namespace {
+
+float suggested_h(const PointCloud& cloud) { return float(estimate_spacing(cloud.positions).suggested_h); }
+
+RenderedFrame render(const PreparedCloud& prepared, const Camera& camera, bool shadows = false,
+                     bool reflections = false) {
+  Stats stats;
+  TraceSettings settings;
+  settings.shading = ShadingParams::for_camera(camera);
+  settings.shadows = shadows;
+  settings.reflections = reflections;
+  return render_cloud(prepared, camera, settings, Backend::cpu, stats);
+}
+
+// Analytic first hits of the same rays: ray/sphere in closed form; the torus by sphere
+// tracing its exact distance function to 1e-6; the plane's square in closed form.
+bool analytic_hit(const test::Sphere& s, const Ray& ray) {
+  float t0, t1;
+  return ray_ball(ray, s.center, s.radius, t0, t1) && t1 > 0;
+}
+bool analytic_hit(const test::Torus& torus, const Ray& ray) {
+  float t = 0;
+  for (int i = 0; i < 2000 && t < 100; ++i) {
+    const float d = torus.distance(ray.at(t));
+    if (d < 1e-6f) return true;
+    t += d;
+  }
+  return false;
+}
+// The square [−1, 1]² of test::sample_plane(1, ...).
+bool analytic_hit(const test::Plane&, const Ray& ray) {
+  if (ray.dir.z == 0) return false;
+  const vec3 p = ray.at(-ray.origin.z / ray.dir.z);
+  return -ray.origin.z / ray.dir.z > 0 && std::abs(p.x) <= 1 && std::abs(p.y) <= 1;
+}
+
+struct Accuracy {
+  double mean_distance = 0, p95_distance = 0, mean_angle_deg = 0;
+  std::int64_t hits = 0, analytic = 0, mismatched = 0;
+};
+
+template <class Shape>
+Accuracy measure(const Shape& shape, const RenderedFrame& frame) {
+  Accuracy a;
+  std::vector<double> distances;
+  for (int y = 0; y < frame.camera.height; ++y) {
+    for (int x = 0; x < frame.camera.width; ++x) {
+      const Hit& h = frame.hits[std::size_t(y) * frame.camera.width + x];
+      const bool truth = analytic_hit(shape, frame.camera.primary_ray(x, y));
+      a.analytic += truth;
+      a.mismatched += truth != h.found();
+      if (!h.found()) continue;
+      ++a.hits;
+      distances.push_back(std::abs(shape.distance(h.point)));
+      a.mean_distance += distances.back();
+      const double c = std::min(1.0f, std::abs(glm::dot(h.normal, shape.normal(h.point))));
+      a.mean_angle_deg += std::acos(c) * 180 / M_PI;
+    }
+  }
+  if (a.hits == 0) return a;
+  a.mean_distance /= double(a.hits);
+  a.mean_angle_deg /= double(a.hits);
+  std::sort(distances.begin(), distances.end());
+  a.p95_distance = distances[distances.size() * 95 / 100];
+  return a;
+}
+
+struct Case {
+  const char* name;
+  bool torus;
+  bool nonuniform;
+  float noise;  // relative to the radius (sphere) or tube radius (torus)
+};
+
+class RenderAccuracy : public testing::TestWithParam<Case> {};
+
+CameraSettings small_view() {
+  CameraSettings s;
+  s.width = s.height = 96;
+  s.azimuth_deg = 20;  // the torus seen from above its plane, hole and all
+  s.elevation_deg = 35;
+  return s;
+}
+
+TEST_P(RenderAccuracy, HitsLieOnTheSurfaceAndCoverItsSilhouette) {
+  const Case c = GetParam();
+  const test::Sphere sphere;
+  const test::Torus torus;
+  const float radius = c.torus ? torus.minor : sphere.radius;
+  const float kappa = 1.0f / radius;
+  test::SampleOptions o;
+  o.count = c.torus ? 12000 : 5000;
+  o.noise = c.noise * radius;
+  o.nonuniform = c.nonuniform;
+  const PointCloud cloud = c.torus ? test::sample(torus, o) : test::sample(sphere, o);
+  const float h = suggested_h(cloud);
+  Stats stats;
+  const PreparedCloud prepared(cloud, RayPssParams::from_h(h), Backend::cpu, stats);
+  const Camera camera = Camera::framing(cloud.bounds(), small_view());
+  const RenderedFrame frame = render(prepared, camera);
+  const Accuracy a = c.torus ? measure(torus, frame) : measure(sphere, frame);
+  const double eps = 1e-3 * h;
+  const double bias = 2 * std::pow(kappa, 3) * std::pow(h, 4);
+  SCOPED_TRACE("h = " + std::to_string(h) + ", hits " + std::to_string(a.hits) + ", analytic " +
+               std::to_string(a.analytic) + ", mismatched " + std::to_string(a.mismatched) + ", mean d " +
+               std::to_string(a.mean_distance) + ", p95 d " + std::to_string(a.p95_distance) + ", mean angle " +
+               std::to_string(a.mean_angle_deg));
+  ASSERT_GT(a.analytic, 1000);
+  EXPECT_LT(a.mean_distance, (c.noise > 0 ? 0.4 * o.noise : bias) + eps);
+  EXPECT_LT(a.p95_distance, c.noise > 0 ? 3 * o.noise : 10 * bias);
+  EXPECT_LT(a.mean_angle_deg, 2.0);
+  EXPECT_LE(double(a.mismatched), (c.nonuniform ? 0.04 : 0.02) * double(a.analytic));
+}
+
+INSTANTIATE_TEST_SUITE_P(Shapes, RenderAccuracy,
+                         testing::Values(Case{"SphereClean", false, false, 0.0f},
+                                         Case{"SphereNoisy", false, false, 0.005f},
+                                         Case{"SphereNonuniform", false, true, 0.0f},
+                                         Case{"SphereNoisyNonuniform", false, true, 0.005f},
+                                         Case{"TorusClean", true, false, 0.0f},
+                                         Case{"TorusNoisy", true, false, 0.005f},
+                                         Case{"TorusNonuniform", true, true, 0.0f},
+                                         Case{"TorusNoisyNonuniform", true, true, 0.005f}),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+TEST(Render, ThreeIterationsAreAtLeastAsAccurateAsTwo) {
+  // Each projection moves r closer to its fixed point on the PSS (the iteration of §5.2),
+  // so one more cannot leave the hits farther from the surface on average.
+  const test::Torus torus;
+  test::SampleOptions o;
+  o.count = 12000;
+  o.noise = 0.005f * torus.minor;
+  const PointCloud cloud = test::sample(torus, o);
+  RayPssParams params = RayPssParams::from_h(suggested_h(cloud));
+  const Camera camera = Camera::framing(cloud.bounds(), small_view());
+  Stats stats;
+  params.max_iterations = 2;
+  const Accuracy two = measure(torus, render(PreparedCloud(cloud, params, Backend::cpu, stats), camera));
+  params.max_iterations = 3;
+  const Accuracy three = measure(torus, render(PreparedCloud(cloud, params, Backend::cpu, stats), camera));
+  EXPECT_LE(three.mean_distance, two.mean_distance);
+  EXPECT_LE(three.mismatched, two.mismatched + 2);  // the same silhouette, up to a pixel or two
+}
+
+TEST(Render, RaysThatMissEverythingShowTheBackground) {
+  const PointCloud cloud = test::sample(test::Sphere{}, test::SampleOptions{});
+  Stats stats;
+  const PreparedCloud prepared(cloud, RayPssParams::from_h(suggested_h(cloud)), Backend::cpu, stats);
+  Camera away = Camera::framing(cloud.bounds(), small_view());
+  away.forward = -away.forward;  // looking away from the sphere
+  away.right = -away.right;
+  const RenderedFrame frame = render(prepared, away, true, true);
+  const ShadingParams shading = ShadingParams::for_camera(away);
+  for (int y = 0; y < away.height; ++y)
+    for (int x = 0; x < away.width; ++x) {
+      ASSERT_FALSE(frame.hits[std::size_t(y) * away.width + x].found());
+      ASSERT_EQ(frame.image.at(x, y), background(shading, away.primary_ray(x, y).dir));
+    }
+  EXPECT_EQ(frame.secondary_rays, 0);
+}
+
+TEST(Render, CameraInsideTheBoundingBoxSeesTheSurfaceAllAround) {
+  const test::Sphere sphere;
+  const PointCloud cloud = test::sample(sphere, test::SampleOptions{});
+  const float h = suggested_h(cloud);
+  Stats stats;
+  const PreparedCloud prepared(cloud, RayPssParams::from_h(h), Backend::cpu, stats);
+  Camera inside = Camera::framing(cloud.bounds(), small_view());
+  inside.eye = vec3(0.1f, -0.2f, 0.3f);  // inside the sphere: every ray meets it once
+  const RenderedFrame frame = render(prepared, inside, true, true);
+  const Accuracy a = measure(sphere, frame);
+  EXPECT_EQ(a.hits, std::int64_t(frame.hits.size()));
+  EXPECT_LT(a.mean_distance, 2 * std::pow(h, 4) + 1e-3 * h);  // as for SphereClean above
+  for (const vec3& c : frame.image.pixels) ASSERT_TRUE(is_finite(c));
+}
+
+TEST(Render, OnePointCloudRendersTheBackground) {
+  PointCloud cloud;
+  cloud.positions = {vec3(1, 2, 3)};
+  Stats stats;
+  const PreparedCloud prepared(cloud, RayPssParams::from_h(1.0f), Backend::cpu, stats);
+  EXPECT_EQ(prepared.left_out(), 1);  // no neighbours, no surface
+  const RenderedFrame frame = render(prepared, Camera::framing(cloud.bounds(), small_view()), true, true);
+  EXPECT_EQ(summarize(frame).hits, 0);
+}
+
+TEST(Render, PlanarCloudIsAFlatSurface) {
+  test::SampleOptions o;
+  o.count = 4000;
+  const PointCloud cloud = test::sample_plane(1.0f, o);
+  const float h = suggested_h(cloud);
+  Stats stats;
+  const PreparedCloud prepared(cloud, RayPssParams::from_h(h), Backend::cpu, stats);
+  const RenderedFrame frame = render(prepared, Camera::framing(cloud.bounds(), small_view()), true, true);
+  const Accuracy a = measure(test::Plane{}, frame);
+  // The square seen at 35° elevation: about a third of the image; a plane has no
+  // curvature bias, so hits lie on it to within ε (capped hits: float rounding of h).
+  EXPECT_GT(a.hits, std::int64_t(frame.hits.size() / 5));
+  EXPECT_LT(a.mean_distance, 1e-3 * h);
+  EXPECT_LT(a.mean_angle_deg, 0.5);
+}
+
+TEST(Render, ImageDoesNotDependOnThreadCount) {
+  test::SampleOptions o;
+  o.count = 6000;
+  o.noise = 0.005f;
+  const PointCloud cloud = test::sample(test::Torus{}, o);
+  Stats stats;
+  const PreparedCloud prepared(cloud, RayPssParams::from_h(suggested_h(cloud)), Backend::cpu, stats);
+  const Camera camera = Camera::framing(cloud.bounds(), small_view());
+  set_cpu_threads(1);
+  const RenderedFrame one = render(prepared, camera, true, true);
+  set_cpu_threads(3);
+  const RenderedFrame three = render(prepared, camera, true, true);
+  set_cpu_threads(0);
+  EXPECT_EQ(to_srgb8(one.image), to_srgb8(three.image));
+  EXPECT_EQ(one.image.pixels, three.image.pixels);
+  EXPECT_EQ(one.secondary_rays, three.secondary_rays);
+  EXPECT_GT(one.secondary_rays, 0);
+}
+
+}  // namespace
+}  // namespace pss
