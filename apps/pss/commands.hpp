@@ -16,5 +16,8 @@ void add_compute_options(CLI::App& command, ComputeOptions& options);
 
 void add_info_command(CLI::App& app);
 void add_project_command(CLI::App& app);
+void add_render_command(CLI::App& app);
+void add_volume_command(CLI::App& app);
+void add_extract_command(CLI::App& app);
 
 }  // namespace pss::app

@@ -12,15 +12,20 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "pss 0.1.0");
   pss::app::add_info_command(app);
   pss::app::add_project_command(app);
+  pss::app::add_render_command(app);
+  pss::app::add_volume_command(app);
+  pss::app::add_extract_command(app);
 
-  // Usage errors: one line, then exit 2.
-  app.failure_message([](const CLI::App* command, const CLI::Error& e) {
-    return "pss " + command->get_name() + ": error: " + std::string(e.what()) + " (see --help)\n";
+  // Usage errors: one line naming the subcommand, then exit 2 (help and --version exit 0).
+  app.failure_message([](const CLI::App* top, const CLI::Error& e) {
+    std::string name = "pss";
+    for (const CLI::App* sub : top->get_subcommands()) name += " " + sub->get_name();
+    return name + ": error: " + std::string(e.what()) + " (see --help)\n";
   });
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return app.exit(e) == 0 ? 0 : 2;
   } catch (const pss::Error& e) {
     std::fprintf(stderr, "pss: error: %s\n", e.what());
     return 1;

@@ -1,0 +1,108 @@
+#include "volume_options.hpp"
+
+#include "pss/core/error.hpp"
+#include "pss/io/volume_file.hpp"
+
+namespace pss::app {
+
+void add_volume_options(CLI::App& command, VolumeOptions& o, bool method_flag) {
+  command.add_option("file", o.input, "volume: .nrrd / .nhdr, or raw with --dims and --type")->required();
+  command.add_option("--dims", o.dims, "raw volume size XxYxZ, x fastest");
+  command.add_option("--type", o.type, "raw voxel type (default uint8)")
+      ->check(CLI::IsMember({"uint8", "uint16", "float32"}));
+  command.add_option("--spacing", o.spacing, "raw voxel spacing sx,sy,sz (default 1,1,1)");
+  command.add_option("--endian", o.endian, "raw byte order of uint16/float32 (default little)")
+      ->check(CLI::IsMember({"little", "big"}));
+  auto* iso = command.add_option("--iso", o.iso, "iso-surface f = V (theta1 weights)");
+  auto* gradient = command.add_flag("--gradient", o.gradient, "surface of high gradient magnitude (theta2 weights)");
+  iso->excludes(gradient);
+  gradient->excludes(iso);
+  if (method_flag)
+    command.add_option("--method", o.method, "predictor (Eq. 3) or predictor-corrector (Eq. 3 then Eq. 4)")
+        ->check(CLI::IsMember({"predictor", "predictor-corrector"}))
+        ->capture_default_str();
+  command.add_option("--h", o.h, "theta3 width h in voxels (u = (sx*sy*sz)^(1/3))")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command.add_option("--k", o.k, "step b = k*h, 0.5 < k < 1 (paper 5.1)")
+      ->check(CLI::Range(0.05f, 1.0f))
+      ->capture_default_str();
+  command.add_option("--radius", o.radius, "neighbourhood radius in units of h: the voxels within it are N(.)")
+      ->check(CLI::Range(0.5f, 4.0f))
+      ->capture_default_str();
+  command.add_option("--alpha", o.alpha, "alpha1 of the corrector's Theta = alpha1*theta + (1-alpha1)*theta3")
+      ->check(CLI::Range(0.0f, 1.0f))
+      ->capture_default_str();
+  command.add_option("--smoothing", o.smoothing,
+                     "k of theta1 in value units (default: 1 voxel at the iso-surface's mean |grad f|, capped like --threshold)")
+      ->check(CLI::PositiveNumber);
+  command.add_option("--error", o.error, "epsilon in voxels: r is a hit when |gamma - r| <= epsilon")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command.add_option("--threshold", o.threshold,
+                     "fragment culling: iso projects samples with |V - f| <= T (default: b voxels at the mean "
+                     "|grad f|, at most half the way from V to the nearer end of the value range); gradient those "
+                     "with (|grad f|/max)^2 > T (default 0.5)")
+      ->check(CLI::NonNegativeNumber);
+  o.iso_option = iso;
+}
+
+PreparedVolume load_volume(const VolumeOptions& o, Stats& stats) {
+  if (o.iso_option->count() == 0 && !o.gradient) throw Error("choose the surface: --iso V or --gradient");
+  const bool raw_flags = !o.dims.empty() || !o.type.empty() || !o.spacing.empty() || !o.endian.empty();
+  std::optional<RawVolumeFormat> raw;
+  if (raw_flags) {
+    if (o.dims.empty()) throw Error("a raw volume needs --dims XxYxZ");
+    RawVolumeFormat f;
+    f.dims = parse_dims(o.dims);
+    if (!o.type.empty()) f.type = parse_voxel_type(o.type);
+    if (!o.spacing.empty()) f.spacing = parse_spacing(o.spacing);
+    f.big_endian = o.endian == "big";
+    raw = f;
+  }
+  Volume volume;
+  {
+    ScopedPhase phase(stats, "read");
+    volume = read_volume(o.input, raw);
+  }
+  VolumeFields fields;
+  {
+    ScopedPhase phase(stats, "gradients");
+    fields = compute_fields(std::move(volume));
+  }
+  const float voxel = fields.volume.view().voxel_size();
+  VolumeParams params = VolumeParams::from_voxels(
+      voxel, o.method == "predictor" ? VolumeMethod::predictor : VolumeMethod::predictor_corrector, o.h, o.k, o.alpha,
+      o.error, o.radius * o.h);
+  const float bound = neighbourhood_bound(params.radius, fields.volume.spacing);
+  if (bound > float(kMaxNeighbours))
+    throw Error("--h " + std::to_string(o.h) + " and --radius " + std::to_string(o.radius) + ": neighbourhoods of up to " +
+                std::to_string(int(bound)) + " voxels exceed the " + std::to_string(kMaxNeighbours) +
+                " the kernels hold; lower --h or --radius");
+  const FeatureParams feature = o.gradient ? gradient_feature(o.threshold)
+                                           : iso_feature(fields, o.iso, params.step, o.smoothing, o.threshold);
+  return prepare_volume(std::move(fields), feature, params, stats);
+}
+
+nlohmann::json describe(const PreparedVolume& v, const VolumeOptions& o) {
+  const VolumeView view = v.fields.volume.view();
+  nlohmann::json j;
+  j["dims"] = {view.dims.x, view.dims.y, view.dims.z};
+  j["spacing"] = {view.spacing.x, view.spacing.y, view.spacing.z};
+  j["origin"] = {view.origin.x, view.origin.y, view.origin.z};
+  j["max_gradient"] = v.fields.max_gradient;
+  j["bricks"] = {{"total", v.bricks.occupied.size()}, {"occupied", v.bricks.occupied_count}};
+  if (v.feature.kind == FeatureKind::iso)
+    j["feature"] = {{"kind", "iso"}, {"iso", v.feature.iso}, {"smoothing", v.feature.smoothing},
+                    {"threshold", v.feature.threshold}};
+  else
+    j["feature"] = {{"kind", "gradient"}, {"threshold", v.feature.threshold}};
+  const VolumeParams& p = v.params;
+  j["params"] = {{"method", o.method}, {"h", p.h}, {"k", o.k}, {"b", p.step}, {"radius", p.radius},
+                 {"alpha", p.alpha}, {"epsilon", p.epsilon}, {"t_tolerance", p.t_tolerance},
+                 {"max_predictor_iterations", p.max_predictor_iterations},
+                 {"max_corrector_iterations", p.max_corrector_iterations}, {"max_retries", p.max_retries}};
+  return j;
+}
+
+}  // namespace pss::app

@@ -1,0 +1,34 @@
+// The options `pss volume` and `pss extract` share: how to read the volume (raw flags or
+// NRRD), which surface (--iso V or --gradient), and the method's parameters, with the
+// documented defaults in voxel units.
+#pragma once
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "pss/volume/render_volume.hpp"
+
+namespace pss::app {
+
+struct VolumeOptions {
+  std::string input;
+  std::string dims, type, spacing, endian;  // raw volumes only
+  float iso = 0;
+  const CLI::Option* iso_option = nullptr;  // counts whether --iso was given
+  bool gradient = false;
+  std::string method = "predictor-corrector";
+  float h = 2, k = 0.75f, alpha = 0.9f, error = 0.1f, radius = 1.5f;  // voxel units / ratios
+  float smoothing = 0, threshold = 0;  // 0: derived from the data (see add_volume_options)
+};
+
+void add_volume_options(CLI::App& command, VolumeOptions& options, bool method_flag);
+
+// Reads the volume, computes gradients, weights and bricks; every parameter resolved.
+PreparedVolume load_volume(const VolumeOptions& options, Stats& stats);
+
+// The resolved feature and method parameters, for --stats.
+nlohmann::json describe(const PreparedVolume& volume, const VolumeOptions& options);
+
+}  // namespace pss::app

@@ -1,0 +1,288 @@
+// The paper's projection of a point r onto the PSS of a volume (§4, §5.1): the predictor
+// (Eq. 3, WLS with the feature weights θ) gives P(r), the corrector (Eq. 4, MLS-like with
+// Θ = α1·θ + α2·θ3) refines it to γ. Neighbourhoods are the voxels around a point: no
+// spatial search.
+#pragma once
+
+#include "pss/core/frame.hpp"
+#include "pss/fit/brent.hpp"
+#include "pss/fit/inverse_power.hpp"
+#include "pss/fit/polynomial.hpp"
+#include "pss/fit/weights.hpp"
+#include "pss/volume/fields.hpp"
+
+namespace pss {
+
+enum class VolumeMethod : unsigned char { predictor, predictor_corrector };
+
+// Lengths in world units; VolumeParams::from_voxels gives the documented defaults.
+struct VolumeParams {
+  VolumeMethod method = VolumeMethod::predictor_corrector;
+  float h = 0;             // θ3's width
+  float radius = 0;        // of the neighbourhoods N(·): the voxels within it
+  float step = 0;          // b = k·h, the marching step and the radius of the ball of trust
+  float alpha = 0.9f;      // α1 of Eq. 4 (α2 = 1 − α1)
+  float epsilon = 0;       // ε: r is a hit when |γ − r| ≤ ε
+  float t_tolerance = 0;   // the t iterations stop when t moves less than this
+  int max_predictor_iterations = 8;
+  int max_corrector_iterations = 4;
+  int max_retries = 6;     // projections from ray/polynomial intersections per sample
+  bool debug_projection = false;  // record the first projection's moves (the paper's Figure 2)
+
+  // Defaults in voxel units u (VolumeView::voxel_size), see docs/paper-notes.md: h = 2u,
+  // k = 0.75 (b = 1.5u), neighbourhood radius 1.5h, ε = 0.1u, α1 = 0.9; t iterations stop
+  // below ε/2, a change that cannot decide an acceptance by itself.
+  static VolumeParams from_voxels(float voxel, VolumeMethod method = VolumeMethod::predictor_corrector,
+                                  float h_voxels = 2.0f, float k = 0.75f, float alpha = 0.9f,
+                                  float epsilon_voxels = 0.1f, float radius_voxels = 3.0f) {
+    VolumeParams p;
+    p.method = method;
+    p.h = h_voxels * voxel;
+    p.radius = radius_voxels * voxel;
+    p.step = k * p.h;
+    p.alpha = alpha;
+    p.epsilon = epsilon_voxels * voxel;
+    p.t_tolerance = 0.5f * p.epsilon;
+    return p;
+  }
+};
+
+enum class VolumeProjectionStatus : unsigned char {
+  ok,
+  no_gradient,  // ∇f(r) = 0: no starting normal
+  no_weight,    // no voxel near r carries feature weight
+};
+
+struct VolumeProjection {
+  vec3 predicted;  // P(r)
+  vec3 point;      // γ (= P(r) for the predictor alone)
+  vec3 normal;     // of the final polynomial's graph at `point`, along ∇f
+  Frame frame;     // of the final polynomial
+  Polynomial polynomial;
+  VolumeProjectionStatus status;
+};
+
+// Calls f(p − x, voxel index) for the voxels p within `radius` of x.
+template <class F>
+PSS_HOST_DEVICE void for_each_voxel_near(const VolumeView& v, vec3 x, float radius, F&& f) {
+  const vec3 lo = v.to_grid(x - vec3(radius)), hi = v.to_grid(x + vec3(radius));
+  const int i0 = max(-int(floor(-lo.x)), 0), i1 = min(int(floor(hi.x)), v.dims.x - 1);
+  const int j0 = max(-int(floor(-lo.y)), 0), j1 = min(int(floor(hi.y)), v.dims.y - 1);
+  const int k0 = max(-int(floor(-lo.z)), 0), k1 = min(int(floor(hi.z)), v.dims.z - 1);
+  const float r2 = radius * radius;
+  for (int k = k0; k <= k1; ++k) {
+    const float dz = v.origin.z + float(k) * v.spacing.z - x.z;
+    for (int j = j0; j <= j1; ++j) {
+      const float dy = v.origin.y + float(j) * v.spacing.y - x.y;
+      const float dyz = dy * dy + dz * dz;
+      if (dyz > r2) continue;
+      std::int64_t index = v.index(i0, j, k);
+      for (int i = i0; i <= i1; ++i, ++index) {
+        const float dx = v.origin.x + float(i) * v.spacing.x - x.x;
+        if (dx * dx + dyz <= r2) f(vec3(dx, dy, dz), index);
+      }
+    }
+  }
+}
+
+// N(x): the voxels within the radius ρ of x, gathered once into a flat array (offsets from
+// x, feature weights) so that the iterations of Eq. 3 and 4 and Brent's evaluations run
+// over contiguous memory. Membership is smooth: each voxel counts with the window
+// (1 − d²/ρ²)², which falls to zero at ρ, so that the projection changes continuously as
+// the point moves and voxels enter or leave N (a hard edge shows the lattice in the
+// shading and stalls the ray's fixed-point iteration; the paper does not say how far
+// "the neighbouring voxels" reach). The capacity bounds ρ (neighbourhood_bound).
+inline constexpr int kMaxNeighbours = 512;
+
+struct VoxelNeighbourhood {
+  vec3 center;
+  int count = 0;
+  vec3 offset[kMaxNeighbours];   // pᵢ − center
+  float window[kMaxNeighbours];  // (1 − dᵢ²/ρ²)²
+  float theta[kMaxNeighbours];   // θ1 or θ2 of pᵢ, times the window
+
+  // With `weighted_only` (the predictor, whose sums all carry θ), voxels whose windowed θ is
+  // below 1e-5 are left out: they could not move any sum by more than that fraction.
+  PSS_HOST_DEVICE void gather(const FieldView& fields, vec3 c, float radius, bool weighted_only) {
+    center = c;
+    count = 0;
+    const float inv_r2 = 1.0f / (radius * radius);
+    for_each_voxel_near(fields.volume, c, radius, [&](vec3 d, std::int64_t index) {
+      if (count == kMaxNeighbours) return;
+      const float u = 1.0f - length2(d) * inv_r2;
+      if (weighted_only && u * u * fields.weights[index] < 1e-5f) return;
+      offset[count] = d;
+      window[count] = u * u;
+      theta[count] = u * u * fields.weights[index];
+      ++count;
+    });
+  }
+};
+
+// The most voxels a ball of this radius can hold on this grid, for the host's check: each
+// voxel's cell lies in the ball grown by half a cell diagonal.
+PSS_INLINE float neighbourhood_bound(float radius, vec3 spacing) {
+  const vec3 r = radius / spacing + 0.87f;
+  return 4.18879f * r.x * r.y * r.z;
+}
+
+// Inverse power steps per normal update: each starts from the previous n, and the outer
+// iterations of Eq. 3 and 4 go on refining it.
+inline constexpr int kEigenIterations = 4;
+
+namespace detail {
+
+// Eq. 4's energy along n for fixed n about x0 = P(r): E(t) = Σ Θᵢ(t)·⟨n, pᵢ − (x0 + t·n)⟩²,
+// Θᵢ(t) = α1·θᵢ + α2·θ3(‖pᵢ − (x0 + t·n)‖), with its derivative for Brent. zᵢ = ⟨n, pᵢ − x0⟩,
+// sᵢ = zᵢ − t, ‖pᵢ − x0 − t·n‖² = ‖pᵢ − x0‖² − 2t·zᵢ + t², so dθ3/dt = 2sᵢθ3/h². Both
+// parts of Θ carry the neighbourhood's window.
+struct CorrectorEnergy {
+  const VoxelNeighbourhood& nb;
+  vec3 n;
+  float h, alpha;
+
+  PSS_HOST_DEVICE float operator()(float t, float& derivative) const {
+    float e = 0, de = 0;
+    const float inv_h2 = 1.0f / (h * h);
+    for (int i = 0; i < nb.count; ++i) {
+      const vec3 d = nb.offset[i];
+      const float z = glm::dot(d, n);
+      const float s = z - t;
+      const float theta3 = nb.window[i] * exp(-(length2(d) - 2 * t * z + t * t) * inv_h2);
+      const float w = alpha * nb.theta[i] + (1 - alpha) * theta3;
+      e += w * s * s;
+      de += (1 - alpha) * 2 * s * theta3 * inv_h2 * s * s - 2 * w * s;
+    }
+    derivative = de;
+    return e;
+  }
+};
+
+// The polynomial in the frame (origin, n) fitted with weights w(i) over the neighbourhood,
+// and the orthogonal projection of the origin onto its graph.
+template <class W>
+PSS_HOST_DEVICE VolumeProjection fit_and_project(const VoxelNeighbourhood& nb, vec3 origin, vec3 n, float h, W&& weight) {
+  VolumeProjection out;
+  out.frame = Frame::from_normal(origin, n);
+  PolynomialFit fit(h);
+  const vec3 shift = nb.center - origin;
+  for (int i = 0; i < nb.count; ++i) fit.add(out.frame.direction_to_local(nb.offset[i] + shift), weight(i));
+  out.polynomial = fit.solve();
+  const vec3 local = closest_point_on_graph(out.polynomial, vec3(0.0f));
+  out.point = out.frame.to_world(local);
+  out.normal = out.frame.direction_to_world(out.polynomial.normal(local.x, local.y));
+  out.status = VolumeProjectionStatus::ok;
+  return out;
+}
+
+}  // namespace detail
+
+// Predictor (§5.1, Eq. 3). n starts as ∇f/|∇f| at r; then, alternately, t minimises Eq. 3
+// for fixed n (a weighted mean along n) and n becomes the smallest eigenvector of
+// C1(q) = Σ θᵢ(pᵢ − q)(pᵢ − q)ᵀ, q = r + t·n, until t moves less than the tolerance. Each
+// iteration gathers N(·) once, around the q of the previous iteration, and shifts the
+// moments to the new q; at convergence that is the paper's N(q). The polynomial is fitted
+// with θ in the frame of H(n, q), and P(r) is q's orthogonal projection onto it.
+PSS_INLINE VolumeProjection predict(const FieldView& fields, const VolumeParams& params, vec3 r, VoxelNeighbourhood& nb) {
+  VolumeProjection fail;
+  fail.predicted = fail.point = r;
+  fail.normal = vec3(0, 0, 1);
+  fail.frame = Frame::from_normal(r, fail.normal);
+  const vec3 g = fields.gradient_at(r);
+  if (!(length2(g) > 0)) {
+    fail.status = VolumeProjectionStatus::no_gradient;
+    return fail;
+  }
+  vec3 n = g / glm::length(g);
+  fail.status = VolumeProjectionStatus::no_weight;
+  float t = 0;
+  for (int it = 0; it < params.max_predictor_iterations; ++it) {
+    nb.gather(fields, r + t * n, params.radius, true);
+    float w = 0;
+    vec3 m(0.0f);  // Σθ(pᵢ − q)
+    Sym3 c;        // Σθ(pᵢ − q)(pᵢ − q)ᵀ
+    for (int i = 0; i < nb.count; ++i) {
+      w += nb.theta[i];
+      m += nb.theta[i] * nb.offset[i];
+      c.add_outer(nb.offset[i], nb.theta[i]);
+    }
+    if (!(w > 0)) return fail;
+    // Eq. 3 for fixed n: t = Σθ⟨n, pᵢ − r⟩ / Σθ.
+    const float dt = glm::dot(m, n) / w;
+    // C1 about q + δ from the moments about q: C − mδᵀ − δmᵀ + Wδδᵀ.
+    const vec3 delta = dt * n;
+    c.add_outer(delta, w);
+    c.xx -= 2 * m.x * delta.x;
+    c.yy -= 2 * m.y * delta.y;
+    c.zz -= 2 * m.z * delta.z;
+    c.xy -= m.x * delta.y + m.y * delta.x;
+    c.xz -= m.x * delta.z + m.z * delta.x;
+    c.yz -= m.y * delta.z + m.z * delta.y;
+    t += dt;
+    const EigenResult eig = smallest_eigenvector(c.scaled(1.0f / w), n, kEigenIterations);
+    if (eig.status != EigenStatus::invalid) n = eig.vector;
+    if (abs(dt) < params.t_tolerance) break;
+  }
+  VolumeProjection out = detail::fit_and_project(nb, r + t * n, n, params.h, [&](int i) { return nb.theta[i]; });
+  out.predicted = out.point;
+  return out;
+}
+
+// Corrector (§5.1, Eq. 4) from x0 = P(r) with the predictor's n: t minimises Eq. 4 by Brent
+// with derivatives, then n becomes the smallest eigenvector of C2(x0) = Σ Θᵢ(pᵢ − x0)(pᵢ − x0)ᵀ
+// over N(x0), until t settles. The polynomial is fitted with Θ in the frame (x0, n), and γ
+// is x0's orthogonal projection onto it.
+PSS_INLINE VolumeProjection correct(const FieldView& fields, const VolumeParams& params,
+                                    const VolumeProjection& predicted, VoxelNeighbourhood& nb) {
+  const vec3 x0 = predicted.point;
+  vec3 n = predicted.frame.n;
+  const float h = params.h, alpha = params.alpha;
+  const float inv_h2 = 1.0f / (h * h);
+  nb.gather(fields, x0, params.radius, false);
+  float t = 0;
+  for (int it = 0; it < params.max_corrector_iterations; ++it) {
+    const detail::CorrectorEnergy energy{nb, n, h, alpha};
+    // Brent searches t ± h from the minimiser of the α1 part alone (a θ-weighted mean of
+    // the heights, closed form), which is where the α2 part only nudges it.
+    float w = 0, wz = 0;
+    for (int i = 0; i < nb.count; ++i) {
+      w += nb.theta[i];
+      wz += nb.theta[i] * glm::dot(nb.offset[i], n);
+    }
+    const float start = w > 0 ? clamp(wz / w, t - h, t + h) : t;
+    const float t_next = brent_minimize(energy, t - h, t + h, start, params.t_tolerance).x;
+    const vec3 center = t_next * n;  // relative to x0
+    Sym3 c;
+    float weight_sum = 0;
+    for (int i = 0; i < nb.count; ++i) {
+      const vec3 d = nb.offset[i];
+      const float w = alpha * nb.theta[i] + (1 - alpha) * nb.window[i] * exp(-length2(d - center) * inv_h2);
+      c.add_outer(d, w);
+      weight_sum += w;
+    }
+    if (weight_sum > 0) {
+      const EigenResult eig = smallest_eigenvector(c.scaled(1.0f / weight_sum), n, kEigenIterations);
+      if (eig.status != EigenStatus::invalid) n = eig.vector;
+    }
+    const bool settled = abs(t_next - t) < params.t_tolerance;
+    t = t_next;
+    if (settled) break;
+  }
+  const vec3 center = t * n;
+  VolumeProjection out = detail::fit_and_project(nb, x0, n, h, [&](int i) {
+    return alpha * nb.theta[i] + (1 - alpha) * nb.window[i] * exp(-length2(nb.offset[i] - center) * inv_h2);
+  });
+  out.predicted = predicted.point;
+  return out;
+}
+
+// P(r) alone or followed by the corrector, as the method asks.
+// `nb` is scratch space, the caller's so that a loop of projections reuses it.
+PSS_INLINE VolumeProjection project_volume_point(const FieldView& fields, const VolumeParams& params, vec3 r,
+                                                 VoxelNeighbourhood& nb) {
+  const VolumeProjection p = predict(fields, params, r, nb);
+  if (p.status != VolumeProjectionStatus::ok || params.method == VolumeMethod::predictor) return p;
+  return correct(fields, params, p, nb);
+}
+
+}  // namespace pss

@@ -1,0 +1,74 @@
+// Rendering the PSS of a volume (§5.1) through the shared render pipeline
+// (render/rendered_frame.hpp): the volume's surface finder marches each ray (marcher.hpp);
+// shading, secondary rays, --hits and --stats are those of `pss render`.
+#pragma once
+
+#include <cstdint>
+
+#include "pss/backend/backend.hpp"
+#include "pss/core/stats.hpp"
+#include "pss/render/rendered_frame.hpp"
+#include "pss/volume/marcher.hpp"
+
+namespace pss {
+
+// The volume's own bits of Hit::flags, for --debug-projection (the paper's Figure 2).
+enum VolumeHitFlag : std::uint32_t {
+  kHitPredictorMoved = 1u << 8,  // the ray's first projection: |P(r) − r| > ε
+  kHitCorrectorMoved = 1u << 9,  // and |γ − P(r)| > ε
+};
+
+PSS_INLINE Hit to_hit(const VolumeHit& v) {
+  Hit h;
+  h.iterations = v.projections;
+  if (v.debug & kPredictorMoved) h.flags |= kHitPredictorMoved;
+  if (v.debug & kCorrectorMoved) h.flags |= kHitCorrectorMoved;
+  if (!v.found()) return h;
+  h.point = v.point;
+  h.t = v.t;
+  h.normal = v.normal;
+  h.flags |= kHitFound | kHitConverged;
+  return h;
+}
+
+// The Finder of render/trace.hpp for a volume.
+struct VolumeFinder {
+  VolumeScene scene;
+
+  PSS_HOST_DEVICE Hit primary(const Ray& ray) const { return to_hit(march_volume(scene, ray)); }
+  PSS_HOST_DEVICE Hit secondary(const Ray& ray, float t_max) const { return to_hit(march_volume(scene, ray, t_max)); }
+  // Samples within b of the surface pass the fragment test; from 1.5·b away the surface
+  // just left projects outside the ball of trust and is not found again.
+  PSS_HOST_DEVICE float secondary_offset() const { return 1.5f * scene.params.step; }
+};
+
+// What rendering and extraction prepare once per volume and feature: gradients, weights,
+// bricks.
+struct PreparedVolume {
+  VolumeFields fields;
+  BrickGrid bricks;
+  FeatureParams feature;
+  VolumeParams params;
+
+  VolumeScene scene() const { return {fields.view(), bricks.view(), feature, params}; }
+};
+
+// Weights and bricks for `feature` (fields must hold the gradients).
+PreparedVolume prepare_volume(VolumeFields fields, const FeatureParams& feature, const VolumeParams& params,
+                              Stats& stats);
+
+RenderedFrame render_volume(const PreparedVolume& volume, const Camera& camera, const TraceSettings& settings,
+                            Backend backend, Stats& stats);
+
+// --debug-projection: pixels whose first projection the predictor moved farther than ε
+// red, those the corrector still moved farther than ε green, both keeping the shading's
+// brightness so that the shape stays readable.
+void paint_debug_projection(RenderedFrame& frame);
+
+namespace cuda {
+// The same frame on the GPU: the volume, gradients, weights and bricks are uploaded once.
+RenderedFrame render_volume(const VolumeScene& host_scene, const Camera& camera, const TraceSettings& settings,
+                            Stats& stats);
+}  // namespace cuda
+
+}  // namespace pss

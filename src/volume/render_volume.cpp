@@ -1,0 +1,38 @@
+#include "pss/volume/render_volume.hpp"
+
+namespace pss {
+
+PreparedVolume prepare_volume(VolumeFields fields, const FeatureParams& feature, const VolumeParams& params,
+                              Stats& stats) {
+  PreparedVolume out;
+  out.fields = std::move(fields);
+  out.feature = feature;
+  out.params = params;
+  {
+    ScopedPhase phase(stats, "feature weights");
+    set_feature(out.fields, feature);
+  }
+  {
+    ScopedPhase phase(stats, "bricks");
+    out.bricks = build_bricks(out.fields, feature);
+  }
+  return out;
+}
+
+RenderedFrame render_volume(const PreparedVolume& volume, const Camera& camera, const TraceSettings& settings,
+                            Backend backend, Stats& stats) {
+  if (backend == Backend::cuda) return cuda::render_volume(volume.scene(), camera, settings, stats);
+  return render_frame_cpu(VolumeFinder{volume.scene()}, camera, settings, stats);
+}
+
+void paint_debug_projection(RenderedFrame& frame) {
+  for (std::size_t i = 0; i < frame.hits.size(); ++i) {
+    const std::uint32_t flags = frame.hits[i].flags;
+    if (!frame.hits[i].found() || !(flags & (kHitPredictorMoved | kHitCorrectorMoved))) continue;
+    vec3& pixel = frame.image.pixels[i];
+    const float brightness = 0.35f + 0.65f * glm::dot(pixel, vec3(0.2126f, 0.7152f, 0.0722f));
+    pixel = brightness * ((flags & kHitCorrectorMoved) ? vec3(0.1f, 1.0f, 0.1f) : vec3(1.0f, 0.08f, 0.05f));
+  }
+}
+
+}  // namespace pss

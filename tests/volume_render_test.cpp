@@ -1,0 +1,425 @@
+// Marching primary rays through analytic volumes (§5.1): hits on the iso-surface or the
+// maximal-gradient surface, normals, noise against a marching-tetrahedra mesh, anisotropic
+// spacing, an empty volume, a grazing ray; and `pss extract`'s point set.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "pss/io/ply.hpp"
+#include "pss/render/camera.hpp"
+#include "pss/volume/extract.hpp"
+#include "support/marching_tetrahedra.hpp"
+#include "support/volumes.hpp"
+
+namespace pss {
+namespace {
+
+using test::Field;
+
+struct Accuracy {
+  std::int64_t hits = 0;
+  double rms_distance = 0, max_distance = 0;
+  double rms_normal_deg = 0, max_normal_deg = 0;
+};
+
+float angle_deg(vec3 a, vec3 b) {
+  return std::acos(std::min(1.0f, std::abs(glm::dot(glm::normalize(a), glm::normalize(b))))) * 57.29578f;
+}
+
+template <class Points>
+Accuracy measure(const Field& truth, const Points& points) {
+  Accuracy a;
+  double d2 = 0, n2 = 0;
+  for (const auto& [p, n] : points) {
+    const double d = truth.distance(p), angle = angle_deg(n, truth.normal(p));
+    d2 += d * d;
+    n2 += angle * angle;
+    a.max_distance = std::max(a.max_distance, d);
+    a.max_normal_deg = std::max(a.max_normal_deg, angle);
+    ++a.hits;
+  }
+  if (a.hits) {
+    a.rms_distance = std::sqrt(d2 / double(a.hits));
+    a.rms_normal_deg = std::sqrt(n2 / double(a.hits));
+  }
+  return a;
+}
+
+struct Rendered {
+  RenderedFrame frame;
+  std::vector<std::pair<vec3, vec3>> hits;
+};
+
+// 64×64 rays from an oblique view, like `pss volume --view 30,20 --size 64x64`.
+Rendered render(const Volume& volume, std::optional<float> iso, VolumeMethod method, float h_voxels = 2.0f,
+                CameraSettings view = {64, 64, 30, 20, 35}) {
+  Stats stats;
+  VolumeFields fields = compute_fields(volume);
+  const VolumeParams params = VolumeParams::from_voxels(fields.volume.view().voxel_size(), method, h_voxels);
+  const FeatureParams feature = iso ? iso_feature(fields, *iso, params.step) : gradient_feature();
+  const PreparedVolume prepared = prepare_volume(std::move(fields), feature, params, stats);
+  const Camera camera = Camera::framing(prepared.fields.volume.view().bounds(), view);
+  TraceSettings settings;
+  Rendered out;
+  out.frame = render_volume(prepared, camera, settings, Backend::cpu, stats);
+  for (const Hit& h : out.frame.hits)
+    if (h.found()) out.hits.emplace_back(h.point, h.normal);
+  return out;
+}
+
+// Rays that cross the analytic surface inside the volume's box: a sign change of f − v
+// between steps of 0.05 voxels.
+std::int64_t pixels_covered(const Field& truth, const Camera& camera, const Aabb& box) {
+  std::int64_t n = 0;
+  for (int y = 0; y < camera.height; ++y)
+    for (int x = 0; x < camera.width; ++x) {
+      const Ray ray = camera.primary_ray(x, y);
+      float t0, t1;
+      if (!clip_to_box(ray, box, t0, t1)) continue;
+      bool below = truth.value(ray.at(t0)) < truth.iso;
+      for (float t = t0; t <= t1; t += 0.05f) {
+        if ((truth.value(ray.at(t)) < truth.iso) != below) {
+          ++n;
+          break;
+        }
+      }
+    }
+  return n;
+}
+
+// A float distance field: |∇f| = 1, so θ1's k is one voxel and the analysis of
+// tests/volume_projection_test applies: the fit's lattice noise is about the shell
+// thickness k/√2 over √(voxels in the disc of radius 1.5h) ≈ 0.7/√28 ≈ 0.13 voxels rms at
+// worst, and a hit is within ε = 0.1 of its projection: rms 0.1, max 0.35 voxels.
+TEST(VolumeRender, SphereDistanceFieldHitsLieOnTheSphere) {
+  const Field f = test::sphere_distance(vec3(20.0f), 11.0f);
+  test::SampleVolumeOptions o;
+  o.dims = ivec3(40);
+  const Volume volume = test::sample_volume(f, o);
+  for (VolumeMethod m : {VolumeMethod::predictor, VolumeMethod::predictor_corrector}) {
+    const Rendered r = render(volume, 0.0f, m);
+    const Accuracy a = measure(f, r.hits);
+    const std::int64_t covered = pixels_covered(f, r.frame.camera, volume.view().bounds());
+    std::printf("sphere float, method %d: %lld hits of %lld covered, rms %.3f max %.3f voxels, normals rms %.2f max %.2f deg\n",
+                int(m), (long long)a.hits, (long long)covered, a.rms_distance, a.max_distance, a.rms_normal_deg,
+                a.max_normal_deg);
+    EXPECT_GT(a.hits, covered * 97 / 100);  // silhouette rays may miss
+    EXPECT_LT(a.rms_distance, 0.1);
+    EXPECT_LT(a.max_distance, 0.35);
+    EXPECT_LT(a.rms_normal_deg, 4.0);
+  }
+}
+
+// 8 bits: f = 128 − 20·d quantised, so rounding adds a uniform error of ±0.5/20 = 0.025
+// voxels to each voxel, negligible beside the fit's lattice noise: same bounds as float.
+TEST(VolumeRender, TorusUint8HitsLieOnTheTorus) {
+  const Field f = test::torus_distance(vec3(23.5f, 23.5f, 23.5f), 12.0f, 5.0f);
+  test::SampleVolumeOptions o;
+  o.dims = ivec3(48);
+  o.quantize = true;
+  o.scale = -20;
+  o.offset = 128;
+  const Volume volume = test::sample_volume(f, o);
+  const Rendered r = render(volume, 128.0f, VolumeMethod::predictor_corrector);
+  const Accuracy a = measure(f, r.hits);
+  const std::int64_t covered = pixels_covered(f, r.frame.camera, volume.view().bounds());
+  std::printf("torus uint8: %lld hits of %lld covered, rms %.3f max %.3f voxels, normals rms %.2f max %.2f deg\n",
+              (long long)a.hits, (long long)covered, a.rms_distance, a.max_distance, a.rms_normal_deg, a.max_normal_deg);
+  EXPECT_GT(a.hits, covered * 95 / 100);
+  EXPECT_LT(a.rms_distance, 0.1);
+  EXPECT_LT(a.max_distance, 0.4);
+  EXPECT_LT(a.rms_normal_deg, 5.0);
+}
+
+// Gaussian blobs: the iso-surface is not a distance field, so distances are measured to
+// first order, |f − v|/|∇f|; its curvature radius is ≥ 4 voxels here, so the quadratic
+// over the disc of radius 3 misses it by up to r⁴/(8R³)·... ≈ 0.1 voxels: bounds loosened
+// by that.
+TEST(VolumeRender, GaussianBlobsIsoSurface) {
+  const Field f = test::gaussian_blobs({{vec3(18, 22, 20), 1.0f, 8.0f}, {vec3(28, 20, 22), 0.8f, 6.0f},
+                                        {vec3(22, 30, 18), 0.7f, 6.0f}},
+                                       0.3f);
+  test::SampleVolumeOptions o;
+  o.dims = ivec3(44);
+  const Volume volume = test::sample_volume(f, o);
+  const Rendered r = render(volume, 0.3f, VolumeMethod::predictor_corrector);
+  const Accuracy a = measure(f, r.hits);
+  const std::int64_t covered = pixels_covered(f, r.frame.camera, volume.view().bounds());
+  std::printf("blobs: %lld hits of %lld covered, rms %.3f max %.3f voxels, normals rms %.2f max %.2f deg\n",
+              (long long)a.hits, (long long)covered, a.rms_distance, a.max_distance, a.rms_normal_deg, a.max_normal_deg);
+  EXPECT_GT(a.hits, covered * 95 / 100);
+  EXPECT_LT(a.rms_distance, 0.15);
+  EXPECT_LT(a.max_distance, 0.5);
+  EXPECT_LT(a.rms_normal_deg, 6.0);
+}
+
+// Gradient mode (θ2): a smooth indicator 255/(1 + e^(d/1.5)) has its largest |∇f| on the
+// sphere d = 0. The θ2 ridge is symmetric about it to first order; its curvature shifts
+// the weighted centre by about width²/R ≈ 0.2 voxels: rms 0.3, max 0.6. The ridge is
+// about twice as thick as θ1's shell (θ2 halves at |d| ≈ 1.3), and so is the lattice noise
+// of the normals: rms 8°.
+TEST(VolumeRender, SmoothIndicatorMaximalGradientSurface) {
+  const Field sphere = test::sphere_distance(vec3(20.0f), 11.0f);
+  const Field f = test::smooth_indicator(sphere, 255.0f, 1.5f);
+  test::SampleVolumeOptions o;
+  o.dims = ivec3(40);
+  o.quantize = true;
+  const Volume volume = test::sample_volume(f, o);
+  const Rendered r = render(volume, std::nullopt, VolumeMethod::predictor_corrector);
+  const Accuracy a = measure(sphere, r.hits);
+  const std::int64_t covered = pixels_covered(sphere, r.frame.camera, volume.view().bounds());
+  std::printf("gradient mode: %lld hits of %lld covered, rms %.3f max %.3f voxels, normals rms %.2f max %.2f deg\n",
+              (long long)a.hits, (long long)covered, a.rms_distance, a.max_distance, a.rms_normal_deg,
+              a.max_normal_deg);
+  EXPECT_GT(a.hits, covered * 95 / 100);
+  EXPECT_LT(a.rms_distance, 0.3);
+  EXPECT_LT(a.max_distance, 0.6);
+  EXPECT_LT(a.rms_normal_deg, 8.0);
+}
+
+// Noise σ = 0.4 voxels (a float distance field plus Gaussian noise; an 8-bit torus at 20
+// per voxel plus noise of σ = 8): a mesh vertex interpolated on one edge inherits about σ
+// of it, a central-difference normal σ/√2 per component over |∇f| = 1, ~20°. The PSS
+// averages some 30 voxels' worth: it must be markedly better in both, and the corrector
+// no worse than the predictor.
+TEST(VolumeRender, NoisyVolumesBeatMarchingTetrahedra) {
+  struct Case {
+    const char* name;
+    Field field;
+    test::SampleVolumeOptions options;
+    float iso;
+  };
+  test::SampleVolumeOptions sphere_options;
+  sphere_options.dims = ivec3(40);
+  sphere_options.noise = 0.4f;
+  test::SampleVolumeOptions torus_options;
+  torus_options.dims = ivec3(48);
+  torus_options.noise = 8.0f;
+  torus_options.quantize = true;
+  torus_options.scale = -20;
+  torus_options.offset = 128;
+  const Case cases[] = {{"float sphere", test::sphere_distance(vec3(20.0f), 11.0f), sphere_options, 0.0f},
+                        {"uint8 torus", test::torus_distance(vec3(23.5f), 12.0f, 5.0f), torus_options, 128.0f}};
+  for (const Case& c : cases) {
+    const Volume volume = test::sample_volume(c.field, c.options);
+    std::vector<std::pair<vec3, vec3>> mesh;
+    // Noise makes small closed bubbles away from the surface too; only the surface's own
+    // vertices are compared (within 2 voxels of it).
+    for (const test::MeshVertex& v : test::marching_tetrahedra_vertices(volume.view(), c.iso))
+      if (c.field.distance(v.point) < 2.0f) mesh.emplace_back(v.point, v.normal);
+    const Accuracy mt = measure(c.field, mesh);
+    const Accuracy p = measure(c.field, render(volume, c.iso, VolumeMethod::predictor).hits);
+    const Accuracy pc = measure(c.field, render(volume, c.iso, VolumeMethod::predictor_corrector).hits);
+    std::printf("noisy %s: mesh rms %.3f voxels %.2f deg; predictor rms %.3f %.2f deg; predictor-corrector rms %.3f "
+                "%.2f deg\n", c.name, mt.rms_distance, mt.rms_normal_deg, p.rms_distance, p.rms_normal_deg,
+                pc.rms_distance, pc.rms_normal_deg);
+    EXPECT_LT(pc.rms_distance, 0.5 * mt.rms_distance) << c.name;
+    EXPECT_LT(pc.rms_normal_deg, 0.5 * mt.rms_normal_deg) << c.name;
+    // "At least as accurate", within the lattice noise of one configuration (0.01 voxels).
+    EXPECT_LT(pc.rms_distance, p.rms_distance + 0.01) << c.name;
+  }
+}
+
+// Spacing 1 × 1 × 2.5: positions, gradients and neighbourhoods are in world units, so the
+// sphere (radius 10 world units) is found as in the isotropic case; the coarse z axis
+// (2.5 units per voxel) loosens the bounds to the z voxel: rms 0.25, max 0.8 world units.
+TEST(VolumeRender, AnisotropicSpacing) {
+  const Field f = test::sphere_distance(vec3(16.0f, 16.0f, 17.5f), 10.0f);
+  test::SampleVolumeOptions o;
+  o.dims = ivec3(33, 33, 15);
+  o.spacing = vec3(1.0f, 1.0f, 2.5f);
+  const Volume volume = test::sample_volume(f, o);
+  const Rendered r = render(volume, 0.0f, VolumeMethod::predictor_corrector, 2.0f);
+  const Accuracy a = measure(f, r.hits);
+  const std::int64_t covered = pixels_covered(f, r.frame.camera, volume.view().bounds());
+  std::printf("anisotropic: %lld hits of %lld covered, rms %.3f max %.3f, normals rms %.2f deg\n", (long long)a.hits,
+              (long long)covered, a.rms_distance, a.max_distance, a.rms_normal_deg);
+  EXPECT_GT(a.hits, covered * 90 / 100);
+  EXPECT_LT(a.rms_distance, 0.25);
+  EXPECT_LT(a.max_distance, 0.8);
+  EXPECT_LT(a.rms_normal_deg, 12.0);  // 2.5× coarser in z: the normal noise grows with it
+}
+
+TEST(VolumeRender, NothingPassesTheThresholdGivesAnEmptyImage) {
+  const Field f = test::sphere_distance(vec3(12.0f), 6.0f);
+  test::SampleVolumeOptions o;
+  o.dims = ivec3(24);
+  const Volume volume = test::sample_volume(f, o);
+  const Rendered r = render(volume, 1000.0f, VolumeMethod::predictor_corrector);  // above every value
+  EXPECT_TRUE(r.hits.empty());
+  EXPECT_EQ(r.frame.image.pixels.size(), std::size_t(64 * 64));
+}
+
+// A ray tangent to the sphere, and rays just inside and outside it: the tangent ray may
+// hit or miss (the surface is only known to ~0.1 voxels), but any hit must lie on the
+// sphere; a ray 0.5 voxels inside must hit, one 1 voxel outside must not.
+TEST(VolumeRender, GrazingRays) {
+  const vec3 c(20.0f);
+  const float radius = 11.0f;
+  const Field f = test::sphere_distance(c, radius);
+  test::SampleVolumeOptions o;
+  o.dims = ivec3(40);
+  Stats stats;
+  VolumeFields fields = compute_fields(test::sample_volume(f, o));
+  const VolumeParams params = VolumeParams::from_voxels(1.0f);
+  const FeatureParams feature = iso_feature(fields, 0.0f, params.step);
+  const PreparedVolume prepared = prepare_volume(std::move(fields), feature, params, stats);
+  const VolumeFinder finder{prepared.scene()};
+  const auto ray_at = [&](float offset) { return Ray{c + vec3(-30.0f, radius + offset, 0.0f), vec3(1, 0, 0)}; };
+  const Hit tangent = finder.primary(ray_at(0.0f));
+  if (tangent.found()) EXPECT_LT(f.distance(tangent.point), 0.35f);
+  const Hit inside = finder.primary(ray_at(-0.5f));
+  ASSERT_TRUE(inside.found());
+  EXPECT_LT(f.distance(inside.point), 0.35f);
+  EXPECT_FALSE(finder.primary(ray_at(1.0f)).found());
+}
+
+// Empty-space skipping changes the speed only: with every brick marked occupied the rays
+// visit every sample, and the hits are the same, bit for bit.
+TEST(VolumeRender, BrickSkippingKeepsTheHits) {
+  const Field f = test::torus_distance(vec3(23.5f), 12.0f, 5.0f);
+  test::SampleVolumeOptions o;
+  o.dims = ivec3(48);
+  o.noise = 0.3f;
+  Stats stats;
+  VolumeFields fields = compute_fields(test::sample_volume(f, o));
+  const VolumeParams params = VolumeParams::from_voxels(1.0f);
+  const FeatureParams feature = iso_feature(fields, 0.0f, params.step);
+  const PreparedVolume prepared = prepare_volume(std::move(fields), feature, params, stats);
+  ASSERT_LT(prepared.bricks.occupied_count, std::int64_t(prepared.bricks.occupied.size()));
+  BrickGrid all = prepared.bricks;
+  std::fill(all.occupied.begin(), all.occupied.end(), std::uint8_t(1));
+  VolumeScene skipping = prepared.scene(), exhaustive = prepared.scene();
+  exhaustive.bricks = all.view();
+  const Camera camera = Camera::framing(prepared.fields.volume.view().bounds(), {40, 40, 30, 20, 35});
+  int hits = 0;
+  for (int y = 0; y < camera.height; ++y)
+    for (int x = 0; x < camera.width; ++x) {
+      const Ray ray = camera.primary_ray(x, y);
+      const VolumeHit a = march_volume(skipping, ray), b = march_volume(exhaustive, ray);
+      ASSERT_EQ(a.found(), b.found());
+      if (!a.found()) continue;
+      ++hits;
+      EXPECT_EQ(a.t, b.t);
+      EXPECT_EQ(a.normal, b.normal);
+    }
+  EXPECT_GT(hits, 100);
+}
+
+// --debug-projection (the paper's Figure 2): the first sample on a ray lies up to b from
+// the surface, so the predictor moves most of them farther than ε (red); painted pixels
+// keep the shading's brightness in one hue.
+TEST(VolumeRender, DebugProjectionMarksPredictorMoves) {
+  const Field f = test::sphere_distance(vec3(16.0f), 9.0f);
+  test::SampleVolumeOptions o;
+  o.dims = ivec3(32);
+  Stats stats;
+  VolumeFields fields = compute_fields(test::sample_volume(f, o));
+  VolumeParams params = VolumeParams::from_voxels(1.0f);
+  params.debug_projection = true;
+  const FeatureParams feature = iso_feature(fields, 0.0f, params.step);
+  const PreparedVolume prepared = prepare_volume(std::move(fields), feature, params, stats);
+  const Camera camera = Camera::framing(prepared.fields.volume.view().bounds(), {48, 48, 0, 0, 35});
+  RenderedFrame frame = render_volume(prepared, camera, TraceSettings{}, Backend::cpu, stats);
+  paint_debug_projection(frame);
+  std::size_t hits = 0, red = 0;
+  for (std::size_t i = 0; i < frame.hits.size(); ++i) {
+    if (!frame.hits[i].found()) continue;
+    ++hits;
+    const vec3 c = frame.image.pixels[i];
+    if (frame.hits[i].flags & kHitPredictorMoved && !(frame.hits[i].flags & kHitCorrectorMoved)) {
+      ++red;
+      EXPECT_GT(c.r, 4 * c.g);
+    }
+  }
+  EXPECT_GT(red, hits / 2);
+}
+
+// `pss extract`: points on the surface with the accuracy of the hits, normals along the
+// sphere's, and about one per b-cell: a sphere of radius R has area 4πR², so about
+// 4πR²/b² cells at the grid's density, within a factor 2 (cells are cut obliquely).
+TEST(VolumeExtract, SpherePointsAreOnTheSurfaceAndThinned) {
+  const vec3 c(16.0f);
+  const float radius = 9.0f;
+  const Field f = test::sphere_distance(c, radius);
+  test::SampleVolumeOptions o;
+  o.dims = ivec3(32);
+  o.noise = 0.2f;
+  Stats stats;
+  VolumeFields fields = compute_fields(test::sample_volume(f, o));
+  const VolumeParams params = VolumeParams::from_voxels(1.0f);
+  const FeatureParams feature = iso_feature(fields, 0.0f, params.step);
+  const PreparedVolume prepared = prepare_volume(std::move(fields), feature, params, stats);
+  ExtractionCounts counts;
+  const PointCloud cloud = extract_surface(prepared, Backend::cpu, stats, counts);
+  std::vector<std::pair<vec3, vec3>> points;
+  for (std::size_t i = 0; i < cloud.size(); ++i) points.emplace_back(cloud.positions[i], cloud.normals[i]);
+  const Accuracy a = measure(f, points);
+  const double cells = 4 * 3.14159 * radius * radius / (params.step * params.step);
+  std::printf("extract: %zu points (%.0f cells), rms %.3f max %.3f voxels, normals rms %.2f deg\n", cloud.size(),
+              cells, a.rms_distance, a.max_distance, a.rms_normal_deg);
+  EXPECT_GT(double(cloud.size()), 0.5 * cells);
+  EXPECT_LT(double(cloud.size()), 2.0 * cells);
+  EXPECT_LT(a.rms_distance, 0.15);
+  EXPECT_LT(a.max_distance, 0.5);
+  EXPECT_LT(a.rms_normal_deg, 5.0);
+  // Normals point along ∇f, outward for a distance field.
+  for (std::size_t i = 0; i < cloud.size(); ++i) EXPECT_GT(glm::dot(cloud.normals[i], f.normal(cloud.positions[i])), 0.0f);
+}
+
+}  // namespace
+}  // namespace pss
+
+namespace pss {
+namespace {
+
+// The command lines on a float32 raw sphere: `pss volume --hits` and
+// `pss extract` write points on the sphere in world coordinates (origin 0, spacing from
+// --spacing), and `pss render` ray traces the extracted set (the paper's Figure 5 flow).
+TEST(VolumeCli, HitsAndExtractionOnARawFloatSphere) {
+  namespace fs = std::filesystem;
+  const fs::path d = fs::temp_directory_path() / ("pss_volume_cli_" + std::to_string(::getpid()));
+  fs::create_directories(d);
+  const Field f = test::sphere_distance(vec3(16.0f, 16.0f, 24.0f), 10.0f);
+  test::SampleVolumeOptions o;
+  o.dims = ivec3(32, 32, 24);
+  o.spacing = vec3(1.0f, 1.0f, 2.0f);
+  const Volume v = test::sample_volume(f, o);
+  {
+    std::ofstream out(d / "sphere.raw", std::ios::binary);
+    out.write(reinterpret_cast<const char*>(v.values.data()), std::streamsize(v.values.size() * sizeof(float)));
+  }
+  const std::string input = (d / "sphere.raw").string() + " --dims 32x32x24 --type float32 --spacing 1,1,2 --iso 0";
+  const std::string cli = PSS_CLI;
+  ASSERT_EQ(std::system((cli + " volume " + input + " -o " + (d / "s.png").string() + " --size 48x48 --hits " +
+                         (d / "hits.ply").string() + " --stats " + (d / "s.json").string() + " > /dev/null")
+                            .c_str()),
+            0);
+  ASSERT_EQ(std::system((cli + " extract " + input + " -o " + (d / "surface.ply").string() + " > /dev/null").c_str()), 0);
+  ASSERT_EQ(std::system((cli + " render " + (d / "surface.ply").string() + " -o " + (d / "r.png").string() +
+                         " --size 32x32 > /dev/null")
+                            .c_str()),
+            0);
+  EXPECT_TRUE(fs::exists(d / "s.png") && fs::exists(d / "s.json") && fs::exists(d / "r.png"));
+  for (const char* name : {"hits.ply", "surface.ply"}) {
+    const PointCloud cloud = read_ply(d / name);
+    ASSERT_GT(cloud.size(), 100u) << name;
+    ASSERT_TRUE(cloud.has_normals()) << name;
+    std::vector<std::pair<vec3, vec3>> points;
+    for (std::size_t i = 0; i < cloud.size(); ++i) points.emplace_back(cloud.positions[i], cloud.normals[i]);
+    const Accuracy a = measure(f, points);
+    // The anisotropic bounds of VolumeRender.AnisotropicSpacing (z spacing 2 here).
+    EXPECT_LT(a.rms_distance, 0.25) << name;
+    EXPECT_LT(a.max_distance, 0.8) << name;
+    EXPECT_LT(a.rms_normal_deg, 12.0) << name;
+  }
+}
+
+}  // namespace
+}  // namespace pss
