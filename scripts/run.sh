@@ -1,11 +1,22 @@
 #!/usr/bin/env bash
-# The main job on the shipped data: installs, builds, then projects and renders the bunny
-# and extracts the surfaces of the bucky and fuel volumes. Outputs go to out/.
+# The main job on the shipped data: installs, builds, then projects and ray traces the
+# bunny's PSS, and extracts and renders the PSS of the bucky and fuel volumes. Outputs go
+# to out/ (images to look at: out/*.png).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/install-deps.sh
-mkdir -p out
 ./scripts/build.sh
+mkdir -p out
+pss=./build/pss
 set -x
-./build/pss info data/bun_zipper.ply
-./build/pss project data/bun_zipper.ply -o out/bunny-projected.ply --stats out/bunny-projected.json
+$pss info data/bun_zipper.ply
+$pss project data/bun_zipper.ply -o out/bunny-projected.ply --stats out/bunny-projected.json
+$pss render data/bun_zipper.ply -o out/bunny.png --iterations 2 --shadows --reflections --stats out/bunny.json
+$pss volume data/bucky_32x32x32_uint8.raw --dims 32x32x32 --type uint8 --iso 100 --h 1.25 --view 30,20 \
+  -o out/bucky.png --stats out/bucky.json
+$pss volume data/fuel_64x64x64_uint8.raw --dims 64x64x64 --type uint8 --iso 30 --view 30,20 -o out/fuel.png
+$pss extract data/bucky_32x32x32_uint8.raw --dims 32x32x32 --type uint8 --iso 100 --h 1.25 -o out/bucky-surface.ply
+$pss render out/bucky-surface.ply -o out/bucky-surface.png --view 30,20
+{ set +x; } 2>/dev/null
+echo "outputs in $(pwd)/out:"
+ls -1 out
