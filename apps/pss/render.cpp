@@ -57,10 +57,8 @@ void run_render(const RenderCloudOptions& o) {
   const RenderedFrame frame = render_cloud(prepared, camera, settings, backend, stats);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   stats.add_time("total", seconds);
-  const double frame_s = stats.time("primary") + stats.time("secondary") + stats.time("shading");
-
-  write_png(o.render.output, frame.image);
-  if (!o.render.hits_path.empty()) write_hits_ply(o.render.hits_path, frame);
+  const double frame_s = frame_seconds(stats);
+  write_frame_outputs(o.render, frame);
 
   const FrameSummary s = summarize(frame);
   std::printf("rendered %s (%zu points) at %dx%d in %.3f s: frame %.3f s (%.2f fps), preprocess %.3f s, "
@@ -70,31 +68,19 @@ void run_render(const RenderCloudOptions& o) {
   std::printf("%lld rays, %lld hits, %.2f projections per hit, %lld secondary rays; h = %g, b = %g, eps = %g\n",
               (long long)s.rays, (long long)s.hits, s.mean_iterations, (long long)s.secondary_rays, params.projection.h,
               params.ball_radius, params.epsilon);
-  std::printf("wrote %s\n", o.render.output.c_str());
-  if (!o.render.hits_path.empty()) std::printf("wrote %s\n", o.render.hits_path.c_str());
 
   if (!o.render.compute.stats_path.empty()) {
-    record_frame(stats, frame);
+    record_render_stats(stats, o.render, frame, settings, backend, "render", o.input);
     auto& v = stats.values();
-    v["command"] = "render";
-    v["input"] = o.input;
-    v["output"] = o.render.output;
     v["points"] = cloud.size();
     v["samples_left_out"] = prepared.left_out();
-    v["backend"] = backend_name(backend);
-    v["threads"] = cpu_threads();
-    v["frame_seconds"] = frame_s;
-    v["fps"] = 1.0 / frame_s;
     v["params"] = {{"h", params.projection.h}, {"rho", params.projection.rho}, {"b", params.ball_radius},
                    {"epsilon", params.epsilon}, {"iterations", o.iterations},
                    {"max_candidates", params.max_candidates}, {"secondary", o.secondary},
-                   {"secondary_offset", params.secondary_offset}, {"shadows", settings.shadows},
-                   {"reflections", settings.reflections}, {"reflectivity", settings.shading.reflectivity},
-                   {"fov_deg", o.render.camera.fov_deg}, {"azimuth_deg", o.render.camera.azimuth_deg},
-                   {"elevation_deg", o.render.camera.elevation_deg}};
+                   {"secondary_offset", params.secondary_offset}};
     stats.write(o.render.compute.stats_path);
-    std::printf("wrote %s\n", o.render.compute.stats_path.c_str());
   }
+  print_written(o.render);
 }
 
 std::string check_iterations(const std::string& text) {

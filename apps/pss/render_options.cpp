@@ -1,11 +1,14 @@
 #include "render_options.hpp"
 
 #include <charconv>
+#include <cstdio>
 #include <cmath>
 #include <filesystem>
 #include <optional>
 
 #include "pss/core/error.hpp"
+#include "pss/render/frame_outputs.hpp"
+#include "pss/render/image.hpp"
 
 namespace pss::app {
 
@@ -94,6 +97,40 @@ TraceSettings trace_settings(const RenderOptions& o, const Camera& camera) {
   s.shadows = o.shadows;
   s.reflections = o.reflections;
   return s;
+}
+
+double frame_seconds(const Stats& stats) {
+  return stats.time("primary") + stats.time("secondary") + stats.time("shading");
+}
+
+void write_frame_outputs(const RenderOptions& options, const RenderedFrame& frame) {
+  write_png(options.output, frame.image);
+  if (!options.hits_path.empty()) write_hits_ply(options.hits_path, frame);
+}
+
+void print_written(const RenderOptions& options) {
+  for (const std::string* path : {&options.output, &options.hits_path, &options.compute.stats_path})
+    if (!path->empty()) std::printf("wrote %s\n", path->c_str());
+}
+
+void record_render_stats(Stats& stats, const RenderOptions& options, const RenderedFrame& frame,
+                         const TraceSettings& settings, Backend backend, const char* command,
+                         const std::string& input) {
+  record_frame(stats, frame);
+  const double frame_s = frame_seconds(stats);
+  auto& v = stats.values();
+  v["command"] = command;
+  v["input"] = input;
+  v["output"] = options.output;
+  v["backend"] = backend_name(backend);
+  v["threads"] = cpu_threads();
+  v["frame_seconds"] = frame_s;
+  v["fps"] = 1.0 / frame_s;
+  v["camera"] = {{"width", options.camera.width}, {"height", options.camera.height},
+                 {"fov_deg", options.camera.fov_deg}, {"azimuth_deg", options.camera.azimuth_deg},
+                 {"elevation_deg", options.camera.elevation_deg}};
+  v["shading"] = {{"shadows", settings.shadows}, {"reflections", settings.reflections},
+                  {"reflectivity", settings.shading.reflectivity}};
 }
 
 }  // namespace pss::app

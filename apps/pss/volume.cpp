@@ -32,10 +32,8 @@ void run_volume(const VolumeCommandOptions& o) {
   if (o.debug_projection) paint_debug_projection(frame);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   stats.add_time("total", seconds);
-  const double frame_s = stats.time("primary") + stats.time("secondary") + stats.time("shading");
-
-  write_png(o.render.output, frame.image);
-  if (!o.render.hits_path.empty()) write_hits_ply(o.render.hits_path, frame);
+  const double frame_s = frame_seconds(stats);
+  write_frame_outputs(o.render, frame);
 
   const FrameSummary s = summarize(frame);
   const VolumeView v = volume.fields.volume.view();
@@ -47,27 +45,15 @@ void run_volume(const VolumeCommandOptions& o) {
               o.volume.method.c_str(), (long long)s.hits, (long long)s.rays, s.mean_iterations, volume.params.h,
               volume.params.step, volume.params.epsilon, (long long)volume.bricks.occupied_count,
               volume.bricks.occupied.size());
-  std::printf("wrote %s\n", o.render.output.c_str());
-  if (!o.render.hits_path.empty()) std::printf("wrote %s\n", o.render.hits_path.c_str());
 
   if (!o.render.compute.stats_path.empty()) {
-    record_frame(stats, frame);
+    record_render_stats(stats, o.render, frame, settings, backend, "volume", o.volume.input);
     auto& j = stats.values();
-    j["command"] = "volume";
-    j["input"] = o.volume.input;
-    j["output"] = o.render.output;
-    j["backend"] = backend_name(backend);
-    j["threads"] = cpu_threads();
-    j["frame_seconds"] = frame_s;
-    j["fps"] = 1.0 / frame_s;
     j["debug_projection"] = o.debug_projection;
     j["volume"] = describe(volume, o.volume);
-    j["camera_settings"] = {{"fov_deg", o.render.camera.fov_deg}, {"azimuth_deg", o.render.camera.azimuth_deg},
-                            {"elevation_deg", o.render.camera.elevation_deg}, {"shadows", settings.shadows},
-                            {"reflections", settings.reflections}};
     stats.write(o.render.compute.stats_path);
-    std::printf("wrote %s\n", o.render.compute.stats_path.c_str());
   }
+  print_written(o.render);
 }
 
 }  // namespace
