@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "pss/core/error.hpp"
 #include "pss/io/ply.hpp"
 #include "pss/render/camera.hpp"
 #include "pss/volume/extract.hpp"
@@ -278,6 +279,21 @@ TEST(VolumeRender, GrazingRays) {
   ASSERT_TRUE(inside.found());
   EXPECT_LT(f.distance(inside.point), 0.35f);
   EXPECT_FALSE(finder.primary(ray_at(1.0f)).found());
+}
+
+// A neighbourhood radius whose ball could hold more voxels than the kernels' buffer is
+// refused before any work: a gather must never stop early and silently drop voxels.
+TEST(VolumeRender, RadiusBeyondTheNeighbourhoodCapacityIsAnError) {
+  test::SampleVolumeOptions o;
+  o.dims = ivec3(16);
+  VolumeFields fields = compute_fields(test::sample_volume(test::sphere_distance(vec3(8.0f), 5.0f), o));
+  // Radius 6 voxels: (6 + 0.87)³·4π/3 ≈ 1360 voxels > kMaxNeighbours (512).
+  const VolumeParams params = VolumeParams::from_voxels(1.0f, VolumeMethod::predictor_corrector, 4.0f, 0.75f, 0.9f,
+                                                        0.1f, 6.0f);
+  ASSERT_GT(neighbourhood_bound(params.radius, vec3(1.0f)), float(kMaxNeighbours));
+  const FeatureParams feature = iso_feature(fields, 0.0f, params.step);
+  Stats stats;
+  EXPECT_THROW(prepare_volume(std::move(fields), feature, params, stats), Error);
 }
 
 // Empty-space skipping changes the speed only: with every brick marked occupied the rays

@@ -74,11 +74,6 @@ PreparedVolume load_volume(const VolumeOptions& o, Stats& stats) {
   VolumeParams params = VolumeParams::from_voxels(
       voxel, o.method == "predictor" ? VolumeMethod::predictor : VolumeMethod::predictor_corrector, o.h, o.k, o.alpha,
       o.error, o.radius * o.h);
-  const float bound = neighbourhood_bound(params.radius, fields.volume.spacing);
-  if (bound > float(kMaxNeighbours))
-    throw Error("--h " + std::to_string(o.h) + " and --radius " + std::to_string(o.radius) + ": neighbourhoods of up to " +
-                std::to_string(int(bound)) + " voxels exceed the " + std::to_string(kMaxNeighbours) +
-                " the kernels hold; lower --h or --radius");
   const FeatureParams feature = o.gradient ? gradient_feature(o.threshold)
                                            : iso_feature(fields, o.iso, params.step, o.smoothing, o.threshold);
   return prepare_volume(std::move(fields), feature, params, stats);

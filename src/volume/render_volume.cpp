@@ -1,9 +1,23 @@
 #include "pss/volume/render_volume.hpp"
 
+#include <cstdio>
+
+#include "pss/core/error.hpp"
+
 namespace pss {
 
 PreparedVolume prepare_volume(VolumeFields fields, const FeatureParams& feature, const VolumeParams& params,
                               Stats& stats) {
+  // The kernels hold at most kMaxNeighbours voxels per neighbourhood: refuse a radius that
+  // could need more here, rather than let a gather stop early.
+  const float bound = neighbourhood_bound(params.radius, fields.volume.spacing);
+  if (bound > float(kMaxNeighbours)) {
+    char message[200];
+    std::snprintf(message, sizeof message,
+                  "a neighbourhood radius of %g holds up to %d voxels on this grid, more than the %d the kernels "
+                  "hold; use a smaller h or radius", params.radius, int(bound), kMaxNeighbours);
+    throw Error(message);
+  }
   PreparedVolume out;
   out.fields = std::move(fields);
   out.feature = feature;
