@@ -3,6 +3,8 @@
 // spacing, an empty volume, a grazing ray; and `pss extract`'s point set.
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -94,6 +96,27 @@ std::int64_t pixels_covered(const Field& truth, const Camera& camera, const Aabb
   return n;
 }
 
+// What one rendered surface must meet: the share of the analytic silhouette's pixels that
+// hit, rms and max distance (voxels), rms normal angle (degrees).
+struct SurfaceBounds {
+  int min_coverage_percent;
+  double rms, max, normal_rms;
+};
+
+// Measures the hits of `r` against `truth`, logs the figures and checks them.
+void expect_surface(const std::string& name, const Field& truth, const Volume& volume, const Rendered& r,
+                    SurfaceBounds b) {
+  const Accuracy a = measure(truth, r.hits);
+  const std::int64_t covered = pixels_covered(truth, r.frame.camera, volume.view().bounds());
+  std::printf("%s: %lld hits of %lld covered, rms %.3f max %.3f voxels, normals rms %.2f max %.2f deg\n",
+              name.c_str(), (long long)a.hits, (long long)covered, a.rms_distance, a.max_distance, a.rms_normal_deg,
+              a.max_normal_deg);
+  EXPECT_GT(a.hits, covered * b.min_coverage_percent / 100) << name;
+  EXPECT_LT(a.rms_distance, b.rms) << name;
+  EXPECT_LT(a.max_distance, b.max) << name;
+  EXPECT_LT(a.rms_normal_deg, b.normal_rms) << name;
+}
+
 // A float distance field: |∇f| = 1, so θ1's k is one voxel and the analysis of
 // tests/volume_projection_test applies: the fit's lattice noise is about the shell
 // thickness k/√2 over √(voxels in the disc of radius 1.5h) ≈ 0.7/√28 ≈ 0.13 voxels rms at
@@ -103,18 +126,10 @@ TEST(VolumeRender, SphereDistanceFieldHitsLieOnTheSphere) {
   test::SampleVolumeOptions o;
   o.dims = ivec3(40);
   const Volume volume = test::sample_volume(f, o);
-  for (VolumeMethod m : {VolumeMethod::predictor, VolumeMethod::predictor_corrector}) {
-    const Rendered r = render(volume, 0.0f, m);
-    const Accuracy a = measure(f, r.hits);
-    const std::int64_t covered = pixels_covered(f, r.frame.camera, volume.view().bounds());
-    std::printf("sphere float, method %d: %lld hits of %lld covered, rms %.3f max %.3f voxels, normals rms %.2f max %.2f deg\n",
-                int(m), (long long)a.hits, (long long)covered, a.rms_distance, a.max_distance, a.rms_normal_deg,
-                a.max_normal_deg);
-    EXPECT_GT(a.hits, covered * 97 / 100);  // silhouette rays may miss
-    EXPECT_LT(a.rms_distance, 0.1);
-    EXPECT_LT(a.max_distance, 0.35);
-    EXPECT_LT(a.rms_normal_deg, 4.0);
-  }
+  // 97 %: silhouette rays may miss.
+  for (VolumeMethod m : {VolumeMethod::predictor, VolumeMethod::predictor_corrector})
+    expect_surface("sphere float, method " + std::to_string(int(m)), f, volume, render(volume, 0.0f, m),
+                   {97, 0.1, 0.35, 4.0});
 }
 
 // 8 bits: f = 128 − 20·d quantised, so rounding adds a uniform error of ±0.5/20 = 0.025
@@ -127,15 +142,8 @@ TEST(VolumeRender, TorusUint8HitsLieOnTheTorus) {
   o.scale = -20;
   o.offset = 128;
   const Volume volume = test::sample_volume(f, o);
-  const Rendered r = render(volume, 128.0f, VolumeMethod::predictor_corrector);
-  const Accuracy a = measure(f, r.hits);
-  const std::int64_t covered = pixels_covered(f, r.frame.camera, volume.view().bounds());
-  std::printf("torus uint8: %lld hits of %lld covered, rms %.3f max %.3f voxels, normals rms %.2f max %.2f deg\n",
-              (long long)a.hits, (long long)covered, a.rms_distance, a.max_distance, a.rms_normal_deg, a.max_normal_deg);
-  EXPECT_GT(a.hits, covered * 95 / 100);
-  EXPECT_LT(a.rms_distance, 0.1);
-  EXPECT_LT(a.max_distance, 0.4);
-  EXPECT_LT(a.rms_normal_deg, 5.0);
+  expect_surface("torus uint8", f, volume, render(volume, 128.0f, VolumeMethod::predictor_corrector),
+                 {95, 0.1, 0.4, 5.0});
 }
 
 // Gaussian blobs: the iso-surface is not a distance field, so distances are measured to
@@ -149,15 +157,7 @@ TEST(VolumeRender, GaussianBlobsIsoSurface) {
   test::SampleVolumeOptions o;
   o.dims = ivec3(44);
   const Volume volume = test::sample_volume(f, o);
-  const Rendered r = render(volume, 0.3f, VolumeMethod::predictor_corrector);
-  const Accuracy a = measure(f, r.hits);
-  const std::int64_t covered = pixels_covered(f, r.frame.camera, volume.view().bounds());
-  std::printf("blobs: %lld hits of %lld covered, rms %.3f max %.3f voxels, normals rms %.2f max %.2f deg\n",
-              (long long)a.hits, (long long)covered, a.rms_distance, a.max_distance, a.rms_normal_deg, a.max_normal_deg);
-  EXPECT_GT(a.hits, covered * 95 / 100);
-  EXPECT_LT(a.rms_distance, 0.15);
-  EXPECT_LT(a.max_distance, 0.5);
-  EXPECT_LT(a.rms_normal_deg, 6.0);
+  expect_surface("blobs", f, volume, render(volume, 0.3f, VolumeMethod::predictor_corrector), {95, 0.15, 0.5, 6.0});
 }
 
 // Gradient mode (θ2): a smooth indicator 255/(1 + e^(d/1.5)) has its largest |∇f| on the
@@ -172,16 +172,8 @@ TEST(VolumeRender, SmoothIndicatorMaximalGradientSurface) {
   o.dims = ivec3(40);
   o.quantize = true;
   const Volume volume = test::sample_volume(f, o);
-  const Rendered r = render(volume, std::nullopt, VolumeMethod::predictor_corrector);
-  const Accuracy a = measure(sphere, r.hits);
-  const std::int64_t covered = pixels_covered(sphere, r.frame.camera, volume.view().bounds());
-  std::printf("gradient mode: %lld hits of %lld covered, rms %.3f max %.3f voxels, normals rms %.2f max %.2f deg\n",
-              (long long)a.hits, (long long)covered, a.rms_distance, a.max_distance, a.rms_normal_deg,
-              a.max_normal_deg);
-  EXPECT_GT(a.hits, covered * 95 / 100);
-  EXPECT_LT(a.rms_distance, 0.3);
-  EXPECT_LT(a.max_distance, 0.6);
-  EXPECT_LT(a.rms_normal_deg, 8.0);
+  expect_surface("gradient mode", sphere, volume, render(volume, std::nullopt, VolumeMethod::predictor_corrector),
+                 {95, 0.3, 0.6, 8.0});
 }
 
 // Noise σ = 0.4 voxels (a float distance field plus Gaussian noise; an 8-bit torus at 20
@@ -236,15 +228,9 @@ TEST(VolumeRender, AnisotropicSpacing) {
   o.dims = ivec3(33, 33, 15);
   o.spacing = vec3(1.0f, 1.0f, 2.5f);
   const Volume volume = test::sample_volume(f, o);
-  const Rendered r = render(volume, 0.0f, VolumeMethod::predictor_corrector, 2.0f);
-  const Accuracy a = measure(f, r.hits);
-  const std::int64_t covered = pixels_covered(f, r.frame.camera, volume.view().bounds());
-  std::printf("anisotropic: %lld hits of %lld covered, rms %.3f max %.3f, normals rms %.2f deg\n", (long long)a.hits,
-              (long long)covered, a.rms_distance, a.max_distance, a.rms_normal_deg);
-  EXPECT_GT(a.hits, covered * 90 / 100);
-  EXPECT_LT(a.rms_distance, 0.25);
-  EXPECT_LT(a.max_distance, 0.8);
-  EXPECT_LT(a.rms_normal_deg, 12.0);  // 2.5× coarser in z: the normal noise grows with it
+  // Normals: 2.5× coarser in z, so the normal noise grows with it.
+  expect_surface("anisotropic", f, volume, render(volume, 0.0f, VolumeMethod::predictor_corrector, 2.0f),
+                 {90, 0.25, 0.8, 12.0});
 }
 
 TEST(VolumeRender, NothingPassesTheThresholdGivesAnEmptyImage) {
