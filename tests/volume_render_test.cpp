@@ -252,11 +252,7 @@ TEST(VolumeRender, GrazingRays) {
   const Field f = test::sphere_distance(c, radius);
   test::SampleVolumeOptions o;
   o.dims = ivec3(40);
-  Stats stats;
-  VolumeFields fields = compute_fields(test::sample_volume(f, o));
-  const VolumeParams params = VolumeParams::from_voxels(1.0f);
-  const FeatureParams feature = iso_feature(fields, 0.0f, params.step);
-  const PreparedVolume prepared = prepare_volume(std::move(fields), feature, params, stats);
+  const PreparedVolume prepared = test::prepare_iso(test::sample_volume(f, o), 0.0f);
   const VolumeFinder finder{prepared.scene()};
   const auto ray_at = [&](float offset) { return Ray{c + vec3(-30.0f, radius + offset, 0.0f), vec3(1, 0, 0)}; };
   const Hit tangent = finder.primary(ray_at(0.0f));
@@ -272,14 +268,11 @@ TEST(VolumeRender, GrazingRays) {
 TEST(VolumeRender, RadiusBeyondTheNeighbourhoodCapacityIsAnError) {
   test::SampleVolumeOptions o;
   o.dims = ivec3(16);
-  VolumeFields fields = compute_fields(test::sample_volume(test::sphere_distance(vec3(8.0f), 5.0f), o));
   // Radius 6 voxels: (6 + 0.87)³·4π/3 ≈ 1360 voxels > kMaxNeighbours (512).
   const VolumeParams params = VolumeParams::from_voxels(1.0f, VolumeMethod::predictor_corrector, 4.0f, 0.75f, 0.9f,
                                                         0.1f, 6.0f);
   ASSERT_GT(neighbourhood_bound(params.radius, vec3(1.0f)), float(kMaxNeighbours));
-  const FeatureParams feature = iso_feature(fields, 0.0f, params.step);
-  Stats stats;
-  EXPECT_THROW(prepare_volume(std::move(fields), feature, params, stats), Error);
+  EXPECT_THROW(test::prepare_iso(test::sample_volume(test::sphere_distance(vec3(8.0f), 5.0f), o), 0.0f, params), Error);
 }
 
 // Empty-space skipping changes the speed only: with every brick marked occupied the rays
@@ -289,11 +282,7 @@ TEST(VolumeRender, BrickSkippingKeepsTheHits) {
   test::SampleVolumeOptions o;
   o.dims = ivec3(48);
   o.noise = 0.3f;
-  Stats stats;
-  VolumeFields fields = compute_fields(test::sample_volume(f, o));
-  const VolumeParams params = VolumeParams::from_voxels(1.0f);
-  const FeatureParams feature = iso_feature(fields, 0.0f, params.step);
-  const PreparedVolume prepared = prepare_volume(std::move(fields), feature, params, stats);
+  const PreparedVolume prepared = test::prepare_iso(test::sample_volume(f, o), 0.0f);
   ASSERT_LT(prepared.bricks.occupied_count, std::int64_t(prepared.bricks.occupied.size()));
   BrickGrid all = prepared.bricks;
   std::fill(all.occupied.begin(), all.occupied.end(), std::uint8_t(1));
@@ -321,12 +310,10 @@ TEST(VolumeRender, DebugProjectionMarksPredictorMoves) {
   const Field f = test::sphere_distance(vec3(16.0f), 9.0f);
   test::SampleVolumeOptions o;
   o.dims = ivec3(32);
-  Stats stats;
-  VolumeFields fields = compute_fields(test::sample_volume(f, o));
   VolumeParams params = VolumeParams::from_voxels(1.0f);
   params.debug_projection = true;
-  const FeatureParams feature = iso_feature(fields, 0.0f, params.step);
-  const PreparedVolume prepared = prepare_volume(std::move(fields), feature, params, stats);
+  const PreparedVolume prepared = test::prepare_iso(test::sample_volume(f, o), 0.0f, params);
+  Stats stats;
   const Camera camera = Camera::framing(prepared.fields.volume.view().bounds(), {48, 48, 0, 0, 35});
   RenderedFrame frame = render_volume(prepared, camera, TraceSettings{}, Backend::cpu, stats);
   paint_debug_projection(frame);
@@ -353,11 +340,9 @@ TEST(VolumeExtract, SpherePointsAreOnTheSurfaceAndThinned) {
   test::SampleVolumeOptions o;
   o.dims = ivec3(32);
   o.noise = 0.2f;
+  const PreparedVolume prepared = test::prepare_iso(test::sample_volume(f, o), 0.0f);
+  const VolumeParams& params = prepared.params;
   Stats stats;
-  VolumeFields fields = compute_fields(test::sample_volume(f, o));
-  const VolumeParams params = VolumeParams::from_voxels(1.0f);
-  const FeatureParams feature = iso_feature(fields, 0.0f, params.step);
-  const PreparedVolume prepared = prepare_volume(std::move(fields), feature, params, stats);
   ExtractionCounts counts;
   const PointCloud cloud = extract_surface(prepared, Backend::cpu, stats, counts);
   std::vector<std::pair<vec3, vec3>> points;

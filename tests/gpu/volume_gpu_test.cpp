@@ -16,11 +16,7 @@ PreparedVolume noisy_torus() {
   o.quantize = true;
   o.scale = -20;
   o.offset = 128;
-  VolumeFields fields = compute_fields(test::sample_volume(test::torus_distance(vec3(23.5f), 12.0f, 5.0f), o));
-  const VolumeParams params = VolumeParams::from_voxels(1.0f);
-  const FeatureParams feature = iso_feature(fields, 128.0f, params.step);
-  Stats stats;
-  return prepare_volume(std::move(fields), feature, params, stats);
+  return test::prepare_iso(test::sample_volume(test::torus_distance(vec3(23.5f), 12.0f, 5.0f), o), 128.0f);
 }
 
 TEST(GpuVolume, HitsMatchCpu) {

@@ -9,6 +9,8 @@
 #include <random>
 #include <vector>
 
+#include "pss/core/stats.hpp"
+#include "pss/volume/render_volume.hpp"
 #include "pss/volume/volume.hpp"
 
 namespace pss::test {
@@ -109,6 +111,16 @@ inline Volume sample_volume(const Field& f, const SampleVolumeOptions& o) {
         v.values[std::size_t(view.index(i, j, k))] = x;
       }
   return v;
+}
+
+// The iso-surface f = iso of a unit-spaced volume, prepared for rendering or extraction
+// with `params` (by default the documented defaults).
+inline PreparedVolume prepare_iso(const Volume& volume, float iso,
+                                  const VolumeParams& params = VolumeParams::from_voxels(1.0f)) {
+  Stats stats;
+  VolumeFields fields = compute_fields(volume);
+  const FeatureParams feature = iso_feature(fields, iso, params.step);
+  return prepare_volume(std::move(fields), feature, params, stats);
 }
 
 }  // namespace pss::test
