@@ -14,7 +14,6 @@
 
 #include "pss/core/error.hpp"
 #include "pss/points/project_cloud.hpp"
-#include "pss/points/spacing.hpp"
 #include "support/shapes.hpp"
 
 namespace pss {
@@ -48,14 +47,7 @@ CloudProjection run(const PointCloud& cloud, float h, PlaneFitMethod plane) {
   return project_cloud(cloud, ProjectionParams::from_h(h, plane), Backend::cpu, stats);
 }
 
-float suggested_h(const PointCloud& cloud) { return float(estimate_spacing(cloud.positions).suggested_h); }
-
-struct Case {
-  const char* name;
-  bool torus;
-  bool nonuniform;
-  float noise;  // relative to the radius (sphere) or tube radius (torus)
-};
+using Case = test::ShapeCase;
 
 class ProjectionAccuracy : public testing::TestWithParam<Case> {};
 
@@ -63,21 +55,16 @@ TEST_P(ProjectionAccuracy, LiesOnTheSurfaceWithAnalyticNormals) {
   const Case c = GetParam();
   const test::Sphere sphere;
   const test::Torus torus;
-  const float radius = c.torus ? torus.minor : sphere.radius;
-  const float kappa = 1.0f / radius;  // largest principal curvature
-  test::SampleOptions o;
-  o.count = c.torus ? 12000 : 5000;
-  o.noise = c.noise * radius;
-  o.nonuniform = c.nonuniform;
-  const PointCloud cloud = c.torus ? test::sample(torus, o) : test::sample(sphere, o);
-  const float h = suggested_h(cloud);
+  const float kappa = 1.0f / c.radius();  // largest principal curvature
+  const PointCloud cloud = c.sample();
+  const float h = test::suggested_h(cloud);
   const CloudProjection wls = run(cloud, h, PlaneFitMethod::wls);
   const CloudProjection mls = run(cloud, h, PlaneFitMethod::mls);
   const Errors ew = c.torus ? measure(torus, wls) : measure(sphere, wls);
   const Errors em = c.torus ? measure(torus, mls) : measure(sphere, mls);
 
   const double bias = 2 * std::pow(kappa, 3) * std::pow(h, 4);
-  EXPECT_LT(em.mean_distance, c.noise > 0 ? 0.4 * o.noise : bias) << "h = " << h;
+  EXPECT_LT(em.mean_distance, c.noise > 0 ? 0.4 * c.noise_sigma() : bias) << "h = " << h;
   EXPECT_LT(em.mean_angle_deg, 2.0);
   if (c.nonuniform) {
     // The sparse side holds a tenth of the density: a few samples there have too few
@@ -87,7 +74,7 @@ TEST_P(ProjectionAccuracy, LiesOnTheSurfaceWithAnalyticNormals) {
   } else {
     EXPECT_EQ(mls.counts.too_few_neighbours, 0);
     EXPECT_LT(em.p99_angle_deg, 5.0);
-    EXPECT_LT(em.max_distance, c.noise > 0 ? 3 * o.noise : 10 * bias);
+    EXPECT_LT(em.max_distance, c.noise > 0 ? 3 * c.noise_sigma() : 10 * bias);
   }
   // MLS (Eq. 2) is at least as accurate as WLS (Eq. 1) on curved shapes.
   EXPECT_LE(em.mean_distance, ew.mean_distance);
@@ -108,7 +95,7 @@ TEST(Projection, NoisyPlaneIsFlattened) {
   o.count = 4000;
   o.noise = 0.005f;
   const PointCloud cloud = test::sample_plane(1.0f, o);
-  const CloudProjection out = run(cloud, suggested_h(cloud), PlaneFitMethod::mls);
+  const CloudProjection out = run(cloud, test::suggested_h(cloud), PlaneFitMethod::mls);
   double mean = 0;
   std::size_t tilted = 0;  // more than 5° off; only samples at the square's edge, with half a
                            // neighbourhood, come near that
@@ -126,7 +113,7 @@ TEST(Projection, ProjectedPointsAreNearlyFixed) {
   test::SampleOptions o;
   o.noise = 0.005f;
   const PointCloud cloud = test::sample(test::Sphere{}, o);
-  const float h = suggested_h(cloud);
+  const float h = test::suggested_h(cloud);
   const CloudProjection once = run(cloud, h, PlaneFitMethod::mls);
   const UniformGrid grid(cloud.positions, 2 * h);
   const ProjectionParams params = ProjectionParams::from_h(h);
@@ -153,7 +140,7 @@ TEST(Projection, ResultDoesNotDependOnThreadCount) {
   o.noise = 0.005f;
   o.count = 6000;
   const PointCloud cloud = test::sample(test::Torus{}, o);
-  const float h = suggested_h(cloud);
+  const float h = test::suggested_h(cloud);
   set_cpu_threads(1);
   const CloudProjection one = run(cloud, h, PlaneFitMethod::mls);
   set_cpu_threads(3);
@@ -170,7 +157,7 @@ TEST(Projection, NormalsAreConsistentlyOrientedOutward) {
   test::SampleOptions o;
   o.noise = 0.005f;
   const PointCloud cloud = test::sample(test::Sphere{}, o);
-  const CloudProjection out = run(cloud, suggested_h(cloud), PlaneFitMethod::mls);
+  const CloudProjection out = run(cloud, test::suggested_h(cloud), PlaneFitMethod::mls);
   for (std::size_t i = 0; i < cloud.size(); ++i)
     ASSERT_GT(glm::dot(out.cloud.normals[i], out.cloud.positions[i]), 0) << i;
 }

@@ -30,14 +30,11 @@
 
 #include "pss/io/ply.hpp"
 #include "pss/points/render_cloud.hpp"
-#include "pss/points/spacing.hpp"
 #include "pss/render/frame_outputs.hpp"
 #include "support/shapes.hpp"
 
 namespace pss {
 namespace {
-
-float suggested_h(const PointCloud& cloud) { return float(estimate_spacing(cloud.positions).suggested_h); }
 
 RenderedFrame render(const PreparedCloud& prepared, const Camera& camera, bool shadows = false,
                      bool reflections = false) {
@@ -102,12 +99,7 @@ Accuracy measure(const Shape& shape, const RenderedFrame& frame) {
   return a;
 }
 
-struct Case {
-  const char* name;
-  bool torus;
-  bool nonuniform;
-  float noise;  // relative to the radius (sphere) or tube radius (torus)
-};
+using Case = test::ShapeCase;
 
 class RenderAccuracy : public testing::TestWithParam<Case> {};
 
@@ -123,14 +115,9 @@ TEST_P(RenderAccuracy, HitsLieOnTheSurfaceAndCoverItsSilhouette) {
   const Case c = GetParam();
   const test::Sphere sphere;
   const test::Torus torus;
-  const float radius = c.torus ? torus.minor : sphere.radius;
-  const float kappa = 1.0f / radius;
-  test::SampleOptions o;
-  o.count = c.torus ? 12000 : 5000;
-  o.noise = c.noise * radius;
-  o.nonuniform = c.nonuniform;
-  const PointCloud cloud = c.torus ? test::sample(torus, o) : test::sample(sphere, o);
-  const float h = suggested_h(cloud);
+  const float kappa = 1.0f / c.radius();  // largest principal curvature
+  const PointCloud cloud = c.sample();
+  const float h = test::suggested_h(cloud);
   Stats stats;
   const PreparedCloud prepared(cloud, RayPssParams::from_h(h), Backend::cpu, stats);
   const Camera camera = Camera::framing(cloud.bounds(), small_view());
@@ -143,8 +130,8 @@ TEST_P(RenderAccuracy, HitsLieOnTheSurfaceAndCoverItsSilhouette) {
                std::to_string(a.mean_distance) + ", p95 d " + std::to_string(a.p95_distance) + ", mean angle " +
                std::to_string(a.mean_angle_deg));
   ASSERT_GT(a.analytic, 1000);
-  EXPECT_LT(a.mean_distance, (c.noise > 0 ? 0.4 * o.noise : bias) + eps);
-  EXPECT_LT(a.p95_distance, c.noise > 0 ? 3 * o.noise : 10 * bias);
+  EXPECT_LT(a.mean_distance, (c.noise > 0 ? 0.4 * c.noise_sigma() : bias) + eps);
+  EXPECT_LT(a.p95_distance, c.noise > 0 ? 3 * c.noise_sigma() : 10 * bias);
   EXPECT_LT(a.mean_angle_deg, 2.0);
   EXPECT_LE(double(a.mismatched), (c.nonuniform ? 0.04 : 0.02) * double(a.analytic));
 }
@@ -168,7 +155,7 @@ TEST(Render, ThreeIterationsAreAtLeastAsAccurateAsTwo) {
   o.count = 12000;
   o.noise = 0.005f * torus.minor;
   const PointCloud cloud = test::sample(torus, o);
-  RayPssParams params = RayPssParams::from_h(suggested_h(cloud));
+  RayPssParams params = RayPssParams::from_h(test::suggested_h(cloud));
   const Camera camera = Camera::framing(cloud.bounds(), small_view());
   Stats stats;
   params.max_iterations = 2;
@@ -182,7 +169,7 @@ TEST(Render, ThreeIterationsAreAtLeastAsAccurateAsTwo) {
 TEST(Render, RaysThatMissEverythingShowTheBackground) {
   const PointCloud cloud = test::sample(test::Sphere{}, test::SampleOptions{});
   Stats stats;
-  const PreparedCloud prepared(cloud, RayPssParams::from_h(suggested_h(cloud)), Backend::cpu, stats);
+  const PreparedCloud prepared(cloud, RayPssParams::from_h(test::suggested_h(cloud)), Backend::cpu, stats);
   Camera away = Camera::framing(cloud.bounds(), small_view());
   away.forward = -away.forward;  // looking away from the sphere
   away.right = -away.right;
@@ -199,7 +186,7 @@ TEST(Render, RaysThatMissEverythingShowTheBackground) {
 TEST(Render, CameraInsideTheBoundingBoxSeesTheSurfaceAllAround) {
   const test::Sphere sphere;
   const PointCloud cloud = test::sample(sphere, test::SampleOptions{});
-  const float h = suggested_h(cloud);
+  const float h = test::suggested_h(cloud);
   Stats stats;
   const PreparedCloud prepared(cloud, RayPssParams::from_h(h), Backend::cpu, stats);
   Camera inside = Camera::framing(cloud.bounds(), small_view());
@@ -225,7 +212,7 @@ TEST(Render, PlanarCloudIsAFlatSurface) {
   test::SampleOptions o;
   o.count = 4000;
   const PointCloud cloud = test::sample_plane(1.0f, o);
-  const float h = suggested_h(cloud);
+  const float h = test::suggested_h(cloud);
   Stats stats;
   const PreparedCloud prepared(cloud, RayPssParams::from_h(h), Backend::cpu, stats);
   const RenderedFrame frame = render(prepared, Camera::framing(cloud.bounds(), small_view()), true, true);
@@ -243,7 +230,7 @@ TEST(Render, ImageDoesNotDependOnThreadCount) {
   o.noise = 0.005f;
   const PointCloud cloud = test::sample(test::Torus{}, o);
   Stats stats;
-  const PreparedCloud prepared(cloud, RayPssParams::from_h(suggested_h(cloud)), Backend::cpu, stats);
+  const PreparedCloud prepared(cloud, RayPssParams::from_h(test::suggested_h(cloud)), Backend::cpu, stats);
   const Camera camera = Camera::framing(cloud.bounds(), small_view());
   set_cpu_threads(1);
   const RenderedFrame one = render(prepared, camera, true, true);

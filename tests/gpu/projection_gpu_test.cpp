@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include "pss/points/project_cloud.hpp"
-#include "pss/points/spacing.hpp"
 #include "support/shapes.hpp"
 
 namespace pss {
@@ -15,7 +14,7 @@ TEST(GpuProjection, MatchesCpu) {
   o.count = 20000;
   o.noise = 0.005f * test::Torus{}.minor;
   const PointCloud cloud = test::sample(test::Torus{}, o);
-  const ProjectionParams params = ProjectionParams::from_h(float(estimate_spacing(cloud.positions).suggested_h));
+  const ProjectionParams params = ProjectionParams::from_h(test::suggested_h(cloud));
   Stats stats;
   const CloudProjection cpu = project_cloud(cloud, params, Backend::cpu, stats);
   const CloudProjection gpu = project_cloud(cloud, params, Backend::cuda, stats);

@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include "pss/points/render_cloud.hpp"
-#include "pss/points/spacing.hpp"
 #include "support/shapes.hpp"
 
 namespace pss {
@@ -15,7 +14,7 @@ TEST(GpuRender, MatchesCpu) {
   o.count = 12000;
   o.noise = 0.005f * test::Torus{}.minor;
   const PointCloud cloud = test::sample(test::Torus{}, o);
-  const float h = float(estimate_spacing(cloud.positions).suggested_h);
+  const float h = test::suggested_h(cloud);
   const RayPssParams params = RayPssParams::from_h(h);
   CameraSettings view;
   view.width = view.height = 128;

@@ -1,5 +1,7 @@
 #include "support/shapes.hpp"
 
+#include "pss/points/spacing.hpp"
+
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -74,5 +76,17 @@ PointCloud sample_plane(float half_size, const SampleOptions& o) {
   }
   return cloud;
 }
+
+float ShapeCase::radius() const { return torus ? Torus{}.minor : Sphere{}.radius; }
+
+PointCloud ShapeCase::sample() const {
+  SampleOptions o;
+  o.count = torus ? 12000 : 5000;
+  o.noise = noise_sigma();
+  o.nonuniform = nonuniform;
+  return torus ? test::sample(Torus{}, o) : test::sample(Sphere{}, o);
+}
+
+float suggested_h(const PointCloud& cloud) { return float(estimate_spacing(cloud.positions).suggested_h); }
 
 }  // namespace pss::test

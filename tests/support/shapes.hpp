@@ -39,4 +39,20 @@ PointCloud sample(const Sphere& s, const SampleOptions& o);
 PointCloud sample(const Torus& t, const SampleOptions& o);
 PointCloud sample_plane(float half_size, const SampleOptions& o);  // square [-a, a]² at z = 0
 
+// One case of the accuracy tests: a unit sphere or the default torus, uniform or 10:1
+// non-uniform density, with Gaussian noise relative to the radius of curvature.
+struct ShapeCase {
+  const char* name;
+  bool torus;
+  bool nonuniform;
+  float noise;  // relative to radius()
+
+  float radius() const;  // the sphere's radius or the torus's tube radius: 1/κ of the largest curvature
+  float noise_sigma() const { return noise * radius(); }
+  PointCloud sample() const;  // 12,000 samples of the torus, 5,000 of the sphere
+};
+
+// The h `pss` would choose for the cloud (points/spacing.hpp).
+float suggested_h(const PointCloud& cloud);
+
 }  // namespace pss::test
