@@ -6,17 +6,8 @@ namespace pss::cuda {
 
 void fit_local_polynomials(const GridView& grid, std::span<const vec3> points, std::span<const vec3> hints, float h,
                            float rho, std::span<LocalFit> out, Progress* progress) {
-  const DeviceGrid device_grid(grid);
-  const DeviceBuffer<vec3> d_points(points);
-  const DeviceBuffer<vec3> d_hints(hints);
-  DeviceBuffer<LocalFit> d_out(out.size());
-  const GridView g = device_grid.view();
-  const vec3* p = d_points.data();
-  const vec3* n = d_hints.data();
-  LocalFit* o = d_out.data();
-  parallel_for("local polynomials", std::int64_t(points.size()),
-               [=] __device__(std::int64_t i) { o[i] = fit_local_polynomial(g, p[i], n[i], h, rho); }, progress);
-  d_out.download(out);
+  for_each_point("local polynomials", grid, points, hints, out, progress,
+                 [=] __device__(const GridView& g, vec3 p, vec3 hint) { return fit_local_polynomial(g, p, hint, h, rho); });
 }
 
 RenderedFrame render_points(const PointSurfaceView& surface, const Camera& camera, const TraceSettings& settings,
