@@ -35,7 +35,9 @@ struct VolumeHit {
   PSS_HOST_DEVICE bool found() const { return t < kInfinity; }
 };
 
-// Slab test; false when the ray misses the box.
+// Slab test; false when the ray misses the box. Unlike the BVH's ray_box (spatial/bvh.hpp),
+// made for its inner loop, this runs once per ray and also settles rays parallel to a face
+// with their origin on its plane, where ray_box's 0·∞ is undefined.
 PSS_INLINE bool clip_to_box(const Ray& ray, const Aabb& box, float& t0, float& t1) {
   t0 = 0;
   t1 = kInfinity;
