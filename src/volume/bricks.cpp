@@ -18,17 +18,21 @@ BrickGrid build_bricks(const VolumeFields& fields, const FeatureParams& feature)
     const int bz = int(b / (std::int64_t(grid.count.x) * grid.count.y));
     const ivec3 lo = ivec3(bx, by, bz) * kBrickCells;
     const ivec3 hi = glm::min(lo + kBrickCells, v.dims - 1);
+    // Iso-surfaces need the value range, gradient surfaces the largest θ2: only that is read.
+    const bool iso = feature.kind == FeatureKind::iso;
     float lo_value = kInfinity, hi_value = -kInfinity, hi_theta = 0;
     for (int k = lo.z; k <= hi.z; ++k)
       for (int j = lo.y; j <= hi.y; ++j)
         for (int i = lo.x; i <= hi.x; ++i) {
           const std::int64_t index = v.index(i, j, k);
-          lo_value = std::min(lo_value, v.values[index]);
-          hi_value = std::max(hi_value, v.values[index]);
-          hi_theta = std::max(hi_theta, theta_gradient(fields.gradients[std::size_t(index)], fv.inv_max_gradient2));
+          if (iso) {
+            lo_value = std::min(lo_value, v.values[index]);
+            hi_value = std::max(hi_value, v.values[index]);
+          } else {
+            hi_theta = std::max(hi_theta, theta_gradient(fields.gradients[std::size_t(index)], fv.inv_max_gradient2));
+          }
         }
-    const bool may_pass = feature.kind == FeatureKind::iso
-                              ? lo_value <= feature.iso + feature.threshold && hi_value >= feature.iso - feature.threshold
+    const bool may_pass = iso ? lo_value <= feature.iso + feature.threshold && hi_value >= feature.iso - feature.threshold
                               : hi_theta > feature.threshold;
     grid.occupied[std::size_t(b)] = may_pass ? 1 : 0;
   });
