@@ -2,10 +2,8 @@
 // point set, about one point per b (predictor-corrector); `pss render` can ray trace it.
 #include <chrono>
 #include <cstdio>
-#include <filesystem>
 
 #include "commands.hpp"
-#include "pss/core/error.hpp"
 #include "pss/io/ply.hpp"
 #include "pss/volume/extract.hpp"
 #include "volume_options.hpp"
@@ -22,11 +20,7 @@ struct ExtractOptions {
 
 void run_extract(const ExtractOptions& o) {
   const auto start = std::chrono::steady_clock::now();
-  for (const std::string& path : {o.output, o.compute.stats_path}) {
-    if (path.empty()) continue;
-    const std::filesystem::path parent = std::filesystem::absolute(path).parent_path();
-    if (!std::filesystem::is_directory(parent)) throw file_error(path, "cannot write: no directory " + parent.string());
-  }
+  check_output_directories({o.output, o.compute.stats_path});
   set_cpu_threads(o.compute.threads);
   const Backend backend = select_backend(o.compute.backend);
   Stats stats;

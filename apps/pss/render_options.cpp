@@ -3,10 +3,8 @@
 #include <charconv>
 #include <cstdio>
 #include <cmath>
-#include <filesystem>
 #include <optional>
 
-#include "pss/core/error.hpp"
 #include "pss/render/frame_outputs.hpp"
 #include "pss/render/image.hpp"
 
@@ -83,11 +81,7 @@ void add_render_options(CLI::App& command, RenderOptions& o) {
 }
 
 void check_output_paths(const RenderOptions& o) {
-  for (const std::string& path : {o.output, o.hits_path, o.compute.stats_path}) {
-    if (path.empty()) continue;
-    const std::filesystem::path parent = std::filesystem::absolute(path).parent_path();
-    if (!std::filesystem::is_directory(parent)) throw file_error(path, "cannot write: no directory " + parent.string());
-  }
+  check_output_directories({o.output, o.hits_path, o.compute.stats_path});
 }
 
 TraceSettings trace_settings(const RenderOptions& o, const Camera& camera) {
