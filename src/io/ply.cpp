@@ -13,6 +13,7 @@
 #include "pss/core/error.hpp"
 #include "pss/io/output_file.hpp"
 #include "pss/io/point_cloud_file.hpp"
+#include "bytes.hpp"
 
 namespace pss {
 namespace {
@@ -201,13 +202,7 @@ class AsciiCursor {
   int line_;
 };
 
-template <class T>
-T load(const char* bytes, bool swap) {
-  std::array<char, sizeof(T)> raw;
-  std::memcpy(raw.data(), bytes, sizeof(T));
-  if (swap) std::reverse(raw.begin(), raw.end());
-  return std::bit_cast<T>(raw);
-}
+using io::load;
 
 class BinaryCursor {
  public:

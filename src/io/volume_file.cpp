@@ -14,6 +14,7 @@
 
 #include "pss/core/error.hpp"
 #include "pss/io/output_file.hpp"
+#include "bytes.hpp"
 
 namespace pss {
 
@@ -83,25 +84,16 @@ std::vector<float> decode(const std::filesystem::path& path, const char* bytes, 
                           bool big_endian) {
   std::vector<float> values(static_cast<std::size_t>(count));
   const bool swap = big_endian != (std::endian::native == std::endian::big);
-  const auto* u = reinterpret_cast<const unsigned char*>(bytes);
   switch (type) {
     case VoxelType::uint8:
-      for (std::int64_t i = 0; i < count; ++i) values[i] = float(u[i]);
+      for (std::int64_t i = 0; i < count; ++i) values[i] = float(static_cast<unsigned char>(bytes[i]));
       break;
     case VoxelType::uint16:
-      for (std::int64_t i = 0; i < count; ++i) {
-        std::uint16_t x;
-        std::memcpy(&x, u + 2 * i, 2);
-        if (swap) x = std::uint16_t((x >> 8) | (x << 8));
-        values[i] = float(x);
-      }
+      for (std::int64_t i = 0; i < count; ++i) values[i] = float(io::load<std::uint16_t>(bytes + 2 * i, swap));
       break;
     case VoxelType::float32:
       for (std::int64_t i = 0; i < count; ++i) {
-        std::uint32_t x;
-        std::memcpy(&x, u + 4 * i, 4);
-        if (swap) x = __builtin_bswap32(x);
-        const float f = std::bit_cast<float>(x);
+        const float f = io::load<float>(bytes + 4 * i, swap);
         if (!std::isfinite(f)) throw file_error(path, "voxel " + std::to_string(i) + " is not a finite number");
         values[i] = f;
       }
