@@ -62,6 +62,10 @@ TEST_F(RenderCli, WritesImageHitsAndStats) {
   for (const char* phase : {"preprocess", "acceleration structure", "primary", "secondary", "shading", "total"})
     EXPECT_TRUE(stats["seconds"].contains(phase)) << phase;
   EXPECT_GT(stats["mean_iterations"].get<double>(), 0.0);
+  // Every image reproducible from its stats: the camera itself and the flags behind it.
+  EXPECT_EQ(stats["camera"]["eye"].size(), 3u);
+  EXPECT_EQ(stats["view"]["azimuth_deg"], 30.0);
+  EXPECT_EQ(stats["view"]["elevation_deg"], 20.0);
   const PointCloud hits = read_ply(path("hits.ply"));
   EXPECT_EQ(std::int64_t(hits.size()), stats["hits"].get<std::int64_t>());
   EXPECT_GT(hits.size(), 100u);

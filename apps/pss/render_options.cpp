@@ -120,9 +120,9 @@ void record_render_stats(Stats& stats, const RenderOptions& options, const Rende
   v["threads"] = cpu_threads();
   v["frame_seconds"] = frame_s;
   v["fps"] = 1.0 / frame_s;
-  v["camera"] = {{"width", options.camera.width}, {"height", options.camera.height},
-                 {"fov_deg", options.camera.fov_deg}, {"azimuth_deg", options.camera.azimuth_deg},
-                 {"elevation_deg", options.camera.elevation_deg}};
+  // record_frame wrote the camera itself and the image size; these are the flags behind it.
+  v["view"] = {{"fov_deg", options.camera.fov_deg}, {"azimuth_deg", options.camera.azimuth_deg},
+               {"elevation_deg", options.camera.elevation_deg}};
   v["shading"] = {{"shadows", settings.shadows}, {"reflections", settings.reflections},
                   {"reflectivity", settings.shading.reflectivity}};
 }
