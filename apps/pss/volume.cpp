@@ -26,7 +26,7 @@ void run_volume(const VolumeCommandOptions& o) {
   Stats stats;
   PreparedVolume volume = load_volume(o.volume, stats);
   volume.params.debug_projection = o.debug_projection;
-  const Camera camera = Camera::framing(volume.fields.volume.view().bounds(), o.render.camera);
+  const Camera camera = Camera::framing(volume.surface_bounds(), o.render.camera);
   const TraceSettings settings = trace_settings(o.render, camera);
   RenderedFrame frame = render_volume(volume, camera, settings, backend, stats);
   if (o.debug_projection) paint_debug_projection(frame);
@@ -54,6 +54,9 @@ void run_volume(const VolumeCommandOptions& o) {
     stats.write(o.render.compute.stats_path);
   }
   print_written(o.render);
+  if (s.hits == 0)
+    std::fprintf(stderr, "pss volume: no ray hit the surface of %s (%lld cells cross it)\n", o.volume.input.c_str(),
+                 (long long)volume.cells.crossed_count);
 }
 
 }  // namespace

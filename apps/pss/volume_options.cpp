@@ -1,9 +1,30 @@
 #include "volume_options.hpp"
 
+#include <algorithm>
+#include <cstdio>
+
 #include "pss/core/error.hpp"
 #include "pss/io/volume_file.hpp"
 
 namespace pss::app {
+
+namespace {
+
+std::string format_number(float x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", double(x));
+  return text;
+}
+
+// An iso-value the data never reaches has no surface: say so, with the range.
+void check_iso_value(const Volume& volume, const std::string& file, float iso) {
+  const auto [lo, hi] = std::minmax_element(volume.values.begin(), volume.values.end());
+  if (!(iso >= *lo && iso <= *hi))
+    throw Error("--iso " + format_number(iso) + " lies outside the values of " + file + ": [" + format_number(*lo) +
+                ", " + format_number(*hi) + "]");
+}
+
+}  // namespace
 
 void add_volume_options(CLI::App& command, VolumeOptions& o, bool method_flag) {
   command.add_option("file", o.input, "volume: .nrrd / .nhdr, or raw with --dims and --type")->required();
@@ -34,21 +55,23 @@ void add_volume_options(CLI::App& command, VolumeOptions& o, bool method_flag) {
       ->check(CLI::Range(0.0f, 1.0f))
       ->capture_default_str();
   command.add_option("--smoothing", o.smoothing,
-                     "k of theta1 in value units (default: 1 voxel at the iso-surface's mean |grad f|, capped like --threshold)")
-      ->check(CLI::PositiveNumber);
+                     "k of theta1 in voxels: the width of its Gaussian in the distance |V - f|/|grad f| of a voxel "
+                     "to the iso-surface")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   command.add_option("--error", o.error, "epsilon in voxels: r is a hit when |gamma - r| <= epsilon")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   command.add_option("--threshold", o.threshold,
-                     "fragment culling: iso projects samples with |V - f| <= T (default: b voxels at the mean "
-                     "|grad f|, at most half the way from V to the nearer end of the value range); gradient those "
-                     "with (|grad f|/max)^2 > T (default 0.5)")
-      ->check(CLI::NonNegativeNumber);
+                     "gradient surfaces: samples with (|grad f|/max)^2 > T are projected (default 0.5); iso-surfaces "
+                     "are looked for next to the cells the data crosses V in, with no threshold")
+      ->check(CLI::Range(0.0f, 1.0f));
   o.iso_option = iso;
 }
 
 PreparedVolume load_volume(const VolumeOptions& o, Stats& stats) {
   if (o.iso_option->count() == 0 && !o.gradient) throw Error("choose the surface: --iso V or --gradient");
+  if (o.threshold > 0 && !o.gradient) throw Error("--threshold applies to --gradient surfaces only");
   const bool raw_flags = !o.dims.empty() || !o.type.empty() || !o.spacing.empty() || !o.endian.empty();
   std::optional<RawVolumeFormat> raw;
   if (raw_flags) {
@@ -65,6 +88,7 @@ PreparedVolume load_volume(const VolumeOptions& o, Stats& stats) {
     ScopedPhase phase(stats, "read");
     volume = read_volume(o.input, raw);
   }
+  if (!o.gradient) check_iso_value(volume, o.input, o.iso);
   VolumeFields fields;
   {
     ScopedPhase phase(stats, "gradients");
@@ -74,8 +98,7 @@ PreparedVolume load_volume(const VolumeOptions& o, Stats& stats) {
   VolumeParams params = VolumeParams::from_voxels(
       voxel, o.method == "predictor" ? VolumeMethod::predictor : VolumeMethod::predictor_corrector, o.h, o.k, o.alpha,
       o.error, o.radius * o.h);
-  const FeatureParams feature = o.gradient ? gradient_feature(o.threshold)
-                                           : iso_feature(fields, o.iso, params.step, o.smoothing, o.threshold);
+  const FeatureParams feature = o.gradient ? gradient_feature(o.threshold) : iso_feature(o.iso, o.smoothing * voxel);
   return prepare_volume(std::move(fields), feature, params, stats);
 }
 
@@ -87,9 +110,9 @@ nlohmann::json describe(const PreparedVolume& v, const VolumeOptions& o) {
   j["origin"] = {view.origin.x, view.origin.y, view.origin.z};
   j["max_gradient"] = v.fields.max_gradient;
   j["bricks"] = {{"total", v.bricks.occupied.size()}, {"occupied", v.bricks.occupied_count}};
+  j["crossed_cells"] = v.cells.crossed_count;
   if (v.feature.kind == FeatureKind::iso)
-    j["feature"] = {{"kind", "iso"}, {"iso", v.feature.iso}, {"smoothing", v.feature.smoothing},
-                    {"threshold", v.feature.threshold}};
+    j["feature"] = {{"kind", "iso"}, {"iso", v.feature.iso}, {"smoothing", v.feature.smoothing}};
   else
     j["feature"] = {{"kind", "gradient"}, {"threshold", v.feature.threshold}};
   const VolumeParams& p = v.params;

@@ -83,45 +83,11 @@ void set_feature(VolumeFields& fields, const FeatureParams& feature) {
                     [&](std::int64_t i) { w[i] = feature_weight(v, g, inv_max2, feature, i); });
 }
 
-float iso_surface_gradient(const VolumeFields& fields, float iso) {
-  const VolumeView v = fields.volume.view();
-  double sum = 0;
-  std::int64_t count = 0;
-  for (int k = 0; k < v.dims.z; ++k)
-    for (int j = 0; j < v.dims.y; ++j)
-      for (int i = 0; i < v.dims.x; ++i) {
-        const bool below = v.at(i, j, k) < iso;
-        const bool crossed = (i + 1 < v.dims.x && (v.at(i + 1, j, k) < iso) != below) ||
-                             (j + 1 < v.dims.y && (v.at(i, j + 1, k) < iso) != below) ||
-                             (k + 1 < v.dims.z && (v.at(i, j, k + 1) < iso) != below);
-        if (crossed) {
-          sum += glm::length(fields.gradients[std::size_t(v.index(i, j, k))]);
-          ++count;
-        }
-      }
-  return count ? float(sum / double(count)) : 0.0f;
-}
-
-}  // namespace pss
-
-namespace pss {
-
-FeatureParams iso_feature(const VolumeFields& fields, float iso, float step, float smoothing, float threshold) {
-  const float voxel = fields.volume.view().voxel_size();
-  // A volume the iso-value does not cross has no surface; any positive unit will do.
-  const float g = iso_surface_gradient(fields, iso) * voxel;
-  const float per_voxel = g > 0 ? g : 1.0f;
-  // Where the data saturate (an empty background, a solid interior), |v − f| stops growing
-  // with the distance: neither default may reach half the way from v to either end of the
-  // value range, or the background would pass the fragment test and weigh in every fit.
-  const auto [lo, hi] = std::minmax_element(fields.volume.values.begin(), fields.volume.values.end());
-  const float margin = 0.5f * std::min(std::abs(iso - *lo), std::abs(*hi - iso));
-  const float cap = margin > 0 ? margin : kInfinity;
+FeatureParams iso_feature(float iso, float smoothing) {
   FeatureParams f;
   f.kind = FeatureKind::iso;
   f.iso = iso;
-  f.smoothing = smoothing > 0 ? smoothing : std::min(per_voxel, cap);
-  f.threshold = threshold > 0 ? threshold : std::min(per_voxel * step / voxel, cap);
+  f.smoothing = smoothing;
   return f;
 }
 

@@ -28,7 +28,10 @@ PreparedVolume prepare_volume(VolumeFields fields, const FeatureParams& feature,
   }
   {
     ScopedPhase phase(stats, "bricks");
-    out.bricks = build_bricks(out.fields, feature);
+    // Samples a step b from the PSS are projected; the PSS may stand a voxel off the
+    // interpolant's surface, whose cells are what the data tells.
+    out.cells = find_surface_cells(out.fields, feature, params.step + out.fields.volume.view().voxel_size());
+    out.bricks = build_bricks(out.cells);
   }
   return out;
 }

@@ -1,13 +1,14 @@
 // Empty-space skipping: the volume's cells grouped into bricks of kBrickCells³, each marked
-// when some sample inside could pass the fragment test (§5.1), from the min/max of its
-// voxels. Rays jump over unmarked bricks to the next sample of their step lattice, so the
-// samples (and hence the image) are exactly those of marching without skipping.
+// when one of its cells is within reach of the surface (surface_cells.hpp), so that no
+// sample inside an unmarked brick could be projected. Rays jump over unmarked bricks to the
+// next sample of their step lattice, so the samples (and hence the image) are exactly those
+// of marching without skipping.
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
-#include "pss/volume/fields.hpp"
+#include "pss/volume/surface_cells.hpp"
 
 namespace pss {
 
@@ -32,8 +33,6 @@ struct BrickGrid {
   BrickView view() const { return {occupied.data(), count}; }
 };
 
-// Trilinear values and gradient magnitudes inside a cell are bounded by the cell's corner
-// values, so a brick whose voxels (its cells' corners) cannot pass is skipped safely.
-BrickGrid build_bricks(const VolumeFields& fields, const FeatureParams& feature);
+BrickGrid build_bricks(const SurfaceCells& cells);
 
 }  // namespace pss

@@ -35,12 +35,13 @@ struct ExtractLattice {
 ExtractLattice extraction_lattice(const VolumeScene& scene);
 
 // One candidate: skipped unless its brick is occupied and it passes the fragment test;
-// accepted when repeated projection settles within ε before leaving the ball B(r, b).
+// accepted when repeated projection settles within ε before leaving the ball B(r, b), next
+// to a cell the data's surface crosses.
 PSS_INLINE ExtractedPoint extract_candidate(const VolumeScene& s, vec3 r) {
   ExtractedPoint out;
   const BrickView& bricks = s.bricks;
   if (!bricks.is_occupied(bricks.brick_of(s.fields.volume.to_grid(r)))) return out;
-  if (!passes_feature_test(s.fields, s.feature, r)) return out;
+  if (!passes_feature_test(s.fields, s.cells, s.feature, r)) return out;
   const VolumeParams& p = s.params;
   vec3 x = r;
   VoxelNeighbourhood nb;
@@ -48,6 +49,7 @@ PSS_INLINE ExtractedPoint extract_candidate(const VolumeScene& s, vec3 r) {
     const VolumeProjection proj = project_volume_point(s.fields, p, x, nb);
     if (proj.status != VolumeProjectionStatus::ok || length2(proj.point - r) > p.step * p.step) return out;
     if (length2(proj.point - x) <= p.epsilon * p.epsilon) {
+      if (!is_data_surface(s.fields, s.cells, proj.point, proj.normal)) return out;
       out.point = proj.point;
       out.normal = proj.normal;
       out.moved = glm::length(proj.point - r);

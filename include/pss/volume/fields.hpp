@@ -15,9 +15,9 @@ enum class FeatureKind : unsigned char {
 struct FeatureParams {
   FeatureKind kind = FeatureKind::iso;
   float iso = 0;        // v
-  float smoothing = 1;  // k of θ1, in value units
-  // Fragment culling (§5.1): iso projects samples with |v − f| ≤ threshold (value units);
-  // gradient those with θ2 > threshold (the paper's 0.5).
+  float smoothing = 1;  // k of θ1: the width, in world units, of its Gaussian in distance
+  // Gradient surfaces: samples with θ2 > threshold are projected (the paper's 0.5). Iso-surfaces
+  // need none: whether a sample is near the surface is decided by the data (surface_cells.hpp).
   float threshold = 0;
 };
 
@@ -33,12 +33,22 @@ struct FieldView {
   }
 };
 
-// θ1 as it recovers the iso-surface: exp(−|v − f|²/k²), largest AT the iso-value. The
-// paper prints 1 − exp(−|v − f|²/k²), which is largest far from it; tests/volume_projection_test
-// shows that form drives the fit away from the surface (docs/paper-notes.md, §4).
-PSS_INLINE float theta_iso(float value, const FeatureParams& f) {
-  const float d = (f.iso - value) / f.smoothing;
-  return exp(-d * d);
+// θ1 as it recovers the iso-surface: exp(−|v − f|²/(k·|∇f|)²), largest AT the iso-value.
+// The paper prints 1 − exp(−|v − f|²/k²), which is largest far from it; tests/
+// volume_projection_test shows that form drives the fit away from the surface. And its k
+// is one width in value units for the whole volume, while |v − f| saturates away from a
+// sharp edge (air is air however far from the skin): with k from the surface's mean
+// gradient, every voxel of a CT's background then weighs about as much as those at the
+// edge, and the fit of Eq. 3 returns the ball's centre, not the surface (wood-grain
+// terraces on the sample lattice, sheets in empty space). Dividing by the voxel's own
+// |∇f| makes |v − f|/|∇f| the first-order distance from the voxel to the iso-surface, so
+// k is a width in world units and far voxels, where f is flat, weigh nothing
+// (docs/paper-notes.md, §4).
+PSS_INLINE float theta_iso(float value, vec3 gradient, const FeatureParams& f) {
+  const float difference = f.iso - value;
+  const float width2 = f.smoothing * f.smoothing * length2(gradient);
+  if (!(width2 > 0)) return difference == 0 ? 1.0f : 0.0f;
+  return exp(-difference * difference / width2);
 }
 // θ2 = (|∇f| / max|∇f|)².
 PSS_INLINE float theta_gradient(vec3 gradient, float inv_max_gradient2) {
@@ -47,15 +57,8 @@ PSS_INLINE float theta_gradient(vec3 gradient, float inv_max_gradient2) {
 // θ1 or θ2 of one voxel.
 PSS_INLINE float feature_weight(const VolumeView& volume, const vec3* gradients, float inv_max_gradient2,
                                 const FeatureParams& f, std::int64_t voxel) {
-  return f.kind == FeatureKind::iso ? theta_iso(volume.values[voxel], f)
+  return f.kind == FeatureKind::iso ? theta_iso(volume.values[voxel], gradients[voxel], f)
                                     : theta_gradient(gradients[voxel], inv_max_gradient2);
-}
-
-// The fragment test of §5.1 at a sample position.
-PSS_INLINE bool passes_feature_test(const FieldView& v, const FeatureParams& f, vec3 p) {
-  const TrilinearCell cell = TrilinearCell::at(v.volume.dims, v.volume.to_grid(p));
-  if (f.kind == FeatureKind::iso) return abs(f.iso - trilinear(v.volume.values, v.volume.dims, cell)) <= f.threshold;
-  return theta_gradient(trilinear(v.gradients, v.volume.dims, cell), v.inv_max_gradient2) > f.threshold;
 }
 
 // The host owner of the precomputed fields.
@@ -76,16 +79,9 @@ void set_feature(VolumeFields& fields, const FeatureParams& feature);
 // weights (1, 2, 1)/4; at the border the difference is one-sided. Parallel on the CPU.
 VolumeFields compute_fields(Volume volume);
 
-// The documented defaults, in voxels u (VolumeView::voxel_size) turned into value units by
-// g = the iso-surface's mean |∇f|·u: θ1's k = g (1 voxel), and the culling threshold b·g/u
-// (samples about a step b from the surface pass), both capped at half the way from v to
-// the nearer end of the value range. 0 for smoothing or threshold means "default". The
-// gradient mode's threshold defaults to the paper's 0.5.
-FeatureParams iso_feature(const VolumeFields& fields, float iso, float step, float smoothing = 0, float threshold = 0);
+// The feature parameters. θ1's k is in world units (the CLI's --smoothing is in voxels);
+// the gradient mode's threshold defaults to the paper's 0.5 when 0.
+FeatureParams iso_feature(float iso, float smoothing);
 FeatureParams gradient_feature(float threshold = 0);
-
-// The mean |∇f| where the iso-surface crosses a grid edge (0 if it crosses none): turns
-// distances in voxels into value units for the defaults of θ1's k and the culling threshold.
-float iso_surface_gradient(const VolumeFields& fields, float iso);
 
 }  // namespace pss

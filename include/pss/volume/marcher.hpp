@@ -1,6 +1,7 @@
 // Marching a primary ray through the volume (§5.1): samples every b = k·h along the ray
 // inside the volume's box; a sample that passes the fragment test is projected. If the
-// projection γ lies within ε of r, r is the hit; otherwise the ray is intersected with the
+// projection γ lies within ε of r, r is the hit (where the data has a surface beside it:
+// surface_cells.hpp); otherwise the ray is intersected with the
 // polynomial, and if that point lies in the ball of radius b around the sample it is
 // projected in turn; else the sample is rejected and the march goes on. The first accepted
 // sample wins (the paper's depth test).
@@ -15,6 +16,7 @@ namespace pss {
 
 struct VolumeScene {
   FieldView fields;
+  CellView cells;
   BrickView bricks;
   FeatureParams feature;
   VolumeParams params;
@@ -95,6 +97,8 @@ PSS_INLINE bool resolve_sample(const VolumeScene& s, const Ray& ray, float t_sam
       if (record && length2(proj.point - proj.predicted) > eps2) hit.debug |= kCorrectorMoved;
     }
     if (length2(proj.point - x) <= eps2) {
+      // Settled, but only a hit where the data has a surface (surface_cells.hpp).
+      if (!is_data_surface(s.fields, s.cells, x, proj.normal)) return false;
       hit.t = t;
       hit.point = x;
       hit.normal = proj.normal;
@@ -136,7 +140,7 @@ PSS_INLINE VolumeHit march_volume(const VolumeScene& s, const Ray& ray, float t_
       j = max(j + 1, floor((exit - t0) / b) + 1);
       continue;
     }
-    if (passes_feature_test(s.fields, s.feature, ray.at(t))) {
+    if (passes_feature_test(s.fields, s.cells, s.feature, ray.at(t))) {
       if (resolve_sample(s, ray, t, hit, first, nb)) return hit;
       first = false;
     }

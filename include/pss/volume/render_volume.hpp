@@ -43,17 +43,22 @@ struct VolumeFinder {
 };
 
 // What rendering and extraction prepare once per volume and feature: gradients, weights,
-// bricks.
+// surface cells, bricks.
 struct PreparedVolume {
   VolumeFields fields;
+  SurfaceCells cells;
   BrickGrid bricks;
   FeatureParams feature;
   VolumeParams params;
 
-  VolumeScene scene() const { return {fields.view(), bricks.view(), feature, params}; }
+  VolumeScene scene() const { return {fields.view(), cells.view(), bricks.view(), feature, params}; }
+  // What a camera should frame: the cells the surface crosses, or the whole box if none.
+  Aabb surface_bounds() const {
+    return cells.crossed_bounds.empty() ? fields.volume.view().bounds() : cells.crossed_bounds;
+  }
 };
 
-// Weights and bricks for `feature` (fields must hold the gradients).
+// Weights, surface cells and bricks for `feature` (fields must hold the gradients).
 PreparedVolume prepare_volume(VolumeFields fields, const FeatureParams& feature, const VolumeParams& params,
                               Stats& stats);
 

@@ -1,0 +1,80 @@
+// Whether the volume has a surface near a point (issue 7, docs/paper-notes.md §5.1). The
+// paper's fragment test |v − f| ≤ threshold is a culling heuristic, and real data defeat
+// it: a noisy background a little below v passes it and the fit then draws sheets in empty
+// space. The iso-surface exists exactly where the data's trilinear interpolant crosses v,
+// which happens in a cell of the voxel lattice if and only if its eight corners straddle v
+// (the interpolant is multilinear, so it stays within its corners' range and takes every
+// value between them). That is the marching-cubes criterion, and the one we use: samples
+// are projected only within reach of such a cell, and a hit is accepted only next to one.
+// The predictor and corrector still decide *where* the surface is. A gradient surface has
+// its own criterion: cells with a corner of θ2 above the threshold.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "pss/volume/fields.hpp"
+
+namespace pss {
+
+enum SurfaceCellFlag : std::uint8_t {
+  kCellCrossed = 1,  // the surface passes through the cell
+  kCellBeside = 2,   // the cell is a crossed one or one of its 26 neighbours: hits may lie here
+  kCellInReach = 4,  // within the marching reach of a crossed cell: samples here are projected
+};
+
+// One flag byte per cell; cell (i, j, k) spans voxels i..i+1, j..j+1, k..k+1.
+struct CellView {
+  const std::uint8_t* flags = nullptr;
+  ivec3 count{0};
+
+  // The cell holding continuous grid coordinate g, clamped into the lattice.
+  PSS_HOST_DEVICE ivec3 cell_of(vec3 g) const {
+    return glm::clamp(ivec3(int(floor(g.x)), int(floor(g.y)), int(floor(g.z))), ivec3(0), count - 1);
+  }
+  PSS_HOST_DEVICE std::uint8_t at(ivec3 c) const {
+    return flags[(std::int64_t(c.z) * count.y + c.y) * count.x + c.x];
+  }
+  PSS_HOST_DEVICE bool has(vec3 g, SurfaceCellFlag flag) const { return (at(cell_of(g)) & flag) != 0; }
+};
+
+struct SurfaceCells {
+  std::vector<std::uint8_t> flags;
+  ivec3 count{0};
+  std::int64_t crossed_count = 0;
+  Aabb crossed_bounds;  // world box of the crossed cells; empty when there are none
+
+  CellView view() const { return {flags.data(), count}; }
+};
+
+// The fragment test (§5.1) at the world position p: p is within reach of a crossed cell,
+// and for a gradient surface θ2 > threshold there (the paper's own test).
+PSS_INLINE bool passes_feature_test(const FieldView& v, const CellView& cells, const FeatureParams& f, vec3 p) {
+  const vec3 g = v.volume.to_grid(p);
+  if (!cells.has(g, kCellInReach)) return false;
+  if (f.kind == FeatureKind::iso) return true;
+  const TrilinearCell cell = TrilinearCell::at(v.volume.dims, g);
+  return theta_gradient(trilinear(v.gradients, v.volume.dims, cell), v.inv_max_gradient2) > f.threshold;
+}
+
+// Whether a projection that settled at p, with the fitted surface's normal n, is a hit:
+// p lies in a crossed cell or next to one (the PSS is a smoothed surface and may stand off
+// the interpolant's by a fraction of a voxel, never by a cell without the data crossing
+// there), and n agrees with the data's gradient there within kNormalAgreement. Where a
+// ball B(p, ρ) holds only a small cap of a thin shell of weighted voxels (grazing rays
+// just outside a sharp edge), the fit's smallest eigenvector can turn sideways and the
+// projection settle on a sheet across the surface: its normal is then ~90° from ∇f.
+inline constexpr float kNormalAgreement = 0.5f;  // cos 60°
+
+PSS_INLINE bool is_data_surface(const FieldView& v, const CellView& cells, vec3 p, vec3 n) {
+  if (!cells.has(v.volume.to_grid(p), kCellBeside)) return false;
+  const vec3 g = v.gradient_at(p);
+  return abs(glm::dot(g, n)) >= kNormalAgreement * glm::length(g) * glm::length(n);
+}
+
+// The cells of `fields` for `feature`; `reach` (world units) is how far from a crossed cell
+// a sample may lie and still be projected: the marching step plus the distance the PSS may
+// stand off the interpolant's surface (see find_surface_cells' callers).
+SurfaceCells find_surface_cells(const VolumeFields& fields, const FeatureParams& feature, float reach);
+
+}  // namespace pss
