@@ -5,8 +5,10 @@
 // normal angle where both hit, pss's frame time and the reference's.
 //   build/bench/volume_vs_reference [--json out/bench/volume_vs_reference.json]
 //                                   [--write-images DIR] [--size 256]
-// With --write-images, DIR/<volume>_iso<v>_az<a>_el<e>.png holds pss (left) and the
-// reference (right, grey headlight diffuse) side by side.
+// With --write-images, DIR/<volume>_iso<v>_az<a>_el<e>.png holds pss (left), the reference
+// (middle, grey headlight diffuse) and where they disagree (right: red, pss has a surface
+// the reference has not or is a voxel in front of it; blue, pss misses the reference's
+// surface or is a voxel behind it) side by side.
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -66,8 +68,9 @@ int main(int argc, char** argv) {
   const vec2 views[] = {{30, 10}, {200, -30}, {120, 60}};
 
   nlohmann::json rows = nlohmann::json::array();
-  std::printf("| volume | iso | view | object px | holes %% | phantom %% | mean dist (vox) | p99 dist (vox) | "
-              "normal angle (deg) | pss frame s | reference s |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("| volume | iso | view | object px | holes %% | phantom %% | in front %% | behind %% | mean dist (vox) | "
+              "p99 dist (vox) | normal angle (deg) | pss frame s | reference s |\n"
+              "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Dataset& d : datasets) {
     const Volume volume = read_volume(std::filesystem::path(PSS_SOURCE_DIR "/data") / d.file, d.raw);
     const VolumeView v = volume.view();
@@ -80,9 +83,10 @@ int main(int argc, char** argv) {
         const Camera camera = test::volume_camera(v, size, size, view.x, view.y);
         const test::ReferenceMeasurement m = test::measure_against_reference(prepared, iso, camera, mesh);
         const test::ReferenceComparison& c = m.comparison;
-        std::printf("| %s | %g | %g,%g | %lld | %.2f | %.2f | %.3f | %.3f | %.2f | %.3f | %.3f |\n", d.name.c_str(),
-                    iso, view.x, view.y, (long long)c.object_pixels, 100 * c.holes, 100 * c.phantom, c.mean_distance,
-                    c.p99_distance, c.mean_normal_angle_deg, m.pss_seconds, m.reference_seconds);
+        std::printf("| %s | %g | %g,%g | %lld | %.2f | %.2f | %.2f | %.2f | %.3f | %.3f | %.2f | %.3f | %.3f |\n",
+                    d.name.c_str(), iso, view.x, view.y, (long long)c.object_pixels, 100 * c.holes, 100 * c.phantom,
+                    100 * c.in_front, 100 * c.behind, c.mean_distance, c.p99_distance, c.mean_normal_angle_deg,
+                    m.pss_seconds, m.reference_seconds);
         std::fflush(stdout);
         rows.push_back({{"volume", d.name},
                         {"file", d.file},
@@ -97,6 +101,10 @@ int main(int argc, char** argv) {
                         {"phantom_pixels", c.phantom_pixels},
                         {"holes", c.holes},
                         {"phantom", c.phantom},
+                        {"in_front_pixels", c.in_front_pixels},
+                        {"behind_pixels", c.behind_pixels},
+                        {"in_front", c.in_front},
+                        {"behind", c.behind},
                         {"mean_distance_voxels", c.mean_distance},
                         {"p99_distance_voxels", c.p99_distance},
                         {"max_distance_voxels", c.max_distance},
@@ -107,12 +115,15 @@ int main(int argc, char** argv) {
                         {"mesh_triangles", mesh.triangles().size()},
                         {"mesh_seconds", mesh_s}});
         if (!images.empty()) {
-          Image side(2 * size, size);
+          Image side(3 * size, size);
           const std::vector<vec3> ref = test::shade_reference(m.reference, camera);
+          const std::vector<vec3> diff = test::disagreement_image(m.hits, m.reference, camera, v.voxel_size());
           for (int y = 0; y < size; ++y)
             for (int x = 0; x < size; ++x) {
-              side.at(x, y) = m.pss_image[std::size_t(y * size + x)];
-              side.at(size + x, y) = ref[std::size_t(y * size + x)];
+              const std::size_t i = std::size_t(y * size + x);
+              side.at(x, y) = m.pss_image[i];
+              side.at(size + x, y) = ref[i];
+              side.at(2 * size + x, y) = diff[i];
             }
           char name[160];
           std::snprintf(name, sizeof name, "%s_iso%g_az%g_el%g.png", d.name.c_str(), iso, view.x, view.y);

@@ -319,6 +319,9 @@ ReferenceComparison compare_to_reference(const std::vector<Hit>& hits, const Ref
     if (pss && reference) {
       ++both;
       depth += glm::length(hits[i].point - ref.pixels[i].point) / voxel;
+      const float ahead = (ref.pixels[i].t - hits[i].t) / voxel;
+      r.in_front_pixels += ahead > 1;
+      r.behind_pixels += ahead < -1;
       const float cos = std::abs(glm::dot(glm::normalize(hits[i].normal), ref.pixels[i].normal));
       angle += std::acos(std::min(1.0f, cos)) * 57.2957795;
     }
@@ -327,6 +330,8 @@ ReferenceComparison compare_to_reference(const std::vector<Hit>& hits, const Ref
   if (r.object_pixels) {
     r.holes = double(r.hole_pixels) / double(r.object_pixels);
     r.phantom = double(r.phantom_pixels) / double(r.object_pixels);
+    r.in_front = double(r.in_front_pixels) / double(r.object_pixels);
+    r.behind = double(r.behind_pixels) / double(r.object_pixels);
   }
   if (!d.empty()) {
     double sum = 0;
@@ -351,6 +356,18 @@ std::vector<vec3> shade_reference(const ReferenceImage& ref, const Camera& camer
     if (!p.found) continue;
     const vec3 dir = camera.primary_ray(int(i % std::size_t(ref.width)), int(i / std::size_t(ref.width))).dir;
     out[i] = vec3(0.05f + 0.75f * std::abs(glm::dot(p.normal, dir)));
+  }
+  return out;
+}
+
+std::vector<vec3> disagreement_image(const std::vector<Hit>& hits, const ReferenceImage& ref, const Camera& camera,
+                                     float voxel) {
+  std::vector<vec3> out = shade_reference(ref, camera);
+  for (std::size_t i = 0; i < out.size() && i < hits.size(); ++i) {
+    const bool pss = hits[i].found(), reference = ref.pixels[i].found;
+    const float ahead = pss && reference ? (ref.pixels[i].t - hits[i].t) / voxel : 0.0f;
+    if ((pss && !reference) || ahead > 1) out[i] = vec3(0.9f, 0.1f, 0.05f);
+    if ((reference && !pss) || ahead < -1) out[i] = vec3(0.05f, 0.2f, 0.9f);
   }
   return out;
 }

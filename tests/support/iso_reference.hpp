@@ -84,8 +84,13 @@ struct ReferenceComparison {
   double holes = 0, phantom = 0;  // fractions of object_pixels
   // Of every pss hit point to the mesh, in voxels.
   double mean_distance = 0, p99_distance = 0, max_distance = 0;
-  // Of the pixels both hit: mean distance from pss's point to the reference's, in voxels,
-  // and mean angle between the normals (|cos|: either orientation), degrees.
+  // Of the pixels both hit: those where pss's point is more than one voxel in front of the
+  // reference's (a phantom surface hiding the real one) or behind it (a hole in the first
+  // surface, through to one behind), as fractions of object_pixels; the mean distance
+  // from pss's point to the reference's, in voxels; and the mean angle between the normals
+  // (|cos|: either orientation), degrees.
+  std::int64_t in_front_pixels = 0, behind_pixels = 0;
+  double in_front = 0, behind = 0;
   double mean_depth_difference = 0;
   double mean_normal_angle_deg = 0;
 };
@@ -96,6 +101,12 @@ ReferenceComparison compare_to_reference(const std::vector<Hit>& hits, const Ref
 
 // Grey headlight-diffuse image of the reference (background black), for a person to look at.
 std::vector<vec3> shade_reference(const ReferenceImage& ref, const Camera& camera);
+
+// Where pss and the reference disagree, over the reference's grey image: red where pss
+// has a surface the reference has not (phantom, or in front by more than a voxel), blue
+// where it misses the reference's (hole, or behind by more than a voxel).
+std::vector<vec3> disagreement_image(const std::vector<Hit>& hits, const ReferenceImage& ref, const Camera& camera,
+                                     float voxel);
 
 // --- The one place that calls pss's volume method. ---
 
