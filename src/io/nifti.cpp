@@ -98,7 +98,8 @@ CheckedHeader check_header(const std::filesystem::path& path) {
   if (h.sizeof_hdr != 348) {
     swap = io::load<std::int32_t>(reinterpret_cast<const char*>(&h.sizeof_hdr), true) == 348;
     if (!swap) {
-      const bool nifti2 = h.sizeof_hdr == 540 || io::load<std::int32_t>(reinterpret_cast<const char*>(&h.sizeof_hdr), true) == 540;
+      const bool nifti2 =
+          h.sizeof_hdr == 540 || io::load<std::int32_t>(reinterpret_cast<const char*>(&h.sizeof_hdr), true) == 540;
       throw file_error(path, nifti2 ? "is NIfTI-2; pss reads NIfTI-1" : "not a NIfTI-1 file (sizeof_hdr is not 348)");
     }
   }
@@ -109,11 +110,13 @@ CheckedHeader check_header(const std::filesystem::path& path) {
   if (std::memcmp(h.magic, "n+1", 4) != 0) throw file_error(path, "not a NIfTI-1 file (no n+1 magic)");
 
   const int ndim = i16(h.dim[0]);
-  if (ndim < 3 || ndim > 4) throw file_error(path, "NIfTI dim[0] = " + std::to_string(ndim) + ": pss reads 3-D volumes only");
+  if (ndim < 3 || ndim > 4)
+    throw file_error(path, "NIfTI dim[0] = " + std::to_string(ndim) + ": pss reads 3-D volumes only");
   CheckedHeader c;
   for (int a = 0; a < 3; ++a) {
     const int n = i16(h.dim[a + 1]);
-    if (n <= 0) throw file_error(path, "NIfTI dim[" + std::to_string(a + 1) + "] = " + std::to_string(n) + " is not positive");
+    if (n <= 0)
+      throw file_error(path, "NIfTI dim[" + std::to_string(a + 1) + "] = " + std::to_string(n) + " is not positive");
     c.dims[a] = n;
   }
   if (ndim == 4 && i16(h.dim[4]) != 1)
@@ -152,7 +155,8 @@ CheckedHeader check_header(const std::filesystem::path& path) {
     std::vector<char> buffer(std::size_t(1) << 20);
     have = 348;
     while (have < needed) {
-      const std::int64_t r = read_some(g.get(), buffer.data(), std::min<std::int64_t>(needed - have, std::int64_t(buffer.size())));
+      const std::int64_t want = std::min<std::int64_t>(needed - have, std::int64_t(buffer.size()));
+      const std::int64_t r = read_some(g.get(), buffer.data(), want);
       if (r < 0) throw file_error(path, "corrupt gzip data");
       if (r == 0) break;
       have += r;
@@ -172,7 +176,8 @@ VolumeFile read_nifti_file(const std::filesystem::path& path) {
   nifti_set_debug_level(0);  // problems are reported by us, in one line
   std::unique_ptr<nifti_image, NiftiFree> nim(nifti_image_read(path.c_str(), 1));
   if (!nim || !nim->data) throw file_error(path, "the NIfTI library could not read the voxels");
-  if (nim->nx != header.dims.x || nim->ny != header.dims.y || nim->nz != header.dims.z || nim->nvox != std::size_t(header.dims.x) * header.dims.y * header.dims.z ||
+  if (nim->nx != header.dims.x || nim->ny != header.dims.y || nim->nz != header.dims.z ||
+      nim->nvox != std::size_t(header.dims.x) * header.dims.y * header.dims.z ||
       nifti_type(nim->datatype) != header.type)
     throw file_error(path, "the NIfTI library read a different header than pss checked");
 
