@@ -140,7 +140,7 @@ TEST(VolumeIo, BadInputsAreOneLineErrors) {
             std::string::npos);
   write_bytes(d / "rot.nrrd", header + "space directions: (0,1,0) (1,0,0) (0,0,1)\nencoding: raw\n\n" + ramp_uint8());
   EXPECT_NE(error_of([&] { read_nrrd(d / "rot.nrrd"); }).find("only diagonal"), std::string::npos);
-  write_bytes(d / "type.nrrd", "NRRD0004\ntype: double\ndimension: 3\nsizes: 2 3 4\nencoding: raw\n\n");
+  write_bytes(d / "type.nrrd", "NRRD0004\ntype: int64\ndimension: 3\nsizes: 2 3 4\nencoding: raw\n\n");
   EXPECT_NE(error_of([&] { read_nrrd(d / "type.nrrd"); }).find("unsupported NRRD type"), std::string::npos);
   write_bytes(d / "zero.nrrd", "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 0 3 4\nencoding: raw\n\n");
   EXPECT_NE(error_of([&] { read_nrrd(d / "zero.nrrd"); }).find("positive"), std::string::npos);

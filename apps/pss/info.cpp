@@ -1,31 +1,107 @@
-// pss info FILE: what a cloud is, and the h that pss would use for it.
+// pss info FILE: what a cloud is and the h that pss would use for it; or what a volume is
+// (dimensions, voxel type, geometry, values and their histogram) and the iso-values its
+// histogram suggests.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "commands.hpp"
 #include "pss/io/point_cloud_file.hpp"
+#include "pss/io/volume_file.hpp"
 #include "pss/points/spacing.hpp"
+#include "pss/volume/histogram.hpp"
+#include "raw_volume_options.hpp"
 
 namespace pss::app {
 
+namespace {
+
+void print_cloud(const std::string& path) {
+  const PointCloud cloud = read_point_cloud(path);
+  const Aabb box = cloud.bounds();
+  const vec3 size = box.extent();
+  std::printf("file            %s\n", path.c_str());
+  std::printf("points          %zu%s\n", cloud.size(), cloud.has_normals() ? " (with normals)" : "");
+  std::printf("bounds          [%g, %g] x [%g, %g] x [%g, %g]\n", box.lo.x, box.hi.x, box.lo.y, box.hi.y, box.lo.z,
+              box.hi.z);
+  std::printf("size            %g x %g x %g (diagonal %g)\n", size.x, size.y, size.z, glm::length(size));
+  if (cloud.size() >= 2) {
+    const SpacingEstimate s = estimate_spacing(cloud.positions);
+    std::printf("spacing         %g mean nearest-neighbour distance\n", s.mean_nearest);
+    std::printf("suggested h     %g (median distance to the %dth nearest neighbour; rho = 2h = %g)\n", s.suggested_h,
+                s.k, 2 * s.suggested_h);
+  }
+}
+
+constexpr int kPrintedBins = 20;
+constexpr int kBarWidth = 40;
+
+void print_volume(const std::string& path, const std::optional<RawVolumeFormat>& raw) {
+  const VolumeFile file = read_volume_file(path, raw);
+  const Volume& v = file.volume;
+  const VolumeSource& src = file.source;
+  std::printf("file            %s\n", path.c_str());
+  std::printf("format          %s%s\n", src.format.c_str(), src.compressed ? " (compressed)" : "");
+  std::printf("dimensions      %d x %d x %d (%lld voxels)\n", v.dims.x, v.dims.y, v.dims.z,
+              static_cast<long long>(v.voxel_count()));
+  std::printf("voxel type      %s%s%s%s\n", voxel_type_name(src.type),
+              voxel_type_size(src.type) > 1 ? (src.big_endian ? ", big-endian" : ", little-endian") : "",
+              src.note.empty() ? "" : "; ", src.note.c_str());
+  std::printf("spacing         %g x %g x %g\n", v.spacing.x, v.spacing.y, v.spacing.z);
+  std::printf("origin          %g, %g, %g\n", v.origin.x, v.origin.y, v.origin.z);
+  const ValueStats stats = value_stats(v.values);
+  std::printf("values          [%g, %g], mean %g\n", stats.min, stats.max, stats.mean);
+
+  // A coarse view for the eye (log scale: the background would flatten everything else);
+  // the suggestions come from a fine histogram (see suggest_iso_values).
+  const Histogram fine = fine_histogram(v.values, stats);
+  const Histogram coarse = make_histogram(v.values, stats.max > stats.min ? kPrintedBins : 1, stats.min, stats.max);
+  const std::int64_t top = *std::max_element(coarse.counts.begin(), coarse.counts.end());
+  std::printf("histogram       %d bins, bars on a log scale\n", coarse.bins());
+  for (int b = 0; b < coarse.bins(); ++b) {
+    const std::int64_t c = coarse.counts[std::size_t(b)];
+    const int bar = c == 0 ? 0 : std::max(1, int(std::lround(kBarWidth * std::log1p(double(c)) / std::log1p(double(top)))));
+    std::printf("  %11.5g .. %-11.5g %-*s %lld\n", coarse.edge(b), coarse.edge(b + 1), kBarWidth,
+                std::string(std::size_t(bar), '#').c_str(), static_cast<long long>(c));
+  }
+  const std::vector<IsoSuggestion> iso = suggest_iso_values(fine);
+  if (iso.empty()) {
+    std::printf("suggested iso   none: the histogram has one main peak (no valley between materials); try --gradient\n");
+    return;
+  }
+  if (iso.size() == 1 && iso[0].tail) {
+    const bool up = iso[0].upper_share < iso[0].lower_share;
+    std::printf("suggested iso   %-8g (where the one main peak, at %g, ends; %.1f%% of voxels lie %s)\n", iso[0].iso,
+                up ? iso[0].lower_peak : iso[0].upper_peak, 100 * (up ? iso[0].upper_share : iso[0].lower_share),
+                up ? "above" : "below");
+    return;
+  }
+  for (std::size_t i = 0; i < iso.size(); ++i)
+    std::printf("%s%-8g (valley between the peaks at %g, %.1f%% of voxels, and %g, %.1f%%)\n",
+                i == 0 ? "suggested iso   " : "                ", iso[i].iso, iso[i].lower_peak,
+                100 * iso[i].lower_share, iso[i].upper_peak, 100 * iso[i].upper_share);
+}
+
+}  // namespace
+
 void add_info_command(CLI::App& app) {
-  auto* command = app.add_subcommand("info", "Print a point cloud's size, bounds, sample spacing and suggested h");
+  auto* command = app.add_subcommand(
+      "info", "Print a point cloud's size, bounds, sample spacing and suggested h; or a volume's dimensions, voxel "
+              "type, geometry, value histogram and suggested iso-values");
   auto path = std::make_shared<std::string>();
-  command->add_option("file", *path, "point cloud (.ply, .xyz, .txt, .pts)")->required();
-  command->callback([path] {
-    const PointCloud cloud = read_point_cloud(*path);
-    const Aabb box = cloud.bounds();
-    const vec3 size = box.extent();
-    std::printf("file            %s\n", path->c_str());
-    std::printf("points          %zu%s\n", cloud.size(), cloud.has_normals() ? " (with normals)" : "");
-    std::printf("bounds          [%g, %g] x [%g, %g] x [%g, %g]\n", box.lo.x, box.hi.x, box.lo.y, box.hi.y,
-                box.lo.z, box.hi.z);
-    std::printf("size            %g x %g x %g (diagonal %g)\n", size.x, size.y, size.z, glm::length(size));
-    if (cloud.size() >= 2) {
-      const SpacingEstimate s = estimate_spacing(cloud.positions);
-      std::printf("spacing         %g mean nearest-neighbour distance\n", s.mean_nearest);
-      std::printf("suggested h     %g (median distance to the %dth nearest neighbour; rho = 2h = %g)\n", s.suggested_h,
-                  s.k, 2 * s.suggested_h);
-    }
+  auto raw = std::make_shared<RawVolumeOptions>();
+  command->add_option("file", *path,
+                      "point cloud (.ply, .xyz, .txt, .pts) or volume (.nrrd/.nhdr, .mhd/.mha, .nii/.nii.gz, or raw "
+                      "with --dims)")
+      ->required();
+  add_raw_volume_options(*command, *raw);
+  command->callback([path, raw] {
+    const std::optional<RawVolumeFormat> format = raw_volume_format(*raw);
+    if (format || has_volume_header(*path))
+      print_volume(*path, format);
+    else
+      print_cloud(*path);
   });
 }
 

@@ -27,13 +27,9 @@ void check_iso_value(const Volume& volume, const std::string& file, float iso) {
 }  // namespace
 
 void add_volume_options(CLI::App& command, VolumeOptions& o, bool method_flag) {
-  command.add_option("file", o.input, "volume: .nrrd / .nhdr, or raw with --dims and --type")->required();
-  command.add_option("--dims", o.dims, "raw volume size XxYxZ, x fastest");
-  command.add_option("--type", o.type, "raw voxel type (default uint8)")
-      ->check(CLI::IsMember({"uint8", "uint16", "float32"}));
-  command.add_option("--spacing", o.spacing, "raw voxel spacing sx,sy,sz (default 1,1,1)");
-  command.add_option("--endian", o.endian, "raw byte order of uint16/float32 (default little)")
-      ->check(CLI::IsMember({"little", "big"}));
+  command.add_option("file", o.input, "volume: .nrrd/.nhdr, .mhd/.mha, .nii/.nii.gz, or raw with --dims and --type")
+      ->required();
+  add_raw_volume_options(command, o.raw);
   auto* iso = command.add_option("--iso", o.iso, "iso-surface f = V (theta1 weights)");
   auto* gradient = command.add_flag("--gradient", o.gradient, "surface of high gradient magnitude (theta2 weights)");
   iso->excludes(gradient);
@@ -72,17 +68,7 @@ void add_volume_options(CLI::App& command, VolumeOptions& o, bool method_flag) {
 PreparedVolume load_volume(const VolumeOptions& o, Stats& stats) {
   if (o.iso_option->count() == 0 && !o.gradient) throw Error("choose the surface: --iso V or --gradient");
   if (o.threshold > 0 && !o.gradient) throw Error("--threshold applies to --gradient surfaces only");
-  const bool raw_flags = !o.dims.empty() || !o.type.empty() || !o.spacing.empty() || !o.endian.empty();
-  std::optional<RawVolumeFormat> raw;
-  if (raw_flags) {
-    if (o.dims.empty()) throw Error("a raw volume needs --dims XxYxZ");
-    RawVolumeFormat f;
-    f.dims = parse_dims(o.dims);
-    if (!o.type.empty()) f.type = parse_voxel_type(o.type);
-    if (!o.spacing.empty()) f.spacing = parse_spacing(o.spacing);
-    f.big_endian = o.endian == "big";
-    raw = f;
-  }
+  const std::optional<RawVolumeFormat> raw = raw_volume_format(o.raw);
   Volume volume;
   {
     ScopedPhase phase(stats, "read");

@@ -1,6 +1,6 @@
-// The options `pss volume` and `pss extract` share: how to read the volume (raw flags or
-// NRRD), which surface (--iso V or --gradient), and the method's parameters, with the
-// documented defaults in voxel units.
+// The options `pss volume` and `pss extract` share: how to read the volume (raw flags or a
+// format with a header), which surface (--iso V or --gradient), and the method's
+// parameters, with the documented defaults in voxel units.
 #pragma once
 
 #include <string>
@@ -8,13 +8,14 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "raw_volume_options.hpp"
 #include "pss/volume/render_volume.hpp"
 
 namespace pss::app {
 
 struct VolumeOptions {
   std::string input;
-  std::string dims, type, spacing, endian;  // raw volumes only
+  RawVolumeOptions raw;  // raw volumes only
   float iso = 0;
   const CLI::Option* iso_option = nullptr;  // counts whether --iso was given
   bool gradient = false;

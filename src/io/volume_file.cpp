@@ -9,20 +9,18 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include "pss/core/error.hpp"
 #include "pss/io/output_file.hpp"
 #include "bytes.hpp"
+#include "volume_decode.hpp"
 
 namespace pss {
 
-namespace {
-
-// More voxels than this is not a volume we could hold; also keeps every size product far
-// from overflowing 64 bits.
-constexpr std::int64_t kMaxVoxels = std::int64_t(1) << 40;
+namespace volume_io {
 
 std::string trim(std::string_view s) {
   std::size_t b = 0, e = s.size();
@@ -65,39 +63,55 @@ std::vector<std::string> split(std::string_view s, std::string_view separators) 
   return parts;
 }
 
-// Throws unless the dims are positive and their product (in voxels) is sane.
+std::string describe(ivec3 d) {
+  return std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
+}
+
 std::int64_t checked_voxel_count(ivec3 dims, const std::string& where) {
   std::int64_t n = 1;
   for (int a = 0; a < 3; ++a) {
     if (dims[a] <= 0) throw Error(where + ": dimension " + std::to_string(dims[a]) + " is not positive");
     n *= dims[a];
-    if (n > kMaxVoxels) throw Error(where + ": " + std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" +
-                                    std::to_string(dims.z) + " voxels is too many (overflow)");
+    if (n > kMaxVoxels) throw Error(where + ": " + describe(dims) + " voxels is too many (overflow)");
   }
   return n;
 }
 
-int type_size(VoxelType t) { return t == VoxelType::uint8 ? 1 : t == VoxelType::uint16 ? 2 : 4; }
+namespace {
 
-// Decodes `count` voxels of `type` into floats; non-finite floats are an error.
+template <class T>
+void decode_as(const std::filesystem::path& path, const char* bytes, std::int64_t count, bool swap, float* out) {
+  for (std::int64_t i = 0; i < count; ++i) {
+    const T x = io::load<T>(bytes + sizeof(T) * i, swap);
+    if constexpr (std::is_floating_point_v<T>) {
+      // float64 beyond float's range becomes inf: as much an error as a stored NaN.
+      const float f = static_cast<float>(x);
+      if (!std::isfinite(f))
+        throw file_error(path, "voxel " + std::to_string(i) + " is not a finite number" +
+                                   (std::isfinite(x) ? " as a float" : ""));
+      out[i] = f;
+    } else {
+      out[i] = static_cast<float>(x);  // int32/uint32 round to 24 bits of mantissa
+    }
+  }
+}
+
+}  // namespace
+
 std::vector<float> decode(const std::filesystem::path& path, const char* bytes, std::int64_t count, VoxelType type,
                           bool big_endian) {
   std::vector<float> values(static_cast<std::size_t>(count));
   const bool swap = big_endian != (std::endian::native == std::endian::big);
+  float* out = values.data();
   switch (type) {
-    case VoxelType::uint8:
-      for (std::int64_t i = 0; i < count; ++i) values[i] = float(static_cast<unsigned char>(bytes[i]));
-      break;
-    case VoxelType::uint16:
-      for (std::int64_t i = 0; i < count; ++i) values[i] = float(io::load<std::uint16_t>(bytes + 2 * i, swap));
-      break;
-    case VoxelType::float32:
-      for (std::int64_t i = 0; i < count; ++i) {
-        const float f = io::load<float>(bytes + 4 * i, swap);
-        if (!std::isfinite(f)) throw file_error(path, "voxel " + std::to_string(i) + " is not a finite number");
-        values[i] = f;
-      }
-      break;
+    case VoxelType::int8: decode_as<std::int8_t>(path, bytes, count, swap, out); break;
+    case VoxelType::uint8: decode_as<std::uint8_t>(path, bytes, count, swap, out); break;
+    case VoxelType::int16: decode_as<std::int16_t>(path, bytes, count, swap, out); break;
+    case VoxelType::uint16: decode_as<std::uint16_t>(path, bytes, count, swap, out); break;
+    case VoxelType::int32: decode_as<std::int32_t>(path, bytes, count, swap, out); break;
+    case VoxelType::uint32: decode_as<std::uint32_t>(path, bytes, count, swap, out); break;
+    case VoxelType::float32: decode_as<float>(path, bytes, count, swap, out); break;
+    case VoxelType::float64: decode_as<double>(path, bytes, count, swap, out); break;
   }
   return values;
 }
@@ -156,9 +170,16 @@ std::string inflate_exact(const std::filesystem::path& path, std::string_view co
   return out;
 }
 
-std::string describe(ivec3 d) {
-  return std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
+std::filesystem::path beside(const std::filesystem::path& header, const std::string& name) {
+  const std::filesystem::path p(name);
+  return p.is_absolute() ? p : header.parent_path() / p;
 }
+
+}  // namespace volume_io
+
+using namespace volume_io;
+
+namespace {
 
 // NRRD "(x,y,z)" vectors.
 bool parse_vector(std::string_view s, vec3& out) {
@@ -171,7 +192,62 @@ bool parse_vector(std::string_view s, vec3& out) {
   return true;
 }
 
+// Every spelling of the NRRD format's `type:` field for the types pss reads (NRRD spec,
+// "type"); the 64-bit integers and "block" are not among them.
+std::optional<VoxelType> nrrd_type(const std::string& t) {
+  static const std::pair<const char*, VoxelType> names[] = {
+      {"signed char", VoxelType::int8},        {"int8", VoxelType::int8},
+      {"int8_t", VoxelType::int8},             {"uchar", VoxelType::uint8},
+      {"unsigned char", VoxelType::uint8},     {"uint8", VoxelType::uint8},
+      {"uint8_t", VoxelType::uint8},           {"short", VoxelType::int16},
+      {"short int", VoxelType::int16},         {"signed short", VoxelType::int16},
+      {"signed short int", VoxelType::int16},  {"int16", VoxelType::int16},
+      {"int16_t", VoxelType::int16},           {"ushort", VoxelType::uint16},
+      {"unsigned short", VoxelType::uint16},   {"unsigned short int", VoxelType::uint16},
+      {"uint16", VoxelType::uint16},           {"uint16_t", VoxelType::uint16},
+      {"int", VoxelType::int32},               {"signed int", VoxelType::int32},
+      {"int32", VoxelType::int32},             {"int32_t", VoxelType::int32},
+      {"uint", VoxelType::uint32},             {"unsigned int", VoxelType::uint32},
+      {"uint32", VoxelType::uint32},           {"uint32_t", VoxelType::uint32},
+      {"float", VoxelType::float32},           {"double", VoxelType::float64},
+  };
+  // Runs of blanks count as one ("unsigned  short").
+  std::string key;
+  for (const std::string& w : split(t, " \t")) key += (key.empty() ? "" : " ") + w;
+  for (const auto& [name, type] : names)
+    if (key == name) return type;
+  return std::nullopt;
+}
+
 }  // namespace
+
+const char* voxel_type_name(VoxelType t) {
+  switch (t) {
+    case VoxelType::int8: return "int8";
+    case VoxelType::uint8: return "uint8";
+    case VoxelType::int16: return "int16";
+    case VoxelType::uint16: return "uint16";
+    case VoxelType::int32: return "int32";
+    case VoxelType::uint32: return "uint32";
+    case VoxelType::float32: return "float32";
+    case VoxelType::float64: return "float64";
+  }
+  return "?";
+}
+
+int voxel_type_size(VoxelType t) {
+  switch (t) {
+    case VoxelType::int8:
+    case VoxelType::uint8: return 1;
+    case VoxelType::int16:
+    case VoxelType::uint16: return 2;
+    case VoxelType::int32:
+    case VoxelType::uint32:
+    case VoxelType::float32: return 4;
+    case VoxelType::float64: return 8;
+  }
+  return 1;
+}
 
 ivec3 parse_dims(std::string_view text) {
   const auto parts = split(text, "xX");
@@ -199,30 +275,43 @@ vec3 parse_spacing(std::string_view text) {
 }
 
 VoxelType parse_voxel_type(std::string_view text) {
-  if (text == "uint8") return VoxelType::uint8;
-  if (text == "uint16") return VoxelType::uint16;
-  if (text == "float32") return VoxelType::float32;
-  throw Error("--type '" + std::string(text) + "': expected uint8, uint16 or float32");
+  for (VoxelType t : {VoxelType::int8, VoxelType::uint8, VoxelType::int16, VoxelType::uint16, VoxelType::int32,
+                      VoxelType::uint32, VoxelType::float32, VoxelType::float64})
+    if (text == voxel_type_name(t)) return t;
+  throw Error("--type '" + std::string(text) +
+              "': expected int8, uint8, int16, uint16, int32, uint32, float32 or float64");
 }
 
-Volume read_raw_volume(const std::filesystem::path& path, const RawVolumeFormat& format) {
+std::int64_t parse_skip(std::string_view text) {
+  std::int64_t n = 0;
+  if (text.find_first_not_of("0123456789") != std::string_view::npos || !parse_int64(text, n) || n < 0 ||
+      n > (std::int64_t(1) << 50))
+    throw Error("--skip '" + std::string(text) + "': expected a byte count >= 0");
+  return n;
+}
+
+namespace {
+
+VolumeFile read_raw_file(const std::filesystem::path& path, const RawVolumeFormat& format) {
   const std::int64_t count = checked_voxel_count(format.dims, path.string());
+  if (format.skip < 0) throw file_error(path, "negative --skip " + std::to_string(format.skip));
   const std::string bytes = read_file(path);
-  const std::int64_t expected = count * type_size(format.type);
+  const std::int64_t voxel_bytes = count * voxel_type_size(format.type);
+  const std::int64_t expected = format.skip + voxel_bytes;
   if (std::int64_t(bytes.size()) != expected)
-    throw file_error(path, "holds " + std::to_string(bytes.size()) + " bytes, but " + describe(format.dims) + " " +
-                               (format.type == VoxelType::uint8    ? "uint8"
-                                : format.type == VoxelType::uint16 ? "uint16"
-                                                                   : "float32") +
-                               " voxels need " + std::to_string(expected));
-  Volume v;
-  v.dims = format.dims;
-  v.spacing = format.spacing;
-  v.values = decode(path, bytes.data(), count, format.type, format.big_endian);
-  return v;
+    throw file_error(path, "holds " + std::to_string(bytes.size()) + " bytes, but " +
+                               (format.skip ? std::to_string(format.skip) + " skipped + " : std::string()) +
+                               describe(format.dims) + " " + voxel_type_name(format.type) + " voxels need " +
+                               std::to_string(expected));
+  VolumeFile f;
+  f.volume.dims = format.dims;
+  f.volume.spacing = format.spacing;
+  f.volume.values = decode(path, bytes.data() + format.skip, count, format.type, format.big_endian);
+  f.source = {"raw", format.type, format.big_endian, false, {}};
+  return f;
 }
 
-Volume read_nrrd(const std::filesystem::path& path) {
+VolumeFile read_nrrd_file(const std::filesystem::path& path) {
   const std::string file = read_file(path);
   std::size_t pos = 0;
   const auto next_line = [&](std::string& line) {
@@ -257,12 +346,8 @@ Volume read_nrrd(const std::filesystem::path& path) {
     const std::string value = trim(line.substr(colon + 2));
     const auto bad = [&] { return file_error(path, "unsupported NRRD " + field + " '" + value + "'"); };
     if (field == "type") {
-      const std::string t = lower(value);
-      if (t == "uchar" || t == "unsigned char" || t == "uint8" || t == "uint8_t") type = VoxelType::uint8;
-      else if (t == "ushort" || t == "unsigned short" || t == "unsigned short int" || t == "uint16" || t == "uint16_t")
-        type = VoxelType::uint16;
-      else if (t == "float") type = VoxelType::float32;
-      else throw bad();
+      type = nrrd_type(lower(value));
+      if (!type) throw bad();
     } else if (field == "dimension") {
       std::int64_t d;
       if (!parse_int64(value, d) || d != 3) throw bad();
@@ -328,15 +413,14 @@ Volume read_nrrd(const std::filesystem::path& path) {
   if (byte_skip == -1 && gzip) throw file_error(path, "unsupported NRRD byte skip -1 with gzip encoding");
 
   const std::int64_t count = std::int64_t(dims.x) * dims.y * dims.z;
-  const std::size_t expected = std::size_t(count) * std::size_t(type_size(*type));
+  const std::size_t expected = std::size_t(count) * std::size_t(voxel_type_size(*type));
   std::string detached;
   std::filesystem::path data_path = path;
   std::string_view data;
   if (attached) {
     data = std::string_view(file).substr(std::min(pos, file.size()));
   } else {
-    data_path = std::filesystem::path(data_file).is_absolute() ? std::filesystem::path(data_file)
-                                                               : path.parent_path() / data_file;
+    data_path = beside(path, data_file);
     detached = read_file(data_path);
     data = detached;
   }
@@ -355,22 +439,60 @@ Volume read_nrrd(const std::filesystem::path& path) {
                                       std::to_string(expected + std::size_t(byte_skip)));
     data = data.substr(std::size_t(byte_skip));
   }
-  Volume v;
-  v.dims = dims;
-  v.spacing = spacing;
-  v.origin = origin;
-  v.values = decode(data_path, data.data(), count, *type, big_endian);
-  return v;
+  VolumeFile f;
+  f.volume.dims = dims;
+  f.volume.spacing = spacing;
+  f.volume.origin = origin;
+  f.volume.values = decode(data_path, data.data(), count, *type, big_endian);
+  f.source = {"NRRD", *type, big_endian, gzip, {}};
+  return f;
+}
+
+}  // namespace
+
+Volume read_raw_volume(const std::filesystem::path& path, const RawVolumeFormat& format) {
+  return read_raw_file(path, format).volume;
+}
+
+Volume read_nrrd(const std::filesystem::path& path) { return read_nrrd_file(path).volume; }
+
+namespace {
+
+enum class HeadedFormat { none, nrrd, metaimage, nifti };
+
+HeadedFormat headed_format(const std::filesystem::path& path) {
+  const std::string name = lower(path.filename().string());
+  const auto ends_with = [&](std::string_view suffix) {
+    return name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+  };
+  if (ends_with(".nrrd") || ends_with(".nhdr")) return HeadedFormat::nrrd;
+  if (ends_with(".mhd") || ends_with(".mha")) return HeadedFormat::metaimage;
+  if (ends_with(".nii") || ends_with(".nii.gz")) return HeadedFormat::nifti;
+  return HeadedFormat::none;
+}
+
+}  // namespace
+
+bool has_volume_header(const std::filesystem::path& path) { return headed_format(path) != HeadedFormat::none; }
+
+VolumeFile read_volume_file(const std::filesystem::path& path, const std::optional<RawVolumeFormat>& raw) {
+  const HeadedFormat format = headed_format(path);
+  if (format != HeadedFormat::none && raw)
+    throw Error(path.string() + ": the file's header describes the volume; drop --dims/--type/--spacing/--endian/--skip");
+  switch (format) {
+    case HeadedFormat::nrrd: return read_nrrd_file(path);
+    case HeadedFormat::metaimage: return read_metaimage_file(path);
+    case HeadedFormat::nifti: return read_nifti_file(path);
+    case HeadedFormat::none: break;
+  }
+  if (!raw)
+    throw Error(path.string() +
+                ": not .nrrd/.nhdr/.mhd/.mha/.nii/.nii.gz, so a raw volume: it needs --dims XxYxZ (and --type unless uint8)");
+  return read_raw_file(path, *raw);
 }
 
 Volume read_volume(const std::filesystem::path& path, const std::optional<RawVolumeFormat>& raw) {
-  const std::string ext = lower(path.extension().string());
-  if (ext == ".nrrd" || ext == ".nhdr") {
-    if (raw) throw Error(path.string() + ": a NRRD header describes the volume; drop --dims/--type/--spacing/--endian");
-    return read_nrrd(path);
-  }
-  if (!raw) throw Error(path.string() + ": a raw volume needs --dims XxYxZ (and --type unless uint8)");
-  return read_raw_volume(path, *raw);
+  return read_volume_file(path, raw).volume;
 }
 
 }  // namespace pss

@@ -1,0 +1,24 @@
+// The flags that describe a headerless raw volume (--dims, --type, --spacing, --endian,
+// --skip), shared by `pss volume`, `pss extract` and `pss info`.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "pss/io/volume_file.hpp"
+
+namespace pss::app {
+
+struct RawVolumeOptions {
+  std::string dims, type, spacing, endian, skip;  // empty: not given
+};
+
+void add_raw_volume_options(CLI::App& command, RawVolumeOptions& options);
+
+// The raw format when any raw flag was given (and then --dims is required), else nullopt
+// (the file must then be a format with a header).
+std::optional<RawVolumeFormat> raw_volume_format(const RawVolumeOptions& options);
+
+}  // namespace pss::app
