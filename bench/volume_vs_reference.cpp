@@ -4,7 +4,7 @@
 // them, distance of pss's hits to the marching-tetrahedra mesh (mean, p99, voxels), mean
 // normal angle where both hit, pss's frame time and the reference's.
 //   build/bench/volume_vs_reference [--json out/bench/volume_vs_reference.json]
-//                                   [--write-images DIR] [--size 256]
+//                                   [--write-images DIR] [--size 256] [--only NAME]
 // With --write-images, DIR/<volume>_iso<v>_az<a>_el<e>.png holds pss (left), the reference
 // (middle, grey headlight diffuse) and where they disagree (right: red, pss has a surface
 // the reference has not or is a voxel in front of it; blue, pss misses the reference's
@@ -52,10 +52,12 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 int main(int argc, char** argv) {
   std::string json_path = "out/bench/volume_vs_reference.json", images;
   int size = 256;
+  std::string only;  // one dataset by name
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--json")) json_path = argv[i + 1];
     if (!std::strcmp(argv[i], "--write-images")) images = argv[i + 1];
     if (!std::strcmp(argv[i], "--size")) size = std::max(8, std::atoi(argv[i + 1]));
+    if (!std::strcmp(argv[i], "--only")) only = argv[i + 1];
   }
   if (!images.empty()) std::filesystem::create_directories(images);
   const std::vector<Dataset> datasets = {
@@ -68,10 +70,11 @@ int main(int argc, char** argv) {
   const vec2 views[] = {{30, 10}, {200, -30}, {120, 60}};
 
   nlohmann::json rows = nlohmann::json::array();
-  std::printf("| volume | iso | view | object px | holes %% | phantom %% | in front %% | behind %% | mean dist (vox) | "
-              "p99 dist (vox) | normal angle (deg) | pss frame s | reference s |\n"
-              "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("| volume | iso | view | object px | holes %% | phantom %% | holes off rim %% | phantom off rim %% | "
+              "in front %% | behind %% | mean dist (vox) | p99 dist (vox) | normal angle (deg) | pss frame s | "
+              "reference s |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Dataset& d : datasets) {
+    if (!only.empty() && d.name != only) continue;
     const Volume volume = read_volume(std::filesystem::path(PSS_SOURCE_DIR "/data") / d.file, d.raw);
     const VolumeView v = volume.view();
     for (const float iso : d.isos) {
@@ -80,12 +83,12 @@ int main(int argc, char** argv) {
       const test::ReferenceMesh mesh(v, iso);
       const double mesh_s = seconds_since(start);
       for (const vec2 view : views) {
-        const Camera camera = test::volume_camera(v, size, size, view.x, view.y);
+        const Camera camera = test::volume_camera(prepared.surface_bounds(), size, size, view.x, view.y);
         const test::ReferenceMeasurement m = test::measure_against_reference(prepared, iso, camera, mesh);
         const test::ReferenceComparison& c = m.comparison;
-        std::printf("| %s | %g | %g,%g | %lld | %.2f | %.2f | %.2f | %.2f | %.3f | %.3f | %.2f | %.3f | %.3f |\n",
-                    d.name.c_str(), iso, view.x, view.y, (long long)c.object_pixels, 100 * c.holes, 100 * c.phantom,
-                    100 * c.in_front, 100 * c.behind, c.mean_distance, c.p99_distance, c.mean_normal_angle_deg,
+        std::printf("| %s | %g | %g,%g | %lld | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.3f | %.3f | %.2f | %.3f | "
+                    "%.3f |\n", d.name.c_str(), iso, view.x, view.y, (long long)c.object_pixels, 100 * c.holes,
+                    100 * c.phantom, 100 * c.interior_holes, 100 * c.exterior_phantom, 100 * c.in_front, 100 * c.behind, c.mean_distance, c.p99_distance, c.mean_normal_angle_deg,
                     m.pss_seconds, m.reference_seconds);
         std::fflush(stdout);
         rows.push_back({{"volume", d.name},
@@ -101,6 +104,8 @@ int main(int argc, char** argv) {
                         {"phantom_pixels", c.phantom_pixels},
                         {"holes", c.holes},
                         {"phantom", c.phantom},
+                        {"interior_holes", c.interior_holes},
+                        {"exterior_phantom", c.exterior_phantom},
                         {"in_front_pixels", c.in_front_pixels},
                         {"behind_pixels", c.behind_pixels},
                         {"in_front", c.in_front},

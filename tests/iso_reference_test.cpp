@@ -33,7 +33,7 @@ float ray_center_distance(const Ray& r) {
 TEST(IsoReference, HitsLieOnTheSampledSphereAndTheSilhouetteIsAnalyticButForTheRim) {
   const Volume volume = sphere_volume();
   for (const vec2 view : {vec2(0, 0), vec2(37, 21), vec2(200, -60)}) {
-    const Camera camera = test::volume_camera(volume.view(), 160, 120, view.x, view.y);
+    const Camera camera = test::volume_camera(volume.view().bounds(), 160, 120, view.x, view.y);
     const test::ReferenceImage ref = test::cast_iso_reference(volume.view(), 0.0f, camera);
     std::int64_t hits = 0, disagree = 0;
     float worst = 0, worst_angle = 0;
@@ -72,7 +72,7 @@ TEST(IsoReference, BoxFacesAreNotSurfaces) {
   o.dims = ivec3(40, 32, 36);
   const Volume volume = test::sample_volume(plane, o);
   for (const float azimuth : {90.0f, -90.0f, 60.0f, -120.0f}) {
-    const Camera camera = test::volume_camera(volume.view(), 96, 96, azimuth, 15);
+    const Camera camera = test::volume_camera(volume.view().bounds(), 96, 96, azimuth, 15);
     const test::ReferenceImage ref = test::cast_iso_reference(volume.view(), 20.4f, camera);
     std::int64_t hits = 0;
     for (const test::ReferencePixel& p : ref.pixels)
@@ -86,7 +86,7 @@ TEST(IsoReference, BoxFacesAreNotSurfaces) {
   // A volume above iso everywhere has no surface at all, not even its box.
   Volume full = volume;
   std::fill(full.values.begin(), full.values.end(), 100.0f);
-  const Camera camera = test::volume_camera(full.view(), 64, 64, 30, 10);
+  const Camera camera = test::volume_camera(full.view().bounds(), 64, 64, 30, 10);
   for (const test::ReferencePixel& p : test::cast_iso_reference(full.view(), 50.0f, camera).pixels)
     EXPECT_FALSE(p.found);
   EXPECT_TRUE(test::ReferenceMesh(full.view(), 50.0f).triangles().empty());
@@ -143,7 +143,7 @@ TEST(IsoReference, MeshLiesOnTheSampledSphereAndAgreesWithTheRays) {
     for (const vec3 p : {t.a, t.b, t.c}) EXPECT_LT(std::abs(glm::length(p - kCenter) - kRadius), 0.05f);
   // The reference's own hits, scored as if pss had made them: no holes, no phantom,
   // within the interpolation error of the mesh, normals identical.
-  const Camera camera = test::volume_camera(volume.view(), 128, 128, 30, 10);
+  const Camera camera = test::volume_camera(volume.view().bounds(), 128, 128, 30, 10);
   const test::ReferenceImage ref = test::cast_iso_reference(volume.view(), 0.0f, camera);
   std::vector<Hit> hits(ref.pixels.size());
   for (std::size_t i = 0; i < hits.size(); ++i)
@@ -177,7 +177,7 @@ TEST(IsoReference, MeasuresPssThroughTheSamePixels) {
   // (x, y) is the reference's, so the two hit points nearly coincide wherever both hit.
   const Volume volume = sphere_volume();
   const PreparedVolume prepared = test::prepare_iso(volume, 0.0f);
-  const Camera camera = test::volume_camera(volume.view(), 96, 96, 30, 10);
+  const Camera camera = test::volume_camera(volume.view().bounds(), 96, 96, 30, 10);
   const test::ReferenceMesh mesh(volume.view(), 0.0f);
   const test::ReferenceMeasurement m = test::measure_against_reference(prepared, 0.0f, camera, mesh);
   EXPECT_GT(m.comparison.object_pixels, 700);

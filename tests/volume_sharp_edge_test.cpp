@@ -106,8 +106,6 @@ TEST(VolumeSharpEdges, NoHolesNoPhantomsAndBetterThanMarchingTetrahedra) {
       if (truth.distance(v.point) < 2.0f * voxel) mesh.emplace_back(v.point, v.normal);
     const Accuracy mt = measure(truth, mesh);
     const Accuracy pss = measure(truth, r.hits);
-    if (getenv("PSS_DBG")) for (std::size_t i = 0; i < r.frame.hits.size(); ++i) { const Hit& h = r.frame.hits[i]; if (h.found() && truth.distance(h.point) > voxel) std::printf("  out px %zu,%zu d %.2f signed %.2f t %.2f it %d angle %.1f\n", i % 128, i / 128, truth.distance(h.point)/voxel, truth.value(h.point), h.t, h.iterations, angle_deg(h.normal, truth.normal(h.point))); }
-    std::printf("max %.3f p: ", pss.max_distance / voxel);
     std::printf("%s: %d covered pixels, %d holes, %d phantoms; hits rms %.3f (mesh %.3f), normals rms %.2f (mesh "
                 "%.2f) deg\n", c.name, pixels.covered, pixels.holes, pixels.phantoms, pss.rms_distance / voxel,
                 mt.rms_distance / voxel, pss.rms_normal_deg, mt.rms_normal_deg);

@@ -21,7 +21,7 @@ struct VolumeOptions {
   bool gradient = false;
   std::string method = "predictor-corrector";
   float h = 2, k = 0.75f, alpha = 0.9f, error = 0.1f, radius = 1.5f;  // voxel units / ratios
-  float smoothing = 1;  // θ1's k, voxels
+  float smoothing = kIsoSmoothingVoxels;  // θ1's k, voxels
   float threshold = 0;  // gradient surfaces; 0: the paper's 0.5
 };
 

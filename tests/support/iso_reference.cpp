@@ -326,8 +326,26 @@ ReferenceComparison compare_to_reference(const std::vector<Hit>& hits, const Ref
       angle += std::acos(std::min(1.0f, cos)) * 57.2957795;
     }
   }
+  // 8-neighbourhood counts of reference hits, for the rim-tolerant figures.
+  const int w = ref.width, h = ref.height;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const std::size_t i = std::size_t(y) * w + x;
+      if (i >= n || hits[i].found() == ref.pixels[i].found) continue;
+      int around = 0, inside = 0;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          if ((dx == 0 && dy == 0) || x + dx < 0 || y + dy < 0 || x + dx >= w || y + dy >= h) continue;
+          ++around;
+          inside += ref.pixels[std::size_t(y + dy) * w + x + dx].found;
+        }
+      r.interior_hole_pixels += ref.pixels[i].found && inside == around;
+      r.exterior_phantom_pixels += hits[i].found() && inside == 0;
+    }
   r.pss_hits = std::int64_t(d.size());
   if (r.object_pixels) {
+    r.interior_holes = double(r.interior_hole_pixels) / double(r.object_pixels);
+    r.exterior_phantom = double(r.exterior_phantom_pixels) / double(r.object_pixels);
     r.holes = double(r.hole_pixels) / double(r.object_pixels);
     r.phantom = double(r.phantom_pixels) / double(r.object_pixels);
     r.in_front = double(r.in_front_pixels) / double(r.object_pixels);
@@ -374,13 +392,13 @@ std::vector<vec3> disagreement_image(const std::vector<Hit>& hits, const Referen
 
 // --- pss's volume method: the only calls into it. ---
 
-Camera volume_camera(const VolumeView& v, int width, int height, float azimuth_deg, float elevation_deg) {
+Camera volume_camera(const Aabb& box, int width, int height, float azimuth_deg, float elevation_deg) {
   CameraSettings s;  // the defaults of `pss volume`'s render options
   s.width = width;
   s.height = height;
   s.azimuth_deg = azimuth_deg;
   s.elevation_deg = elevation_deg;
-  return Camera::framing(v.bounds(), s);
+  return Camera::framing(box, s);
 }
 
 RenderedFrame render_pss(const PreparedVolume& volume, const Camera& camera, double* frame_seconds) {

@@ -82,6 +82,12 @@ struct ReferenceComparison {
   std::int64_t phantom_pixels = 0;  // pss hits, the reference does not
   std::int64_t pss_hits = 0;
   double holes = 0, phantom = 0;  // fractions of object_pixels
+  // The same away from the silhouette's rim: holes whose 8 neighbours the reference all
+  // hits, phantom pixels none of whose 8 neighbours it hits. A PSS smooths at the scale h
+  // and may move a silhouette by a fraction of a voxel, a pixel or so at these sizes; what
+  // remains is surface missing or made up.
+  std::int64_t interior_hole_pixels = 0, exterior_phantom_pixels = 0;
+  double interior_holes = 0, exterior_phantom = 0;
   // Of every pss hit point to the mesh, in voxels.
   double mean_distance = 0, p99_distance = 0, max_distance = 0;
   // Of the pixels both hit: those where pss's point is more than one voxel in front of the
@@ -110,8 +116,9 @@ std::vector<vec3> disagreement_image(const std::vector<Hit>& hits, const Referen
 
 // --- The one place that calls pss's volume method. ---
 
-// The camera of `pss volume` with the default render options, WxH, orbited to the view.
-Camera volume_camera(const VolumeView& v, int width, int height, float azimuth_deg, float elevation_deg);
+// The camera of `pss volume` with the default render options, WxH, orbited to the view,
+// framing `box` (pss volume frames PreparedVolume::surface_bounds()).
+Camera volume_camera(const Aabb& box, int width, int height, float azimuth_deg, float elevation_deg);
 
 // pss's frame of a prepared volume on the CPU, with the default render settings.
 // `frame_seconds` gets the time of its primary rays and shading.

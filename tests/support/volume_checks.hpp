@@ -58,8 +58,8 @@ inline Rendered render(const Volume& volume, std::optional<float> iso, VolumeMet
   Stats stats;
   VolumeFields fields = compute_fields(volume);
   const VolumeParams params = VolumeParams::from_voxels(fields.volume.view().voxel_size(), method, h_voxels);
-  const float kk = getenv("PSS_K") ? float(atof(getenv("PSS_K"))) : 1.0f;
-  const FeatureParams feature = iso ? iso_feature(*iso, kk * fields.volume.view().voxel_size()) : gradient_feature();
+  const float voxel = fields.volume.view().voxel_size();
+  const FeatureParams feature = iso ? iso_feature(*iso, kIsoSmoothingVoxels * voxel) : gradient_feature();
   const PreparedVolume prepared = prepare_volume(std::move(fields), feature, params, stats);
   const Camera camera = Camera::framing(prepared.fields.volume.view().bounds(), view);
   TraceSettings settings;

@@ -119,7 +119,7 @@ inline PreparedVolume prepare_iso(const Volume& volume, float iso,
                                   const VolumeParams& params = VolumeParams::from_voxels(1.0f)) {
   Stats stats;
   VolumeFields fields = compute_fields(volume);
-  const FeatureParams feature = iso_feature(iso, fields.volume.view().voxel_size());
+  const FeatureParams feature = iso_feature(iso, kIsoSmoothingVoxels * fields.volume.view().voxel_size());
   return prepare_volume(std::move(fields), feature, params, stats);
 }
 

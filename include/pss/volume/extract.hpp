@@ -49,7 +49,7 @@ PSS_INLINE ExtractedPoint extract_candidate(const VolumeScene& s, vec3 r) {
     const VolumeProjection proj = project_volume_point(s.fields, p, x, nb);
     if (proj.status != VolumeProjectionStatus::ok || length2(proj.point - r) > p.step * p.step) return out;
     if (length2(proj.point - x) <= p.epsilon * p.epsilon) {
-      if (!is_data_surface(s.fields, s.cells, proj.point, proj.normal)) return out;
+      if (!is_data_surface(s.fields, s.cells, s.feature, proj.point, proj.normal, p.surface_reach())) return out;
       out.point = proj.point;
       out.normal = proj.normal;
       out.moved = glm::length(proj.point - r);

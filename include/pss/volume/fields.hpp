@@ -79,6 +79,13 @@ void set_feature(VolumeFields& fields, const FeatureParams& feature);
 // weights (1, 2, 1)/4; at the border the difference is one-sided. Parallel on the CPU.
 VolumeFields compute_fields(Volume volume);
 
+// θ1's default k, in voxels. On a step sharper than a voxel only the two layers of voxels
+// beside the edge carry weight, and their first-order distances |v − f|/|∇f| range from
+// about ±0.3 to ±1.7 voxels as the edge moves within the cell: k must let both layers weigh
+// (k ≳ 1.2), while a thinner shell follows curvature more closely (k small).
+// tests/volume_sharp_edge_test and volume_render_test measure both ends (docs/paper-notes.md).
+inline constexpr float kIsoSmoothingVoxels = 1.25f;
+
 // The feature parameters. θ1's k is in world units (the CLI's --smoothing is in voxels);
 // the gradient mode's threshold defaults to the paper's 0.5 when 0.
 FeatureParams iso_feature(float iso, float smoothing);

@@ -98,7 +98,7 @@ PSS_INLINE bool resolve_sample(const VolumeScene& s, const Ray& ray, float t_sam
     }
     if (length2(proj.point - x) <= eps2) {
       // Settled, but only a hit where the data has a surface (surface_cells.hpp).
-      if (!is_data_surface(s.fields, s.cells, x, proj.normal)) return false;
+      if (!is_data_surface(s.fields, s.cells, s.feature, x, proj.normal, p.surface_reach())) return false;
       hit.t = t;
       hit.point = x;
       hit.normal = proj.normal;

@@ -29,6 +29,10 @@ struct VolumeParams {
   int max_retries = 6;     // projections from ray/polynomial intersections per sample
   bool debug_projection = false;  // record the first projection's moves (the paper's Figure 2)
 
+  // How far a hit may stand off the data's own surface along its normal (surface_cells.hpp):
+  // the PSS smooths at the scale h; 0.75h takes noise of a fifth of the contrast per voxel.
+  PSS_HOST_DEVICE float surface_reach() const { return 0.75f * h; }
+
   // Defaults in voxel units u (VolumeView::voxel_size), see docs/paper-notes.md: h = 2u,
   // k = 0.75 (b = 1.5u), neighbourhood radius 1.5h, ε = 0.1u, α1 = 0.9; t iterations stop
   // below ε/2, a change that cannot decide an acceptance by itself.
@@ -110,23 +114,34 @@ struct VoxelNeighbourhood {
   int count = 0;
   vec3 offset[kMaxNeighbours];   // pᵢ − center
   float window[kMaxNeighbours];  // (1 − dᵢ²/ρ²)²
-  float theta[kMaxNeighbours];   // θ1 or θ2 of pᵢ, times the window
+  float theta[kMaxNeighbours];   // θ1 or θ2 of pᵢ, times the window and the facing
 
-  // With `weighted_only` (the predictor, whose sums all carry θ), voxels whose windowed θ is
+  // θ counts a voxel only as far as its gradient faces the way of n, the surface being
+  // fitted (facing(), below): the two faces of a wall thinner than the ball are sheets of
+  // opposite orientation, and a fit over both would settle between them. With
+  // `weighted_only` (the predictor, whose sums all carry θ), voxels whose windowed θ is
   // below 1e-5 are left out: they could not move any sum by more than that fraction.
-  PSS_HOST_DEVICE void gather(const FieldView& fields, vec3 c, float radius, bool weighted_only) {
+  PSS_HOST_DEVICE void gather(const FieldView& fields, vec3 c, float radius, vec3 n, bool weighted_only) {
     center = c;
     count = 0;
     const float inv_r2 = 1.0f / (radius * radius);
     for_each_voxel_near(fields.volume, c, radius, [&](vec3 d, std::int64_t index) {
       if (count == kMaxNeighbours) return;
       const float u = 1.0f - length2(d) * inv_r2;
-      if (weighted_only && u * u * fields.weights[index] < 1e-5f) return;
+      const float w = u * u * fields.weights[index] * facing(fields.gradients[index], n);
+      if (weighted_only && w < 1e-5f) return;
       offset[count] = d;
       window[count] = u * u;
-      theta[count] = u * u * fields.weights[index];
+      theta[count] = w;
       ++count;
     });
+  }
+
+  // 1 for a gradient within 60° of n, falling linearly to 0 at 90° and beyond: continuous,
+  // so that the fit changes smoothly as n turns.
+  PSS_HOST_DEVICE static float facing(vec3 gradient, vec3 n) {
+    const float g = glm::length(gradient);
+    return g > 0 ? clamp(2.0f * glm::dot(gradient, n) / g, 0.0f, 1.0f) : 0.0f;
   }
 };
 
@@ -209,7 +224,7 @@ PSS_INLINE VolumeProjection predict(const FieldView& fields, const VolumeParams&
   float t = 0;
   vec3 centroid(0.0f);  // of the weighted voxels, relative to q
   for (int it = 0; it < params.max_predictor_iterations; ++it) {
-    nb.gather(fields, r + t * n, params.radius, true);
+    nb.gather(fields, r + t * n, params.radius, n, true);
     float w = 0;
     vec3 m(0.0f);  // Σθ(pᵢ − q)
     Sym3 c;        // Σθ(pᵢ − q)(pᵢ − q)ᵀ
@@ -255,7 +270,7 @@ PSS_INLINE VolumeProjection correct(const FieldView& fields, const VolumeParams&
   vec3 n = predicted.frame.n;
   const float h = params.h, alpha = params.alpha;
   const float inv_h2 = 1.0f / (h * h);
-  nb.gather(fields, x0, params.radius, false);
+  nb.gather(fields, x0, params.radius, n, false);
   float t = 0;
   for (int it = 0; it < params.max_corrector_iterations; ++it) {
     const detail::CorrectorEnergy energy{nb, n, h, alpha};

@@ -58,18 +58,28 @@ PSS_INLINE bool passes_feature_test(const FieldView& v, const CellView& cells, c
 }
 
 // Whether a projection that settled at p, with the fitted surface's normal n, is a hit:
-// p lies in a crossed cell or next to one (the PSS is a smoothed surface and may stand off
-// the interpolant's by a fraction of a voxel, never by a cell without the data crossing
-// there), and n agrees with the data's gradient there within kNormalAgreement. Where a
-// ball B(p, ρ) holds only a small cap of a thin shell of weighted voxels (grazing rays
-// just outside a sharp edge), the fit's smallest eigenvector can turn sideways and the
-// projection settle on a sheet across the surface: its normal is then ~90° from ∇f.
-inline constexpr float kNormalAgreement = 0.5f;  // cos 60°
-
-PSS_INLINE bool is_data_surface(const FieldView& v, const CellView& cells, vec3 p, vec3 n) {
+// the data's surface is there. For an iso-surface the interpolant crosses v on the segment
+// p ± reach·n (sampled every quarter voxel), reach being how far the PSS, a surface
+// smoothed at the scale h, may stand off the interpolant's (which keeps the noise); a fit
+// that settled beside a small blob or off the rim of a cap has no crossing along its normal.
+// A gradient surface needs p next to a cell of high θ2.
+PSS_INLINE bool is_data_surface(const FieldView& v, const CellView& cells, const FeatureParams& f, vec3 p, vec3 n,
+                                float reach) {
   if (!cells.has(v.volume.to_grid(p), kCellBeside)) return false;
-  const vec3 g = v.gradient_at(p);
-  return abs(glm::dot(g, n)) >= kNormalAgreement * glm::length(g) * glm::length(n);
+  if (f.kind == FeatureKind::gradient) return true;
+  const int steps = max(1, int(ceil(4.0f * reach / v.volume.voxel_size())));
+  bool below = false, above = false;
+  const Aabb box = v.volume.bounds();
+  for (int i = -steps; i <= steps; ++i) {
+    // Only inside the box: beyond it the data are not known (sampling would clamp to the
+    // face's values and make a crossing of the face itself).
+    const vec3 x_at = p + (reach * float(i) / float(steps)) * n;
+    if (glm::any(glm::lessThan(x_at, box.lo)) || glm::any(glm::greaterThan(x_at, box.hi))) continue;
+    const float x = sample(v.volume, x_at);
+    below = below || x <= f.iso;
+    above = above || x >= f.iso;
+  }
+  return below && above;
 }
 
 // The cells of `fields` for `feature`; `reach` (world units) is how far from a crossed cell
