@@ -1,6 +1,6 @@
 // The local bivariate polynomial g(x, y) = Ax² + By² + Cxy + D on the plane H(n, q)
-// (paper §3, §4), its weighted least-squares fit, the orthogonal projection of a point onto
-// its graph, and the intersection of a ray with it. Coordinates are local to a Frame.
+// (paper §3, §4), its weighted least-squares fit, the orthogonal projection of the frame's
+// origin onto its graph, and the intersection of a ray with it. Coordinates are local to a Frame.
 #pragma once
 
 #include "pss/fit/conjugate_gradient.hpp"
@@ -60,31 +60,17 @@ struct PolynomialFit {
   }
 };
 
-// The point of the graph of g nearest to `p` (local coordinates): minimises
-// (x - px)² + (y - py)² + (g(x, y) - pz)² by Newton's method, falling back to the always
-// positive definite Gauss-Newton matrix when the full Hessian is not.
-PSS_INLINE vec3 closest_point_on_graph(const Polynomial& g, vec3 p, int max_iterations = 16) {
-  float x = p.x, y = p.y;
-  for (int it = 0; it < max_iterations; ++it) {
-    const float r = g(x, y) - p.z;
-    const vec2 gr = g.gradient(x, y);
-    const float fx = (x - p.x) + r * gr.x;
-    const float fy = (y - p.y) + r * gr.y;
-    float hxx = 1 + gr.x * gr.x, hxy = gr.x * gr.y, hyy = 1 + gr.y * gr.y;
-    const float nxx = hxx + r * 2 * g.a, nxy = hxy + r * g.c, nyy = hyy + r * 2 * g.b;
-    if (nxx > 0 && nxx * nyy - nxy * nxy > 0) {
-      hxx = nxx;
-      hxy = nxy;
-      hyy = nyy;
-    }
-    const float det = hxx * hyy - hxy * hxy;
-    const float dx = (hyy * fx - hxy * fy) / det;
-    const float dy = (hxx * fy - hxy * fx) / det;
-    x -= dx;
-    y -= dy;
-    if (dx * dx + dy * dy < 1e-14f * (1 + x * x + y * y)) break;
-  }
-  return vec3(x, y, g(x, y));
+// The orthogonal projection of the frame's origin onto the graph of g (§4: "the projection
+// of q on the local approximation"). g has no linear terms, so along every direction u of
+// the plane the squared distance |u|² + (uᵀMu + D)² (g = uᵀMu + D) grows with s = |u|² at
+// the rate 1 + 2λ(λs + D) ≥ 1 + 2λD, λ = ûᵀMû: the foot point is (0, 0, D) exactly when
+// 1 + 2λD > 0 for every λ, i.e. I + D·∇²g is positive definite, the origin on the near side
+// of every centre of curvature. Otherwise the nearest point lies off the axis (or is not
+// unique): false, with `foot` still (0, 0, D).
+PSS_INLINE bool project_origin_onto_graph(const Polynomial& g, vec3& foot) {
+  foot = vec3(0.0f, 0.0f, g.d);
+  const float hxx = 1 + 2 * g.a * g.d, hyy = 1 + 2 * g.b * g.d, hxy = g.c * g.d;
+  return hxx > 0 && hxx * hyy - hxy * hxy > 0;
 }
 
 // Roots t of g(o + t·d) = (o + t·d).z in increasing order (local coordinates); returns how

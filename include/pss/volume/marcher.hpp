@@ -95,6 +95,7 @@ PSS_INLINE bool resolve_sample(const VolumeScene& s, const Ray& ray, float t_sam
     if (p.method == VolumeMethod::predictor_corrector && (could_accept || record)) {
       proj = correct(s.fields, p, proj, nb);
       if (record && length2(proj.point - proj.predicted) > eps2) hit.debug |= kCorrectorMoved;
+      if (proj.status != VolumeProjectionStatus::ok) return false;
     }
     if (length2(proj.point - x) <= eps2) {
       // Settled, but only a hit where the data has a surface (surface_cells.hpp).

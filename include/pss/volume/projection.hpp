@@ -55,6 +55,7 @@ enum class VolumeProjectionStatus : unsigned char {
   ok,
   no_gradient,  // ∇f(r) = 0: no starting normal
   no_weight,    // no voxel near r carries feature weight
+  beyond_curvature,  // the frame's origin lies beyond the polynomial's centre of curvature
   off_data,     // q lies off the weighted voxels: their centroid is farther than kCentroidReach·ρ
 };
 
@@ -185,7 +186,7 @@ struct CorrectorEnergy {
 };
 
 // The polynomial in the frame (origin, n) fitted with weights w(i) over the neighbourhood,
-// and the orthogonal projection of the origin onto its graph.
+// and the orthogonal projection of the origin onto its graph (project_origin_onto_graph).
 template <class W>
 PSS_HOST_DEVICE VolumeProjection fit_and_project(const VoxelNeighbourhood& nb, vec3 origin, vec3 n, float h, W&& weight) {
   VolumeProjection out;
@@ -194,10 +195,11 @@ PSS_HOST_DEVICE VolumeProjection fit_and_project(const VoxelNeighbourhood& nb, v
   const vec3 shift = nb.center - origin;
   for (int i = 0; i < nb.count; ++i) fit.add(out.frame.direction_to_local(nb.offset[i] + shift), weight(i));
   out.polynomial = fit.solve();
-  const vec3 local = closest_point_on_graph(out.polynomial, vec3(0.0f));
+  vec3 local;
+  const bool projected = project_origin_onto_graph(out.polynomial, local);
   out.point = out.frame.to_world(local);
   out.normal = out.frame.direction_to_world(out.polynomial.normal(local.x, local.y));
-  out.status = VolumeProjectionStatus::ok;
+  out.status = projected ? VolumeProjectionStatus::ok : VolumeProjectionStatus::beyond_curvature;
   return out;
 }
 
