@@ -46,7 +46,7 @@ class VolumeCliTest : public ::testing::Test {
   fs::path dir_;
 };
 
-// The ball covers a fiftieth of the box's width: framed as the box, it would be a speck of
+// The ball spans an eighth of the box's width: framed as the box, it would be a speck of
 // a few pixels; framed as the surface, it fills a good part of the image.
 TEST_F(VolumeCliTest, TheCameraFramesTheSurfaceNotTheBox) {
   const std::string hits = (dir_ / "hits.ply").string();
