@@ -2,7 +2,7 @@
 // would (with --stats) and reports frames per second of the per-frame phases (primary,
 // secondary, shading; preprocessing and acceleration structures are built once, as in the
 // paper). Median of --runs runs.
-//   build/bench/bench_paper_tables [--runs 3] [--backend cpu] [--data DIR] [--json FILE] [--only table1|table2|scaling]
+//   build/bench/bench_paper_tables [--runs 3] [--backend cpu] [--json FILE] [--only table1|table2|scaling]
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -28,7 +28,6 @@ namespace {
 struct Options {
   int runs = 3;
   std::string backend = "cpu";
-  std::string data = PSS_SOURCE_DIR "/../shared/data";
   std::string json_path = "out/bench/paper_tables.json";
   std::string only;
   fs::path scratch;
@@ -104,20 +103,22 @@ void table1(const Options& o, json& rows) {
               o.backend.c_str());
   struct Volume {
     const char* name;
-    std::string path, dims, surface;
+    std::string path, dims, raw_flags, surface;
     double paper_predictor, paper_corrector;
   };
   const std::vector<Volume> volumes{
-      {"Engine", o.data + "/engine_256x256x128_uint8.raw", "256x256x128", "--iso 90", 1.16, 0.03},
-      {"Fuel", PSS_SOURCE_DIR "/data/fuel_64x64x64_uint8.raw", "64x64x64", "--iso 30", 3.57, 0.08},
-      {"Bucky", PSS_SOURCE_DIR "/data/bucky_32x32x32_uint8.raw", "32x32x32", "--iso 100 --h 1.25", 7.16, 0.17}};
+      {"Engine", PSS_SOURCE_DIR "/data/engine_256x256x128_uint8.nrrd", "256x256x128", "", "--iso 90", 1.16, 0.03},
+      {"Fuel", PSS_SOURCE_DIR "/data/fuel_64x64x64_uint8.raw", "64x64x64", "--dims 64x64x64 --type uint8", "--iso 30",
+       3.57, 0.08},
+      {"Bucky", PSS_SOURCE_DIR "/data/bucky_32x32x32_uint8.raw", "32x32x32", "--dims 32x32x32 --type uint8",
+       "--iso 100 --h 1.25", 7.16, 0.17}};
   for (const Volume& v : volumes) {
     if (!fs::exists(v.path)) {
       std::printf("| %s | %s | — | — | missing %s | — |\n", v.name, v.dims.c_str(), v.path.c_str());
       continue;
     }
     for (auto [method, paper] : {std::pair{"predictor", v.paper_predictor}, std::pair{"predictor-corrector", v.paper_corrector}}) {
-      const Measured m = measure(o, "volume " + v.path + " --dims " + v.dims + " --type uint8 " + v.surface +
+      const Measured m = measure(o, "volume " + v.path + " " + v.raw_flags + " " + v.surface +
                                         " --method " + method + " --size 512x512 -o " + (o.scratch / "t1.png").string());
       std::printf("| %s | %s | %s | %.2f | %s | %.4f |\n", v.name, v.dims.c_str(), method, paper,
                   fps(m.seconds).c_str(), m.seconds);
@@ -167,7 +168,6 @@ int main(int argc, char** argv) {
     const std::string flag = argv[i], value = argv[i + 1];
     if (flag == "--runs") o.runs = std::max(1, std::stoi(value));
     else if (flag == "--backend") o.backend = value;
-    else if (flag == "--data") o.data = value;
     else if (flag == "--json") o.json_path = value;
     else if (flag == "--only") o.only = value;
   }

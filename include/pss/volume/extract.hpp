@@ -35,8 +35,8 @@ struct ExtractLattice {
 ExtractLattice extraction_lattice(const VolumeScene& scene);
 
 // One candidate: skipped unless its brick is occupied and it passes the fragment test;
-// accepted when repeated projection settles within ε before leaving the ball B(r, b), next
-// to a cell the data's surface crosses.
+// accepted when repeated projection settles within ε before leaving the ball B(r, b), where
+// the data have a surface (surface_cells.hpp).
 PSS_INLINE ExtractedPoint extract_candidate(const VolumeScene& s, vec3 r) {
   ExtractedPoint out;
   const BrickView& bricks = s.bricks;

@@ -1,10 +1,10 @@
 // Marching a primary ray through the volume (§5.1): samples every b = k·h along the ray
 // inside the volume's box; a sample that passes the fragment test is projected. If the
-// projection γ lies within ε of r, r is the hit (where the data has a surface beside it:
-// surface_cells.hpp); otherwise the ray is intersected with the
-// polynomial, and if that point lies in the ball of radius b around the sample it is
-// projected in turn; else the sample is rejected and the march goes on. The first accepted
-// sample wins (the paper's depth test).
+// projection γ lies within ε of r, r is the hit, where the data have a surface there
+// (surface_cells.hpp); otherwise the ray is intersected with the polynomial, and if that
+// point lies in the ball of radius b around the sample it is projected in turn; else the
+// sample is rejected and the march goes on. The first accepted sample wins (the paper's
+// depth test).
 #pragma once
 
 #include <cstdint>

@@ -13,6 +13,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/vector_relational.hpp>
+
 #include "pss/volume/fields.hpp"
 
 namespace pss {
@@ -73,11 +75,11 @@ PSS_INLINE bool is_data_surface(const FieldView& v, const CellView& cells, const
   for (int i = -steps; i <= steps; ++i) {
     // Only inside the box: beyond it the data are not known (sampling would clamp to the
     // face's values and make a crossing of the face itself).
-    const vec3 x_at = p + (reach * float(i) / float(steps)) * n;
-    if (glm::any(glm::lessThan(x_at, box.lo)) || glm::any(glm::greaterThan(x_at, box.hi))) continue;
-    const float x = sample(v.volume, x_at);
-    below = below || x <= f.iso;
-    above = above || x >= f.iso;
+    const vec3 q = p + (reach * float(i) / float(steps)) * n;
+    if (glm::any(glm::lessThan(q, box.lo)) || glm::any(glm::greaterThan(q, box.hi))) continue;
+    const float value = sample(v.volume, q);
+    below = below || value <= f.iso;
+    above = above || value >= f.iso;
   }
   return below && above;
 }
