@@ -28,9 +28,10 @@ PreparedVolume prepare_volume(VolumeFields fields, const FeatureParams& feature,
   }
   {
     ScopedPhase phase(stats, "bricks");
-    // Samples a step b from the PSS are projected; the PSS may stand a voxel off the
-    // interpolant's surface, whose cells are what the data tells.
-    out.cells = find_surface_cells(out.fields, feature, params.step + out.fields.volume.view().voxel_size());
+    // Samples within the ball of trust b of a crossed cell are projected (the box dilation
+    // reaches farther still, up to b·√3 along diagonals). Reaching one voxel farther found
+    // no hit more on any shipped scan and cost a third more projections (engine, iso 90).
+    out.cells = find_surface_cells(out.fields, feature, params.step);
     out.bricks = build_bricks(out.cells);
   }
   return out;

@@ -9,37 +9,45 @@ namespace pss {
 
 namespace {
 
-// Sets `bit` on every cell within `radius` cells (per axis, a box) of a cell with `source`:
-// one pass per axis, each marking the cells whose nearest source along the line (found by a
-// forward and a backward sweep) is within the radius.
+// Sets `bit` on every cell within `radius` cells (per axis, a box) of a cell with `source`,
+// one axis at a time. Along x a row is swept forward and backward for the nearest source;
+// along y and z a row becomes the OR of the rows within the radius, whole rows at a time
+// so that memory is read in order.
 void dilate(std::vector<std::uint8_t>& flags, ivec3 count, std::uint8_t source, std::uint8_t bit, ivec3 radius) {
-  std::vector<std::uint8_t> mask(flags.size());
+  std::vector<std::uint8_t> mask(flags.size()), out(flags.size());
   for (std::size_t i = 0; i < flags.size(); ++i) mask[i] = (flags[i] & source) ? 1 : 0;
-  for (int axis = 0; axis < 3; ++axis) {
+  const std::int64_t rows = std::int64_t(count.y) * count.z, nx = count.x;
+  cpu::parallel_for(rows, [&](std::int64_t row) {
+    const std::uint8_t* in = mask.data() + row * nx;
+    std::uint8_t* dst = out.data() + row * nx;
+    const int r = radius.x;
+    int last = -r - 1;  // the nearest source at or before i
+    for (int i = 0; i < count.x; ++i) {
+      if (in[i]) last = i;
+      dst[i] = i - last <= r;
+    }
+    int next = count.x + r + 1;  // the nearest source at or after i
+    for (int i = count.x - 1; i >= 0; --i) {
+      if (in[i]) next = i;
+      if (next - i <= r) dst[i] = 1;
+    }
+  });
+  for (int axis = 1; axis < 3; ++axis) {
+    mask.swap(out);
     const int n = count[axis], r = radius[axis];
-    const std::int64_t stride = axis == 0 ? 1 : axis == 1 ? count.x : std::int64_t(count.x) * count.y;
-    const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
-    std::vector<std::uint8_t> out(mask.size());
-    cpu::parallel_for(std::int64_t(count[a1]) * count[a2], [&](std::int64_t line) {
-      ivec3 c(0);
-      c[a1] = int(line % count[a1]);
-      c[a2] = int(line / count[a1]);
-      const std::int64_t base = (std::int64_t(c.z) * count.y + c.y) * count.x + c.x;
-      int last = -r - 1;  // the nearest source at or before i
-      for (int i = 0; i < n; ++i) {
-        if (mask[std::size_t(base + i * stride)]) last = i;
-        out[std::size_t(base + i * stride)] = i - last <= r;
-      }
-      int next = n + r + 1;  // the nearest source at or after i
-      for (int i = n - 1; i >= 0; --i) {
-        if (mask[std::size_t(base + i * stride)]) next = i;
-        if (next - i <= r) out[std::size_t(base + i * stride)] = 1;
+    const std::int64_t stride = axis == 1 ? nx : nx * count.y;
+    cpu::parallel_for(rows, [&](std::int64_t row) {
+      const int c = int(axis == 1 ? row % count.y : row / count.y);
+      std::uint8_t* dst = out.data() + row * nx;
+      std::fill(dst, dst + nx, std::uint8_t(0));
+      for (int d = std::max(-r, -c); d <= std::min(r, n - 1 - c); ++d) {
+        const std::uint8_t* in = mask.data() + row * nx + d * stride;
+        for (std::int64_t i = 0; i < nx; ++i) dst[i] |= in[i];
       }
     });
-    mask.swap(out);
   }
   for (std::size_t i = 0; i < flags.size(); ++i)
-    if (mask[i]) flags[i] |= bit;
+    if (out[i]) flags[i] |= bit;
 }
 
 }  // namespace
@@ -55,8 +63,15 @@ SurfaceCells find_surface_cells(const VolumeFields& fields, const FeatureParams&
     return v.index(std::min(i, v.dims.x - 1), std::min(j, v.dims.y - 1), std::min(k, v.dims.z - 1));
   };
   const bool iso = feature.kind == FeatureKind::iso;
-  cpu::parallel_for(std::int64_t(count.y) * count.z, [&](std::int64_t row) {
+  // Per row: how many cells are crossed and the first and last crossed i, combined below.
+  struct RowSpan {
+    std::int64_t crossed = 0;
+    int lo = 0, hi = -1;
+  };
+  std::vector<RowSpan> rows(std::size_t(count.y) * count.z);
+  cpu::parallel_for(std::int64_t(rows.size()), [&](std::int64_t row) {
     const int j = int(row % count.y), k = int(row / count.y);
+    RowSpan& span = rows[std::size_t(row)];
     for (int i = 0; i < count.x; ++i) {
       float lo = kInfinity, hi = -kInfinity;
       for (int c = 0; c < 8; ++c) {
@@ -68,21 +83,23 @@ SurfaceCells find_surface_cells(const VolumeFields& fields, const FeatureParams&
       // Iso: the interpolant takes the value v somewhere in the cell iff lo ≤ v ≤ hi; a cell
       // that is flat at exactly v is not a surface. Gradient: θ2 exceeds the threshold there.
       const bool crossed = iso ? lo <= feature.iso && feature.iso <= hi && lo < hi : hi > feature.threshold;
-      if (crossed) out.flags[std::size_t((std::int64_t(k) * count.y + j) * count.x + i)] = kCellCrossed;
+      if (!crossed) continue;
+      out.flags[std::size_t(row * count.x + i)] = kCellCrossed;
+      if (span.crossed++ == 0) span.lo = i;
+      span.hi = i;
     }
   });
+  for (std::size_t row = 0; row < rows.size(); ++row) {
+    if (!rows[row].crossed) continue;
+    const int j = int(row % std::size_t(count.y)), k = int(row / std::size_t(count.y));
+    out.crossed_count += rows[row].crossed;
+    out.crossed_bounds.grow(v.position(rows[row].lo, j, k));
+    out.crossed_bounds.grow(v.position(std::min(rows[row].hi + 1, v.dims.x - 1), std::min(j + 1, v.dims.y - 1),
+                                       std::min(k + 1, v.dims.z - 1)));
+  }
   dilate(out.flags, count, kCellCrossed, kCellBeside, ivec3(1));
   const vec3 cells_in_reach = glm::ceil(vec3(reach) / v.spacing);
   dilate(out.flags, count, kCellCrossed, kCellInReach, ivec3(cells_in_reach));
-  for (int k = 0; k < count.z; ++k)
-    for (int j = 0; j < count.y; ++j)
-      for (int i = 0; i < count.x; ++i)
-        if (out.flags[std::size_t((std::int64_t(k) * count.y + j) * count.x + i)] & kCellCrossed) {
-          ++out.crossed_count;
-          out.crossed_bounds.grow(v.position(i, j, k));
-          out.crossed_bounds.grow(v.position(std::min(i + 1, v.dims.x - 1), std::min(j + 1, v.dims.y - 1),
-                                             std::min(k + 1, v.dims.z - 1)));
-        }
   return out;
 }
 
