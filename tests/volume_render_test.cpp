@@ -187,30 +187,40 @@ TEST(VolumeRender, RadiusBeyondTheNeighbourhoodCapacityIsAnError) {
 
 // Empty-space skipping changes the speed only: with every brick marked occupied the rays
 // visit every sample, and the hits are the same, bit for bit.
+// A noisy torus, and a plane just past a brick's face (x = 8.3: the cells it crosses lie in
+// the second brick, the samples that first reach it in the first), seen from both sides.
 TEST(VolumeRender, BrickSkippingKeepsTheHits) {
-  const Field f = test::torus_distance(vec3(23.5f), 12.0f, 5.0f);
-  test::SampleVolumeOptions o;
-  o.dims = ivec3(48);
-  o.noise = 0.3f;
-  const PreparedVolume prepared = test::prepare_iso(test::sample_volume(f, o), 0.0f);
-  ASSERT_LT(prepared.bricks.occupied_count, std::int64_t(prepared.bricks.occupied.size()));
-  BrickGrid all = prepared.bricks;
-  std::fill(all.occupied.begin(), all.occupied.end(), std::uint8_t(1));
-  VolumeScene skipping = prepared.scene(), exhaustive = prepared.scene();
-  exhaustive.bricks = all.view();
-  const Camera camera = Camera::framing(prepared.fields.volume.view().bounds(), {40, 40, 30, 20, 35});
-  int hits = 0;
-  for (int y = 0; y < camera.height; ++y)
-    for (int x = 0; x < camera.width; ++x) {
-      const Ray ray = camera.primary_ray(x, y);
-      const VolumeHit a = march_volume(skipping, ray), b = march_volume(exhaustive, ray);
-      ASSERT_EQ(a.found(), b.found());
-      if (!a.found()) continue;
-      ++hits;
-      EXPECT_EQ(a.t, b.t);
-      EXPECT_EQ(a.normal, b.normal);
-    }
-  EXPECT_GT(hits, 100);
+  test::SampleVolumeOptions torus_options;
+  torus_options.dims = ivec3(48);
+  torus_options.noise = 0.3f;
+  test::SampleVolumeOptions plane_options;
+  plane_options.dims = ivec3(24);
+  const Field plane{[](vec3 p) { return p.x - 8.3f; }, [](vec3) { return vec3(1, 0, 0); }, 0.0f};
+  const std::pair<Volume, CameraSettings> scenes[] = {
+      {test::sample_volume(test::torus_distance(vec3(23.5f), 12.0f, 5.0f), torus_options), {40, 40, 30, 20, 35}},
+      {test::sample_volume(plane, plane_options), {40, 40, -90, 10, 35}},
+      {test::sample_volume(plane, plane_options), {40, 40, 90, 10, 35}}};
+  for (const auto& [volume, view] : scenes) {
+    const PreparedVolume prepared = test::prepare_iso(volume, 0.0f);
+    ASSERT_LT(prepared.bricks.occupied_count, std::int64_t(prepared.bricks.occupied.size()));
+    BrickGrid all = prepared.bricks;
+    std::fill(all.occupied.begin(), all.occupied.end(), std::uint8_t(1));
+    VolumeScene skipping = prepared.scene(), exhaustive = prepared.scene();
+    exhaustive.bricks = all.view();
+    const Camera camera = Camera::framing(prepared.fields.volume.view().bounds(), view);
+    int hits = 0;
+    for (int y = 0; y < camera.height; ++y)
+      for (int x = 0; x < camera.width; ++x) {
+        const Ray ray = camera.primary_ray(x, y);
+        const VolumeHit a = march_volume(skipping, ray), b = march_volume(exhaustive, ray);
+        ASSERT_EQ(a.found(), b.found()) << view.azimuth_deg;
+        if (!a.found()) continue;
+        ++hits;
+        EXPECT_EQ(a.t, b.t) << view.azimuth_deg;
+        EXPECT_EQ(a.normal, b.normal) << view.azimuth_deg;
+      }
+    EXPECT_GT(hits, 100) << view.azimuth_deg;
+  }
 }
 
 // --debug-projection (the paper's Figure 2): the first sample on a ray lies up to b from
