@@ -56,18 +56,7 @@ enum class VolumeProjectionStatus : unsigned char {
   no_gradient,  // ∇f(r) = 0: no starting normal
   no_weight,    // no voxel near r carries feature weight
   beyond_curvature,  // the frame's origin lies beyond the polynomial's centre of curvature
-  off_data,     // q lies off the weighted voxels: their centroid is farther than kCentroidReach·ρ
 };
-
-// Eq. 3 has a minimiser wherever some voxel weighs, even at a point beside the data's
-// sheet rather than on it: a ray grazing a sharp edge from outside sees in B(q, ρ) only a
-// small cap of the thin shell of weighted voxels, whose smallest eigenvector can turn
-// sideways, and the fit settles on a sheet across the surface, voxels away from it. Such a
-// q has the centroid of its weighted voxels far to one side, where on the surface it lies
-// within the shell's curvature offset (< ρ/4 even at a right-angled edge). Restricting the
-// surface to where the data surround it is the domain restriction of MLS surfaces
-// (Adamson & Alexa's [AA03b] "close to the points" condition).
-inline constexpr float kCentroidReach = 0.5f;
 
 struct VolumeProjection {
   vec3 predicted;  // P(r)
@@ -224,7 +213,6 @@ PSS_INLINE VolumeProjection predict(const FieldView& fields, const VolumeParams&
   vec3 n = g / glm::length(g);
   fail.status = VolumeProjectionStatus::no_weight;
   float t = 0;
-  vec3 centroid(0.0f);  // of the weighted voxels, relative to q
   for (int it = 0; it < params.max_predictor_iterations; ++it) {
     nb.gather(fields, r + t * n, params.radius, n, true);
     float w = 0;
@@ -250,12 +238,7 @@ PSS_INLINE VolumeProjection predict(const FieldView& fields, const VolumeParams&
     t += dt;
     const EigenResult eig = smallest_eigenvector(c.scaled(1.0f / w), n, kEigenIterations);
     if (eig.status != EigenStatus::invalid) n = eig.vector;
-    centroid = m / w - delta;
     if (abs(dt) < params.t_tolerance) break;
-  }
-  if (length2(centroid) > kCentroidReach * kCentroidReach * params.radius * params.radius) {
-    fail.status = VolumeProjectionStatus::off_data;
-    return fail;
   }
   VolumeProjection out = detail::fit_and_project(nb, r + t * n, n, params.h, [&](int i) { return nb.theta[i]; });
   out.predicted = out.point;
