@@ -131,7 +131,7 @@ TEST(VolumeIo, BadInputsAreOneLineErrors) {
   f.dims = ivec3(2, 3, 4);
   EXPECT_NE(error_of([&] { read_raw_volume(d / "short.raw", f); }).find("holds 23 bytes"), std::string::npos);
   EXPECT_NE(error_of([] { parse_dims("0x4x4"); }).find("positive"), std::string::npos);
-  EXPECT_NE(error_of([] { parse_dims("100000x100000x100000"); }).find("overflow"), std::string::npos);
+  EXPECT_NE(error_of([] { parse_dims("100000x100000x100000"); }).find("more than"), std::string::npos);
   EXPECT_NE(error_of([] { parse_dims("4x4"); }).find("XxYxZ"), std::string::npos);
   EXPECT_NE(error_of([] { parse_spacing("1,0,1"); }).find("positive"), std::string::npos);
   const std::string header = "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 2 3 4\n";

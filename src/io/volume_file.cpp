@@ -68,12 +68,16 @@ std::string describe(ivec3 d) {
 }
 
 std::int64_t checked_voxel_count(ivec3 dims, const std::string& where) {
-  std::int64_t n = 1;
-  for (int a = 0; a < 3; ++a) {
+  for (int a = 0; a < 3; ++a)
     if (dims[a] <= 0) throw Error(where + ": dimension " + std::to_string(dims[a]) + " is not positive");
-    n *= dims[a];
-    if (n > kMaxVoxels) throw Error(where + ": " + describe(dims) + " voxels is too many (overflow)");
-  }
+  std::int64_t n = 1;
+  bool overflow = false;
+  for (int a = 0; a < 3; ++a) overflow = overflow || __builtin_mul_overflow(n, std::int64_t(dims[a]), &n);
+  if (overflow || n > kMaxVoxels)
+    throw Error(where + ": " + describe(dims) + " is " +
+                (overflow ? std::string("more than 2^63") : std::to_string(n)) + " voxels, more than the " +
+                std::to_string(kMaxVoxels) +
+                " (2^31) pss reads: a read voxel takes 20 bytes (value, gradient, weight), 40 GiB at that cap");
   return n;
 }
 
@@ -117,44 +121,43 @@ std::vector<float> decode(const std::filesystem::path& path, const char* bytes, 
 }
 
 // Exactly `expected` bytes from a gzip (or zlib) stream; a short or corrupt stream is an
-// error, trailing data after the stream's end too.
+// error. The output grows as the stream delivers bytes, so memory follows what the file
+// holds, not what its header claims: a 200-byte stream claiming gigabytes costs kilobytes.
 std::string inflate_exact(const std::filesystem::path& path, std::string_view compressed, std::size_t expected) {
-  std::string out(expected, '\0');
+  // Deflate expands at most 1032:1 (RFC 1951, a 258-byte match per 2 bits), so this much
+  // room is enough for any honest stream and bounded by the file's size.
+  constexpr std::size_t kMaxDeflateRatio = 1032;
+  constexpr std::size_t piece = std::size_t(1) << 18;
+  std::string out;
+  out.reserve(std::min(expected, compressed.size() * kMaxDeflateRatio + piece));
+  std::vector<char> buffer(piece);
   z_stream z{};
   if (inflateInit2(&z, 15 + 32) != Z_OK) throw file_error(path, "cannot initialise zlib");
   z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(compressed.data()));
   z.avail_in = 0;
   std::size_t in_left = compressed.size();
-  z.next_out = reinterpret_cast<Bytef*>(out.data());
-  z.avail_out = 0;
-  std::size_t out_left = expected;
-  int status = Z_OK;
-  // zlib counts in 32-bit uInt: feed both sides in chunks.
+  // zlib counts in 32-bit uInt: feed the input in chunks.
   constexpr std::size_t chunk = std::size_t(1) << 30;
-  while (status == Z_OK) {
+  int status = Z_OK;
+  for (;;) {
     if (z.avail_in == 0 && in_left > 0) {
       z.avail_in = uInt(std::min(in_left, chunk));
       in_left -= z.avail_in;
     }
-    if (z.avail_out == 0 && out_left > 0) {
-      z.avail_out = uInt(std::min(out_left, chunk));
-      out_left -= z.avail_out;
-    }
-    if (z.avail_out == 0) {  // every expected byte is in: the stream must end here
-      unsigned char probe;
-      z.next_out = &probe;
-      z.avail_out = 1;
-      status = inflate(&z, Z_NO_FLUSH);
-      if (z.avail_out == 0) {
-        inflateEnd(&z);
-        throw file_error(path, "gzip data holds more than the " + std::to_string(expected) + " bytes the header promises");
-      }
-      break;
-    }
+    z.next_out = reinterpret_cast<Bytef*>(buffer.data());
+    z.avail_out = uInt(buffer.size());
     status = inflate(&z, Z_NO_FLUSH);
-    if (status == Z_BUF_ERROR && z.avail_in == 0 && in_left == 0) break;
+    const std::size_t got = buffer.size() - z.avail_out;
+    if (got > expected - out.size()) {
+      inflateEnd(&z);
+      throw file_error(path, "gzip data holds more than the " + std::to_string(expected) + " bytes the header promises");
+    }
+    out.append(buffer.data(), got);
+    if (status == Z_STREAM_END) break;
+    if (status == Z_BUF_ERROR && z.avail_in == 0 && in_left > 0) continue;
+    if (status != Z_OK) break;  // input exhausted (Z_BUF_ERROR) or corrupt
   }
-  const std::size_t produced = std::size_t(z.total_out);
+  const std::size_t produced = out.size();
   inflateEnd(&z);
   if (status == Z_DATA_ERROR || status == Z_NEED_DICT || status == Z_MEM_ERROR)
     throw file_error(path, "corrupt gzip data");
@@ -295,14 +298,21 @@ namespace {
 VolumeFile read_raw_file(const std::filesystem::path& path, const RawVolumeFormat& format) {
   const std::int64_t count = checked_voxel_count(format.dims, path.string());
   if (format.skip < 0) throw file_error(path, "negative --skip " + std::to_string(format.skip));
-  const std::string bytes = read_file(path);
+  // count <= 2^31, 8-byte voxels, skip <= 2^50 (parse_skip): no overflow.
   const std::int64_t voxel_bytes = count * voxel_type_size(format.type);
   const std::int64_t expected = format.skip + voxel_bytes;
-  if (std::int64_t(bytes.size()) != expected)
-    throw file_error(path, "holds " + std::to_string(bytes.size()) + " bytes, but " +
-                               (format.skip ? std::to_string(format.skip) + " skipped + " : std::string()) +
-                               describe(format.dims) + " " + voxel_type_name(format.type) + " voxels need " +
-                               std::to_string(expected));
+  const auto mismatch = [&](std::uint64_t size) {
+    return file_error(path, "holds " + std::to_string(size) + " bytes, but " +
+                                (format.skip ? std::to_string(format.skip) + " skipped + " : std::string()) +
+                                describe(format.dims) + " " + voxel_type_name(format.type) + " voxels need " +
+                                std::to_string(expected));
+  };
+  // Compare the claim with the file's size before reading or allocating anything.
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (!ec && size != std::uintmax_t(expected)) throw mismatch(size);
+  const std::string bytes = read_file(path);
+  if (std::int64_t(bytes.size()) != expected) throw mismatch(bytes.size());
   VolumeFile f;
   f.volume.dims = format.dims;
   f.volume.spacing = format.spacing;

@@ -1,11 +1,13 @@
 #include "pss/points/project_cloud.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "pss/backend/cpu/parallel_for.hpp"
 #include "pss/core/error.hpp"
 #include "pss/points/orient_normals.hpp"
+#include "unit_frame.hpp"
 
 namespace pss {
 
@@ -16,14 +18,37 @@ void validate(const ProjectionParams& p) {
   if (p.max_mls_iterations < 1) throw Error("MLS iterations must be at least 1");
 }
 
+void check_neighbourhood(const ProjectionParams& p, double diagonal) {
+  // A ball wider than the whole cloud holds every point: each projection would fit the
+  // entire cloud (quadratic work, a useless global plane) and a uniform grid of cells that
+  // wide has nothing to index.
+  if (diagonal > 0 && double(p.rho) > diagonal) {
+    char message[300];
+    std::snprintf(message, sizeof message,
+                  "the neighbourhood radius rho = %g (h = %g) is larger than the cloud's bounding-box diagonal %g: "
+                  "every neighbourhood would hold the whole cloud; use a smaller --h or --rho",
+                  double(p.rho), double(p.h), diagonal);
+    throw Error(message);
+  }
+}
+
 CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& params, Backend backend,
                               Stats& stats) {
   validate(params);
   const std::size_t n = input.size();
+  // Projection runs in the cloud's unit frame (unit_frame.hpp): h, ρ and the tolerance are
+  // lengths, so they scale with the points; the results are mapped back at the end.
+  const points_detail::UnitFrame frame = points_detail::unit_frame(input.positions);
+  check_neighbourhood(params, frame.diagonal);
+  const std::vector<vec3> positions = points_detail::to_unit(input.positions, frame);
+  ProjectionParams unit_params = params;
+  unit_params.h = float(double(params.h) / frame.scale);
+  unit_params.rho = float(double(params.rho) / frame.scale);
+  unit_params.t_tolerance = float(double(params.t_tolerance) / frame.scale);
   std::vector<ProjectedPoint> projected(n);
   {
     ScopedPhase phase(stats, "spatial index");
-    const UniformGrid grid(input.positions, params.rho);
+    const UniformGrid grid(positions, unit_params.rho);
     phase.stop();
     // Without input normals the eigenvector's sign is arbitrary; orientation comes after.
     const std::vector<vec3> hints = input.has_normals() ? input.normals : std::vector<vec3>(n, vec3(0.0f));
@@ -31,10 +56,10 @@ CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& p
     Progress progress("projecting", std::int64_t(n));
     const GridView view = grid.view();
     if (backend == Backend::cuda) {
-      cuda::project_points(view, input.positions, hints, params, projected, &progress);
+      cuda::project_points(view, positions, hints, unit_params, projected, &progress);
     } else {
       cpu::parallel_for(std::int64_t(n), [&](std::int64_t i) {
-        projected[i] = project_point(view, input.positions[i], hints[i], params);
+        projected[i] = project_point(view, positions[i], hints[i], unit_params);
       }, &progress);
     }
   }
@@ -54,8 +79,9 @@ CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& p
   }
   if (!input.has_normals()) {
     ScopedPhase phase(stats, "orient normals");
-    orient_normals_consistently(out.cloud.positions, out.cloud.normals, params.h);
+    orient_normals_consistently(out.cloud.positions, out.cloud.normals, unit_params.h);
   }
+  for (vec3& p : out.cloud.positions) p = frame.from_unit(p);
   return out;
 }
 

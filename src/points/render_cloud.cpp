@@ -7,6 +7,7 @@
 #include "pss/backend/cpu/parallel_for.hpp"
 #include "pss/core/error.hpp"
 #include "pss/points/project_cloud.hpp"
+#include "unit_frame.hpp"
 
 namespace pss {
 
@@ -45,7 +46,9 @@ std::vector<LocalFit> fit_all(const UniformGrid& grid, const PointCloud& cloud, 
 }
 
 // The range-query grid is part of the preprocessing (the paper's 3D neighbourhood texture).
-UniformGrid timed_grid(const PointCloud& cloud, float rho, Stats& stats) {
+UniformGrid timed_grid(const PointCloud& cloud, const ProjectionParams& projection, Stats& stats) {
+  check_neighbourhood(projection, points_detail::unit_frame(cloud.positions).diagonal);
+  const float rho = projection.rho;
   ScopedPhase phase(stats, "preprocess");
   return UniformGrid(cloud.positions, 0.5f * rho);
 }
@@ -71,7 +74,7 @@ std::vector<Aabb> disc_boxes(const std::vector<LocalPolynomial>& locals, float b
 
 PreparedCloud::PreparedCloud(const PointCloud& cloud, const RayPssParams& params, Backend backend, Stats& stats)
     : params_((validate(params), params)),
-      grid_(timed_grid(cloud, params.projection.rho, stats)),
+      grid_(timed_grid(cloud, params.projection, stats)),
       bvh_(std::span<const Aabb>{}) {
   {
     ScopedPhase phase(stats, "preprocess");

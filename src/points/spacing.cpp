@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "pss/core/error.hpp"
+#include "unit_frame.hpp"
 
 namespace pss {
 
@@ -25,8 +26,13 @@ using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<
 
 }  // namespace
 
-SpacingEstimate estimate_spacing(std::span<const vec3> points, int k, std::size_t max_samples) {
-  if (points.size() < 2) throw Error("cannot estimate the sample spacing of fewer than two points");
+SpacingEstimate estimate_spacing(std::span<const vec3> input, int k, std::size_t max_samples) {
+  if (input.size() < 2) throw Error("cannot estimate the sample spacing of fewer than two points");
+  // In the unit frame, so that squared distances neither overflow (1e30) nor underflow
+  // (1e-30) in float; the distances are scaled back below.
+  const points_detail::UnitFrame frame = points_detail::unit_frame(input);
+  const std::vector<vec3> unit = points_detail::to_unit(input, frame);
+  const std::span<const vec3> points(unit);
   k = std::min<int>(k, int(points.size()) - 1);
   CloudAdaptor adaptor{points};
   KdTree tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(16));
@@ -46,8 +52,8 @@ SpacingEstimate estimate_spacing(std::span<const vec3> points, int k, std::size_
   std::nth_element(kth.begin(), kth.begin() + kth.size() / 2, kth.end());
   SpacingEstimate e;
   e.k = k;
-  e.mean_nearest = nearest_sum / double(kth.size());
-  e.median_kth = kth[kth.size() / 2];
+  e.mean_nearest = nearest_sum / double(kth.size()) * frame.scale;
+  e.median_kth = kth[kth.size() / 2] * frame.scale;
   e.suggested_h = e.median_kth;
   if (!(e.suggested_h > 0))
     throw Error("cannot estimate the sample spacing: the points coincide (pass --h explicitly)");

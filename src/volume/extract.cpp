@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <unordered_map>
 #include <vector>
 
 #include "pss/backend/cpu/parallel_for.hpp"
+#include "pss/core/error.hpp"
 
 namespace pss {
 
@@ -14,8 +16,22 @@ ExtractLattice extraction_lattice(const VolumeScene& scene) {
   ExtractLattice l;
   l.origin = box.lo;
   l.spacing = scene.params.step;
-  const vec3 n = glm::floor(box.extent() / l.spacing) + 1.0f;
-  l.dims = ivec3(int(n.x), int(n.y), int(n.z));
+  // Counted in double: a tiny b makes a lattice whose size overflows int, then int64.
+  double n[3], total = 1;
+  for (int a = 0; a < 3; ++a) {
+    n[a] = std::floor(double(box.extent()[a]) / double(l.spacing)) + 1.0;
+    total *= n[a];
+  }
+  if (!(total <= double(kMaxExtractCandidates))) {
+    char message[300];
+    std::snprintf(message, sizeof message,
+                  "a step b = %g makes a %.0fx%.0fx%.0f lattice of %.4g candidates on this %gx%gx%g box, more than "
+                  "the %lld (2^28) pss extract projects (7.5 GiB of candidates); use a larger b or h",
+                  double(l.spacing), n[0], n[1], n[2], total, double(box.extent().x), double(box.extent().y),
+                  double(box.extent().z), (long long)kMaxExtractCandidates);
+    throw Error(message);
+  }
+  l.dims = ivec3(int(n[0]), int(n[1]), int(n[2]));
   return l;
 }
 

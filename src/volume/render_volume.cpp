@@ -14,8 +14,8 @@ PreparedVolume prepare_volume(VolumeFields fields, const FeatureParams& feature,
   if (bound > float(kMaxNeighbours)) {
     char message[200];
     std::snprintf(message, sizeof message,
-                  "a neighbourhood radius of %g holds up to %d voxels on this grid, more than the %d the kernels "
-                  "hold; use a smaller h or radius", params.radius, int(bound), kMaxNeighbours);
+                  "a neighbourhood radius of %g holds up to %.0f voxels on this grid, more than the %d the kernels "
+                  "hold; use a smaller h or radius", double(params.radius), double(bound), int(kMaxNeighbours));
     throw Error(message);
   }
   PreparedVolume out;

@@ -35,7 +35,7 @@ struct RawVolumeFormat {
 };
 
 // Command-line spellings; each throws a one-line Error naming the flag's problem.
-ivec3 parse_dims(std::string_view text);            // "64x64x64": positive, product < 2^40 voxels
+ivec3 parse_dims(std::string_view text);            // "64x64x64": positive, product <= 2^31 voxels
 vec3 parse_spacing(std::string_view text);          // "1,1,2.5": positive and finite
 VoxelType parse_voxel_type(std::string_view text);  // int8 | uint8 | int16 | ... | float64
 std::int64_t parse_skip(std::string_view text);     // a byte count >= 0

@@ -33,11 +33,17 @@ struct CloudProjection {
   StatusCounts counts;
 };
 
-// Throws Error for invalid parameters (h or ρ not positive and finite).
+// Throws Error for invalid parameters (h or ρ not positive and finite, ρ beyond the cloud's
+// bounding-box diagonal). Runs in the cloud's bounding-box frame, so results do not depend
+// on the data's units.
 CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& params, Backend backend,
                               Stats& stats);
 
 void validate(const ProjectionParams& params);
+
+// Throws Error when ρ exceeds the cloud's bounding-box diagonal (every neighbourhood the
+// whole cloud); a diagonal of 0 (coincident points) passes.
+void check_neighbourhood(const ProjectionParams& params, double diagonal);
 
 namespace cuda {
 // Runs project_point for each query on the GPU; `grid` is a host view that is uploaded.

@@ -32,6 +32,11 @@ struct ExtractLattice {
   PSS_HOST_DEVICE std::int64_t size() const { return std::int64_t(dims.x) * dims.y * dims.z; }
 };
 
+// The most candidates extraction projects: 2^28. Each costs a 28-byte ExtractedPoint
+// (7.5 GiB at the cap) and a projection; a surface sampled once per b needs far fewer.
+inline constexpr std::int64_t kMaxExtractCandidates = std::int64_t(1) << 28;
+
+// The candidate lattice, box / b + 1 per axis; throws Error above kMaxExtractCandidates.
 ExtractLattice extraction_lattice(const VolumeScene& scene);
 
 // One candidate: skipped unless its brick is occupied and it passes the fragment test;

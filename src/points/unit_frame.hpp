@@ -1,0 +1,49 @@
+// Coordinates relative to a cloud's bounding-box centre, in units of its largest extent:
+// the float arithmetic of projection (squared distances, Gaussian weights) then sees
+// numbers near 1 whatever the data's units, so a cloud at 1e30 or 1e-30 gives the same
+// surface, up to the scale, as the same cloud at 1. Internal to src/points.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <span>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "pss/core/types.hpp"
+
+namespace pss::points_detail {
+
+struct UnitFrame {
+  glm::dvec3 centre{0.0};
+  double scale = 1;     // the box's largest extent; 1 when the points coincide
+  double diagonal = 0;  // the box's diagonal, in the data's units
+
+  vec3 to_unit(vec3 p) const { return vec3((glm::dvec3(p) - centre) / scale); }
+  vec3 from_unit(vec3 p) const { return vec3(glm::dvec3(p) * scale + centre); }
+};
+
+inline UnitFrame unit_frame(std::span<const vec3> points) {
+  UnitFrame f;
+  if (points.empty()) return f;
+  glm::dvec3 lo(points[0]), hi(points[0]);
+  for (const vec3& p : points) {
+    lo = glm::min(lo, glm::dvec3(p));
+    hi = glm::max(hi, glm::dvec3(p));
+  }
+  const glm::dvec3 extent = hi - lo;
+  f.centre = 0.5 * (lo + hi);
+  const double largest = std::max({extent.x, extent.y, extent.z});
+  f.scale = largest > 0 && std::isfinite(largest) ? largest : 1.0;
+  f.diagonal = std::sqrt(extent.x * extent.x + extent.y * extent.y + extent.z * extent.z);
+  return f;
+}
+
+inline std::vector<vec3> to_unit(std::span<const vec3> points, const UnitFrame& f) {
+  std::vector<vec3> out(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) out[i] = f.to_unit(points[i]);
+  return out;
+}
+
+}  // namespace pss::points_detail

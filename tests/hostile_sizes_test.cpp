@@ -1,0 +1,205 @@
+// Hostile sizes (issue 8): size products that would overflow, headers that claim more than
+// the file holds (gzip bombs), parameters whose neighbourhood or lattice outgrows the data,
+// and clouds at extreme scales. Each is refused with one line naming the file or flag, no
+// output left behind; or, for scales, gives the same surface up to the scale.
+#include <gtest/gtest.h>
+#include <zlib.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include "pss/core/error.hpp"
+#include "pss/io/ply.hpp"
+#include "pss/io/volume_file.hpp"
+#include "pss/points/project_cloud.hpp"
+#include "support/cli.hpp"
+#include "support/shapes.hpp"
+
+namespace pss {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string gzip(const std::string& data) {
+  z_stream z{};
+  deflateInit2(&z, Z_BEST_COMPRESSION, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY);
+  std::string out(deflateBound(&z, uLong(data.size())) + 32, '\0');
+  z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
+  z.avail_in = uInt(data.size());
+  z.next_out = reinterpret_cast<Bytef*>(out.data());
+  z.avail_out = uInt(out.size());
+  deflate(&z, Z_FINISH);
+  out.resize(z.total_out);
+  deflateEnd(&z);
+  return out;
+}
+
+std::string error_of(auto&& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+long peak_rss_kib() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss;
+}
+
+class HostileSizes : public testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("pss-hostile-sizes-" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string write(const std::string& name, const std::string& bytes) const {
+    std::ofstream(path(name), std::ios::binary) << bytes;
+    return path(name);
+  }
+  // Exit non-zero, one line on stderr naming `names`, no output file.
+  void expect_clean_failure(const std::string& args, const std::string& names, const std::string& output) {
+    const test::CliResult r = test::run_pss(args);
+    EXPECT_NE(r.exit_code, 0) << args;
+    EXPECT_EQ(test::line_count(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(names), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(output)) << output;
+  }
+  fs::path dir_;
+};
+
+// 2^20 · 2^20 · 2^30 = 2^70 wraps to 0 in int64: the product must be checked, and a size
+// message must never print a negative count.
+TEST_F(HostileSizes, SizeProductsThatOverflowAreRefused) {
+  const std::string huge = "1048576x1048576x1073741824";
+  std::string m = error_of([&] { parse_dims(huge); });
+  EXPECT_NE(m.find("2^31"), std::string::npos) << m;
+  EXPECT_EQ(m.find(" -"), std::string::npos) << m;  // no negative count
+  m = error_of([] { parse_dims("100000x100000x100000"); });
+  EXPECT_NE(m.find("1000000000000000 voxels"), std::string::npos) << m;
+
+  const std::string nrrd = write("huge.nrrd", "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 1048576 1048576 1073741824\n"
+                                              "encoding: raw\n\n");
+  m = error_of([&] { read_nrrd(nrrd); });
+  EXPECT_NE(m.find(nrrd), std::string::npos) << m;
+  EXPECT_NE(m.find("2^31"), std::string::npos) << m;
+  const std::string mha = write("huge.mha", "ObjectType = Image\nNDims = 3\nDimSize = 1048576 1048576 1073741824\n"
+                                            "ElementType = MET_UCHAR\nElementDataFile = LOCAL\n");
+  m = error_of([&] { read_metaimage(mha); });
+  EXPECT_NE(m.find(mha), std::string::npos) << m;
+  EXPECT_NE(m.find("2^31"), std::string::npos) << m;
+
+  const std::string empty = write("empty.raw", "");
+  expect_clean_failure("volume " + empty + " --dims " + huge + " --iso 1 -o " + path("out.png"), "--dims",
+                       path("out.png"));
+  expect_clean_failure("extract " + nrrd + " --iso 1 -o " + path("out.ply"), nrrd, path("out.ply"));
+}
+
+// A 8 GiB claim (2^31 float voxels, within the voxel cap) over a few KB of gzip: refused
+// once the stream ends, having allocated about what the stream holds.
+TEST_F(HostileSizes, AGzipBombIsRefusedWithoutAllocatingItsClaim) {
+  const std::string zeros = gzip(std::string(1 << 16, '\0'));
+  const std::string bomb = write("bomb.nrrd", "NRRD0004\ntype: float\ndimension: 3\nsizes: 2048 1024 1024\n"
+                                              "encoding: gzip\n\n" + zeros);
+  const std::string mha = write("bomb.mha", "ObjectType = Image\nNDims = 3\nDimSize = 2048 1024 1024\n"
+                                            "ElementType = MET_FLOAT\nCompressedData = True\n"
+                                            "ElementDataFile = LOCAL\n" + zeros);
+  const long before = peak_rss_kib();
+  std::string m = error_of([&] { read_nrrd(bomb); });
+  EXPECT_NE(m.find("holds 65536 bytes, the header promises 8589934592"), std::string::npos) << m;
+  m = error_of([&] { read_metaimage(mha); });
+  EXPECT_NE(m.find("holds 65536 bytes, the header promises 8589934592"), std::string::npos) << m;
+  EXPECT_LT(peak_rss_kib() - before, 256L * 1024) << "KiB of peak memory for a " << zeros.size() << "-byte file";
+
+  // A 2^40-byte claim is past the voxel cap before any data is looked at.
+  const std::string tera = write("tera.nrrd", "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 1024 1024 1048576\n"
+                                              "encoding: gzip\n\n" + zeros);
+  expect_clean_failure("volume " + tera + " --iso 1 -o " + path("out.png"), "2^31", path("out.png"));
+  expect_clean_failure("volume " + bomb + " --iso 1 -o " + path("out.png"), bomb, path("out.png"));
+}
+
+// Each candidate of the extraction lattice is a projection: b = h = 1e-5 on a 32³ box is
+// 3.2 million per axis, refused with the numbers rather than an internal error.
+TEST_F(HostileSizes, AnExtractionLatticePastTheCapIsRefused) {
+  std::string ramp;
+  for (int i = 0; i < 32 * 32 * 32; ++i) ramp.push_back(char(i % 32 * 8));
+  const std::string raw = write("ramp.raw", ramp);
+  expect_clean_failure("extract " + raw + " --dims 32x32x32 --iso 100 --h 1e-5 -o " + path("out.ply"), "2^28",
+                       path("out.ply"));
+}
+
+// A neighbourhood wider than the whole cloud is a global fit per point; `--h 1e30` never
+// finished.
+TEST_F(HostileSizes, ANeighbourhoodWiderThanTheCloudIsRefused) {
+  test::SampleOptions o;
+  o.count = 500;
+  write_ply(path("sphere.ply"), test::sample(test::Sphere{}, o));
+  const std::string in = path("sphere.ply"), out = path("out.ply");
+  expect_clean_failure("project " + in + " -o " + out + " --h 1e30", "bounding-box diagonal", out);
+  expect_clean_failure("project " + in + " -o " + out + " --h 10", "bounding-box diagonal", out);
+  expect_clean_failure("render " + in + " -o " + path("out.png") + " --h 1e30", "bounding-box diagonal",
+                       path("out.png"));
+}
+
+// An h far below the spacing leaves every point alone: that is a failure, not a result.
+TEST_F(HostileSizes, ARunThatProjectsNothingSaysSo) {
+  test::SampleOptions o;
+  o.count = 500;
+  write_ply(path("sphere.ply"), test::sample(test::Sphere{}, o));
+  expect_clean_failure("project " + path("sphere.ply") + " -o " + path("out.ply") + " --h 1e-6",
+                       "no point was projected", path("out.ply"));
+}
+
+PointCloud scaled(const PointCloud& c, float s) {
+  PointCloud out = c;
+  for (vec3& p : out.positions) p *= s;
+  return out;
+}
+
+// The same noisy sphere in units of 1e30, 1 and 1e-30 projects to the same points up to the
+// scale: the library, and the CLI with its estimated h.
+TEST_F(HostileSizes, ProjectionDoesNotDependOnTheUnits) {
+  test::SampleOptions o;
+  o.count = 2000;
+  o.noise = 0.01f;
+  const PointCloud unit = test::sample(test::Sphere{}, o);
+  const float h = test::suggested_h(unit);
+  Stats stats;
+  const CloudProjection reference = project_cloud(unit, ProjectionParams::from_h(h), Backend::cpu, stats);
+  ASSERT_GT(reference.counts.converged, 1900);
+  write_ply(path("unit.ply"), unit);
+  ASSERT_EQ(test::run_pss("project " + path("unit.ply") + " -o " + path("unit_out.ply")).exit_code, 0);
+  const PointCloud cli_reference = read_ply(path("unit_out.ply"));
+  for (const float s : {1e30f, 1e-30f}) {
+    const CloudProjection r = project_cloud(scaled(unit, s), ProjectionParams::from_h(h * s), Backend::cpu, stats);
+    EXPECT_EQ(r.counts.converged, reference.counts.converged) << s;
+    double worst = 0;
+    for (std::size_t i = 0; i < unit.size(); ++i)
+      worst = std::max(worst, double(glm::length(r.cloud.positions[i] / s - reference.cloud.positions[i])));
+    EXPECT_LT(worst, 1e-5) << "scale " << s;
+
+    const std::string name = s > 1 ? "big" : "small";
+    write_ply(path(name + ".ply"), scaled(unit, s));
+    const test::CliResult cli = test::run_pss("project " + path(name + ".ply") + " -o " + path(name + "_out.ply"));
+    ASSERT_EQ(cli.exit_code, 0) << cli.err;
+    const PointCloud out = read_ply(path(name + "_out.ply"));
+    ASSERT_EQ(out.size(), cli_reference.size());
+    worst = 0;
+    for (std::size_t i = 0; i < out.size(); ++i)
+      worst = std::max(worst, double(glm::length(out.positions[i] / s - cli_reference.positions[i])));
+    EXPECT_LT(worst, 1e-5) << "scale " << s << " through the CLI";
+  }
+}
+
+}  // namespace
+}  // namespace pss
