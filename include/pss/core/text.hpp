@@ -15,52 +15,15 @@ inline constexpr std::size_t kQuotedBytes = 80;
 
 // `text` with non-printable bytes as \xNN (a backslash as \\, so an escape is unambiguous),
 // the first `max_bytes` bytes of it only, then "…" when there were more.
-inline std::string printable(std::string_view text, std::size_t max_bytes = kQuotedBytes) {
-  static constexpr char kHex[] = "0123456789abcdef";
-  std::string out;
-  const std::size_t n = text.size() < max_bytes ? text.size() : max_bytes;
-  out.reserve(n + 8);
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto c = static_cast<unsigned char>(text[i]);
-    if (c == '\\') {
-      out += "\\\\";
-    } else if (c >= 0x20 && c < 0x7f) {
-      out += char(c);
-    } else {
-      out += "\\x";
-      out += kHex[c >> 4];
-      out += kHex[c & 15];
-    }
-  }
-  if (text.size() > n) out += "…";
-  return out;
-}
+std::string printable(std::string_view text, std::size_t max_bytes = kQuotedBytes);
 
 // printable(text) between single quotes: 'text'.
-inline std::string quote(std::string_view text, std::size_t max_bytes = kQuotedBytes) {
-  return "'" + printable(text, max_bytes) + "'";
-}
+std::string quote(std::string_view text, std::size_t max_bytes = kQuotedBytes);
 
 // A whole message made safe to print as one line: control bytes (a newline, an escape) as
 // \xNN, the rest as is (quote() already escaped what the message echoes), cut after
 // `max_bytes` with "…". For text that did not pass through quote(), e.g. CLI11's messages,
 // which echo the argument they refuse.
-inline std::string one_line(std::string_view message, std::size_t max_bytes = 1024) {
-  static constexpr char kHex[] = "0123456789abcdef";
-  std::string out;
-  const std::size_t n = message.size() < max_bytes ? message.size() : max_bytes;
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto c = static_cast<unsigned char>(message[i]);
-    if (c < 0x20 || c == 0x7f) {
-      out += "\\x";
-      out += kHex[c >> 4];
-      out += kHex[c & 15];
-    } else {
-      out += char(c);
-    }
-  }
-  if (message.size() > n) out += "…";
-  return out;
-}
+std::string one_line(std::string_view message, std::size_t max_bytes = 1024);
 
 }  // namespace pss
