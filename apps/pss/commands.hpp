@@ -5,6 +5,9 @@
 #include <initializer_list>
 #include <string>
 
+#include "pss/points/cloud.hpp"
+#include "pss/points/spacing.hpp"
+
 namespace pss::app {
 
 // Options every compute subcommand shares.
@@ -18,6 +21,10 @@ void add_compute_options(CLI::App& command, ComputeOptions& options);
 // Throws file_error for an output (empty ones are skipped) whose directory does not exist,
 // so that a run that could not save its results computes nothing.
 void check_output_directories(std::initializer_list<std::string> paths);
+
+// estimate_spacing of a cloud read from `file`, its errors ("the points coincide") naming
+// the file.
+SpacingEstimate estimate_spacing_of(const PointCloud& cloud, const std::string& file);
 
 void add_info_command(CLI::App& app);
 void add_project_command(CLI::App& app);

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "numbers.hpp"
 #include "pss/core/error.hpp"
 
 namespace pss::app {
@@ -10,15 +11,31 @@ void add_compute_options(CLI::App& command, ComputeOptions& options) {
   command.add_option("--backend", options.backend, "cpu, cuda, or auto (CUDA when built with it and a GPU is present)")
       ->check(CLI::IsMember({"cpu", "cuda", "auto"}))
       ->capture_default_str();
-  command.add_option("--threads", options.threads, "CPU threads (default: all cores)")->check(CLI::NonNegativeNumber);
+  // Each OpenMP thread is a system thread with its own stack: 100000 of them exhaust
+  // libgomp's stacks and crash. More threads than cores only add overhead, and 1024 is
+  // more than the cores of any one shared-memory machine pss runs on.
+  command.add_option("--threads", options.threads, "CPU threads (default: all cores)")
+      ->check(finite_range(1, kMaxThreads));
   command.add_option("--stats", options.stats_path, "write timings per phase and run parameters as JSON");
+}
+
+SpacingEstimate estimate_spacing_of(const PointCloud& cloud, const std::string& file) {
+  try {
+    return estimate_spacing(cloud.positions);
+  } catch (const Error& e) {
+    throw file_error(file, e.what());
+  }
 }
 
 void check_output_directories(std::initializer_list<std::string> paths) {
   for (const std::string& path : paths) {
     if (path.empty()) continue;
-    const std::filesystem::path parent = std::filesystem::absolute(path).parent_path();
-    if (!std::filesystem::is_directory(parent)) throw file_error(path, "cannot write: no directory " + parent.string());
+    // The error_code overloads: a name too long for the system is a message, not an exception.
+    std::error_code error;
+    const std::filesystem::path parent = std::filesystem::absolute(path, error).parent_path();
+    if (error) throw file_error(path, "cannot write: " + error.message());
+    if (!std::filesystem::is_directory(parent, error))
+      throw file_error(path, "cannot write: no directory " + printable(parent.string(), kPathBytes));
   }
 }
 

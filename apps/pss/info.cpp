@@ -27,7 +27,7 @@ void print_cloud(const std::string& path) {
               box.hi.z);
   std::printf("size            %g x %g x %g (diagonal %g)\n", size.x, size.y, size.z, glm::length(size));
   if (cloud.size() >= 2) {
-    const SpacingEstimate s = estimate_spacing(cloud.positions);
+    const SpacingEstimate s = estimate_spacing_of(cloud, path);
     std::printf("spacing         %g mean nearest-neighbour distance\n", s.mean_nearest);
     std::printf("suggested h     %g (median distance to the %dth nearest neighbour; rho = 2h = %g)\n", s.suggested_h,
                 s.k, 2 * s.suggested_h);

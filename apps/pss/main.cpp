@@ -2,6 +2,7 @@
 // of Point Set Surfaces, §3–§5) on CPUs and GPUs.
 #include <cstdio>
 #include <exception>
+#include <new>
 
 #include "commands.hpp"
 #include "pss/core/error.hpp"
@@ -20,14 +21,19 @@ int main(int argc, char** argv) {
   app.failure_message([](const CLI::App* top, const CLI::Error& e) {
     std::string name = "pss";
     for (const CLI::App* sub : top->get_subcommands()) name += " " + sub->get_name();
-    return name + ": error: " + std::string(e.what()) + " (see --help)\n";
+    // CLI11 echoes what it refuses (an unknown flag, a value not among the choices) as given.
+    return name + ": error: " + pss::one_line(e.what()) + " (see --help)\n";
   });
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   } catch (const pss::Error& e) {
-    std::fprintf(stderr, "pss: error: %s\n", e.what());
+    std::fprintf(stderr, "pss: error: %s\n", pss::one_line(e.what()).c_str());
+    return 1;
+  } catch (const std::bad_alloc&) {
+    // Sizes are checked where they are read; what is left is a machine with too little memory.
+    std::fprintf(stderr, "pss: error: out of memory\n");
     return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "pss: internal error: %s\n", e.what());

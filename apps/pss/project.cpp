@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "commands.hpp"
+#include "numbers.hpp"
 #include "pss/core/error.hpp"
 #include "pss/io/ply.hpp"
 #include "pss/io/point_cloud_file.hpp"
@@ -34,7 +35,7 @@ void run_project(const ProjectOptions& o) {
   float h = o.h;
   if (h == 0) {
     ScopedPhase phase(stats, "estimate h");
-    h = float(estimate_spacing(cloud.positions).suggested_h);
+    h = float(estimate_spacing_of(cloud, o.input).suggested_h);
   }
   ProjectionParams params =
       ProjectionParams::from_h(h, o.method == "wls" ? PlaneFitMethod::wls : PlaneFitMethod::mls);
@@ -94,13 +95,13 @@ void add_project_command(CLI::App& app) {
   command->add_option("file", o->input, "point cloud (.ply, .xyz, .txt, .pts)")->required();
   command->add_option("-o,--output", o->output, "output binary PLY with x y z nx ny nz")->required();
   command->add_option("--h", o->h, "Gaussian width h (default: estimated from the spacing, see pss info)")
-      ->check(CLI::PositiveNumber);
-  command->add_option("--rho", o->rho, "range-query radius (default 2h)")->check(CLI::PositiveNumber);
+      ->check(finite_positive());
+  command->add_option("--rho", o->rho, "range-query radius (default 2h)")->check(finite_positive());
   command->add_option("--method", o->method, "plane fit: mls (Eq. 2, default) or wls (Eq. 1)")
       ->check(CLI::IsMember({"mls", "wls"}))
       ->capture_default_str();
   command->add_option("--iterations", o->iterations, "most MLS alternations of t and n")
-      ->check(CLI::Range(1, 100))
+      ->check(finite_range(1, 100))
       ->capture_default_str();
   add_compute_options(*command, o->compute);
   command->callback([o] { run_project(*o); });

@@ -1,18 +1,21 @@
 #include "raw_volume_options.hpp"
 
+#include "numbers.hpp"
 #include "pss/core/error.hpp"
 
 namespace pss::app {
 
 void add_raw_volume_options(CLI::App& command, RawVolumeOptions& o) {
-  command.add_option("--dims", o.dims, "raw volume size XxYxZ, x fastest");
+  command.add_option("--dims", o.dims, "raw volume size XxYxZ, x fastest")
+      ->check(parsed_by(parse_dims, "--dims", "XxYxZ"));
   command.add_option("--type", o.type, "raw voxel type (default uint8)")
       ->check(CLI::IsMember({"int8", "uint8", "int16", "uint16", "int32", "uint32", "float32", "float64"}));
-  command.add_option("--spacing", o.spacing, "raw voxel spacing sx,sy,sz (default 1,1,1)");
+  command.add_option("--spacing", o.spacing, "raw voxel spacing sx,sy,sz (default 1,1,1)")
+      ->check(parsed_by(parse_spacing, "--spacing", "SX,SY,SZ"));
   command.add_option("--endian", o.endian, "raw byte order of multi-byte voxels (default little)")
       ->check(CLI::IsMember({"little", "big"}));
   command.add_option("--skip", o.skip, "raw header bytes before the voxels (default 0): the file holds BYTES + voxels")
-      ->type_name("BYTES");
+      ->check(parsed_by(parse_skip, "--skip", "BYTES"));
 }
 
 std::optional<RawVolumeFormat> raw_volume_format(const RawVolumeOptions& o) {

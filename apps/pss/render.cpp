@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "commands.hpp"
+#include "numbers.hpp"
 #include "pss/core/error.hpp"
 #include "pss/io/point_cloud_file.hpp"
 #include "pss/points/render_cloud.hpp"
@@ -41,7 +42,7 @@ void run_render(const RenderCloudOptions& o) {
     ScopedPhase phase(stats, "estimate h");
     // A single sample has no spacing, and no surface whatever h is (it has fewer than three
     // neighbours): it renders as background with h = 1.
-    h = cloud.size() < 2 ? 1.0f : float(estimate_spacing(cloud.positions).suggested_h);
+    h = cloud.size() < 2 ? 1.0f : float(estimate_spacing_of(cloud, o.input).suggested_h);
   }
   RayPssParams params = RayPssParams::from_h(h);
   if (o.rho != 0) params.projection.rho = o.rho;
@@ -93,7 +94,7 @@ std::string check_iterations(const std::string& text) {
     used = 0;
   }
   if (used != text.size() || n < 1 || n > kAutoIterations)
-    return "expected a number from 1 to " + std::to_string(kAutoIterations) + " or 'auto' (got '" + text + "')";
+    return "expected a number from 1 to " + std::to_string(kAutoIterations) + " or 'auto' (got " + quote(text) + ")";
   return {};
 }
 
@@ -104,12 +105,12 @@ void add_render_command(CLI::App& app) {
   auto o = std::make_shared<RenderCloudOptions>();
   command->add_option("file", o->input, "point cloud (.ply, .xyz, .txt, .pts)")->required();
   command->add_option("--h", o->h, "Gaussian width h (default: estimated from the spacing, see pss info)")
-      ->check(CLI::PositiveNumber);
-  command->add_option("--rho", o->rho, "range-query radius of the projection (default 2h)")->check(CLI::PositiveNumber);
+      ->check(finite_positive());
+  command->add_option("--rho", o->rho, "range-query radius of the projection (default 2h)")->check(finite_positive());
   command->add_option("--b", o->b, "ball radius b around each sample's local polynomial (default h)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_positive());
   command->add_option("--epsilon", o->epsilon, "a candidate is a hit when its projection moves it less (default 1e-3 h)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_positive());
   command->add_option("--iterations", o->iterations, "projections per candidate: N, or auto (until |projection - r| < eps)")
       ->check(CLI::Validator(check_iterations, "N|auto", "iterations"))
       ->capture_default_str();

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <optional>
 
+#include "numbers.hpp"
+#include "pss/core/text.hpp"
 #include "pss/render/frame_outputs.hpp"
 #include "pss/render/image.hpp"
 
@@ -25,21 +27,28 @@ std::optional<std::pair<T, T>> parse_pair(const std::string& text, char separato
   return std::make_pair(a, b);
 }
 
+// A frame keeps an image pixel and a hit record (about 64 bytes) per pixel: 2^26 pixels
+// (8192x8192) are about 4 GiB, and a side up to 16384 still allows wide panoramas.
 constexpr int kMaxSide = 16384;
+constexpr long long kMaxPixels = 1LL << 26;
 
 std::string check_size(const std::string& text) {
   const auto wh = parse_pair<int>(text, 'x');
-  if (!wh) return "expected WIDTHxHEIGHT, e.g. 512x512 (got '" + text + "')";
+  if (!wh) return "expected WIDTHxHEIGHT, e.g. 512x512 (got " + quote(text) + ")";
   if (wh->first < 1 || wh->second < 1 || wh->first > kMaxSide || wh->second > kMaxSide)
-    return "width and height must be between 1 and " + std::to_string(kMaxSide) + " (got '" + text + "')";
+    return "width and height must be between 1 and " + std::to_string(kMaxSide) + " (got " + quote(text) + ")";
+  if (static_cast<long long>(wh->first) * wh->second > kMaxPixels)
+    return "at most " + std::to_string(kMaxPixels) + " pixels in all, e.g. 8192x8192 (got " + quote(text) + ")";
   return {};
 }
 
 std::string check_view(const std::string& text) {
   const auto ae = parse_pair<float>(text, ',');
-  if (!ae) return "expected AZIMUTH,ELEVATION in degrees, e.g. 30,20 (got '" + text + "')";
-  if (!std::isfinite(ae->first) || !(ae->second >= -90 && ae->second <= 90))
-    return "the elevation must be between -90 and 90 degrees (got '" + text + "')";
+  if (!ae) return "expected AZIMUTH,ELEVATION in degrees, e.g. 30,20 (got " + quote(text) + ")";
+  // from_chars reads "nan" and "inf"; the azimuth may be any finite angle.
+  if (!std::isfinite(ae->first)) return "the azimuth must be a finite number of degrees (got " + quote(text) + ")";
+  if (!(ae->second >= -90 && ae->second <= 90))
+    return "the elevation must be between -90 and 90 degrees (got " + quote(text) + ")";
   return {};
 }
 
@@ -68,14 +77,14 @@ void add_render_options(CLI::App& command, RenderOptions& o) {
           "orbit the default camera: AZIMUTH,ELEVATION in degrees (default 0,0: from +z, looking along -z, y up)")
       ->check(CLI::Validator(check_view, "AZ,EL", "view"));
   command.add_option("--fov", o.camera.fov_deg, "vertical field of view in degrees")
-      ->check(CLI::Range(1.0f, 170.0f))
+      ->check(finite_range(1, 170))
       ->capture_default_str();
   command.add_option("--hits", o.hits_path,
                      "write the primary hits as binary PLY: x y z nx ny nz and the pixel's px py");
   command.add_flag("--shadows", o.shadows, "shadow rays toward the key light");
   command.add_flag("--reflections", o.reflections, "one mirror reflection per primary hit (ray depth 2)");
   command.add_option("--reflectivity", o.reflectivity, "Fresnel reflectance at normal incidence, with --reflections")
-      ->check(CLI::Range(0.0f, 1.0f))
+      ->check(finite_range(0, 1))
       ->capture_default_str();
   add_compute_options(command, o.compute);
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "numbers.hpp"
 #include "pss/core/error.hpp"
 #include "pss/io/volume_file.hpp"
 
@@ -30,7 +31,8 @@ void add_volume_options(CLI::App& command, VolumeOptions& o, bool method_flag) {
   command.add_option("file", o.input, "volume: .nrrd/.nhdr, .mhd/.mha, .nii/.nii.gz, or raw with --dims and --type")
       ->required();
   add_raw_volume_options(command, o.raw);
-  auto* iso = command.add_option("--iso", o.iso, "iso-surface f = V (theta1 weights)");
+  auto* iso = command.add_option("--iso", o.iso, "iso-surface f = V (theta1 weights)")
+                  ->check(finite_number());
   auto* gradient = command.add_flag("--gradient", o.gradient, "surface of high gradient magnitude (theta2 weights)");
   iso->excludes(gradient);
   gradient->excludes(iso);
@@ -39,29 +41,29 @@ void add_volume_options(CLI::App& command, VolumeOptions& o, bool method_flag) {
         ->check(CLI::IsMember({"predictor", "predictor-corrector"}))
         ->capture_default_str();
   command.add_option("--h", o.h, "theta3 width h in voxels (u = (sx*sy*sz)^(1/3))")
-      ->check(CLI::PositiveNumber)
+      ->check(finite_positive())
       ->capture_default_str();
   command.add_option("--k", o.k, "step b = k*h, 0.5 < k < 1 (paper 5.1)")
-      ->check(CLI::Range(0.05f, 1.0f))
+      ->check(finite_range(0.05, 1))
       ->capture_default_str();
   command.add_option("--radius", o.radius, "neighbourhood radius in units of h: the voxels within it are N(.)")
-      ->check(CLI::Range(0.5f, 4.0f))
+      ->check(finite_range(0.5, 4))
       ->capture_default_str();
   command.add_option("--alpha", o.alpha, "alpha1 of the corrector's Theta = alpha1*theta + (1-alpha1)*theta3")
-      ->check(CLI::Range(0.0f, 1.0f))
+      ->check(finite_range(0, 1))
       ->capture_default_str();
   command.add_option("--smoothing", o.smoothing,
                      "k of theta1 in voxels: the width of its Gaussian in the distance |V - f|/|grad f| of a voxel "
                      "to the iso-surface")
-      ->check(CLI::PositiveNumber)
+      ->check(finite_positive())
       ->capture_default_str();
   command.add_option("--error", o.error, "epsilon in voxels: r is a hit when |gamma - r| <= epsilon")
-      ->check(CLI::PositiveNumber)
+      ->check(finite_positive())
       ->capture_default_str();
   command.add_option("--threshold", o.threshold,
                      "gradient surfaces: samples with (|grad f|/max)^2 > T are projected (default 0.5); iso-surfaces "
                      "are looked for next to the cells the data crosses V in, with no threshold")
-      ->check(CLI::Range(0.0f, 1.0f));
+      ->check(finite_range(0, 1));
   o.iso_option = iso;
 }
 

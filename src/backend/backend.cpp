@@ -14,7 +14,7 @@ Backend select_backend(std::string_view choice) {
     if (cuda::device_count() == 0) throw Error("--backend cuda: no CUDA device found");
     return Backend::cuda;
   }
-  throw Error("--backend: unknown backend '" + std::string(choice) + "' (expected cpu, cuda or auto)");
+  throw Error("--backend: unknown backend " + quote(choice) + " (expected cpu, cuda or auto)");
 }
 
 const char* backend_name(Backend backend) { return backend == Backend::cuda ? "cuda" : "cpu"; }

@@ -52,13 +52,12 @@ VolumeFile read_metaimage_file(const std::filesystem::path& path) {
     if (trim(line).empty()) continue;
     const std::size_t eq = line.find('=');
     if (eq == std::string::npos) {
-      if (line.size() > 80) line = line.substr(0, 80) + "...";
-      throw file_error(path, "not a MetaImage header: line '" + line + "' has no '='");
+      throw file_error(path, "not a MetaImage header: line " + quote(line) + " has no '='");
     }
     const std::string key = lower(trim(line.substr(0, eq)));
     const std::string value = trim(line.substr(eq + 1));
     const auto bad = [&](const std::string& why = "") {
-      return file_error(path, "MetaImage " + trim(line.substr(0, eq)) + " '" + value + "'" +
+      return file_error(path, "MetaImage " + printable(trim(line.substr(0, eq))) + " " + quote(value) +
                                   (why.empty() ? " is not valid" : ": " + why));
     };
     const auto three_floats = [&] {

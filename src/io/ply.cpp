@@ -75,15 +75,6 @@ struct Header {
   int lines = 0;               // so that ascii errors can name file lines
 };
 
-std::string quoted(std::string_view text) {
-  // A binary file misread as text can yield huge "words": keep messages to one short line.
-  constexpr std::size_t kMax = 40;
-  std::string out = "'";
-  out += text.substr(0, kMax);
-  out += text.size() > kMax ? "...'" : "'";
-  return out;
-}
-
 std::vector<std::string_view> split_words(std::string_view line) {
   std::vector<std::string_view> words;
   std::size_t i = 0;
@@ -108,7 +99,7 @@ Header parse_header(const fs::path& path, std::string_view file) {
   };
   const auto scalar = [&](std::string_view name) {
     const std::optional<Scalar> type = scalar_named(name);
-    if (!type) throw fail("unknown property type " + quoted(name));
+    if (!type) throw fail("unknown property type " + quote(name));
     return *type;
   };
   // Every header line, end_header's included, ends with '\n' (CRLF tolerated).
@@ -123,14 +114,14 @@ Header parse_header(const fs::path& path, std::string_view file) {
       if (words[1] == "ascii") header.format = Format::Ascii;
       else if (words[1] == "binary_little_endian") header.format = Format::BinaryLittleEndian;
       else if (words[1] == "binary_big_endian") header.format = Format::BinaryBigEndian;
-      else throw file_error(path, "unknown format " + quoted(words[1]));
+      else throw file_error(path, "unknown format " + quote(words[1]));
       has_format = true;
     } else if (words[0] == "element" && words.size() == 3) {
       Element element{std::string(words[1]), 0, {}};
       const auto [end_of_count, ec] =
           std::from_chars(words[2].data(), words[2].data() + words[2].size(), element.count);
       if (ec != std::errc() || end_of_count != words[2].data() + words[2].size())
-        throw fail("malformed element count " + quoted(words[2]));
+        throw fail("malformed element count " + quote(words[2]));
       header.elements.push_back(std::move(element));
     } else if (words[0] == "property" && (words.size() == 3 || words.size() == 5)) {
       if (header.elements.empty()) throw fail("property before any element");
@@ -140,7 +131,7 @@ Header parse_header(const fs::path& path, std::string_view file) {
       else if (words.size() == 3)
         property = {std::string(words[2]), scalar(words[1]), std::nullopt};
       else
-        throw fail("malformed property line " + quoted(line));
+        throw fail("malformed property line " + quote(line));
       header.elements.back().properties.push_back(std::move(property));
     } else if (words[0] == "end_header") {
       if (!has_format) throw file_error(path, "header has no 'format' line");
@@ -148,7 +139,7 @@ Header parse_header(const fs::path& path, std::string_view file) {
       header.lines = line_number;
       return header;
     } else {
-      throw fail("unexpected header line " + quoted(line));
+      throw fail("unexpected header line " + quote(line));
     }
   }
   throw file_error(path, "header has no 'end_header' line");
@@ -175,9 +166,9 @@ class AsciiCursor {
     if (token.size() > 1 && token[0] == '+') token.remove_prefix(1);  // from_chars rejects '+'
     double v = 0;
     const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), v);
-    if (ec == std::errc::result_out_of_range) fail("number out of range " + quoted(token));
+    if (ec == std::errc::result_out_of_range) fail("number out of range " + quote(token));
     if (ec != std::errc() || end != token.data() + token.size())
-      fail("malformed number " + quoted(token));
+      fail("malformed number " + quote(token));
     return v;
   }
   void skip(Scalar, std::uint64_t n = 1) {
@@ -258,7 +249,7 @@ void skip_list(Cursor& in, const Property& list) {
 
 std::string describe(const Element& element) {
   const std::string n = std::to_string(element.count);
-  return element.name == "vertex" ? n + " vertices" : n + " '" + element.name + "' elements";
+  return element.name == "vertex" ? n + " vertices" : n + " " + quote(element.name) + " elements";
 }
 
 // Runs read_record for each record, reporting truncation as "expected N, read M".
@@ -375,11 +366,11 @@ void write_ply(const fs::path& path, const PointCloud& cloud, std::span<const Pl
   for (const PlyIntProperty& p : extra) {
     if (p.values.size() != n)
       throw file_error(path, "cannot write: " + std::to_string(n) + " positions but " +
-                                 std::to_string(p.values.size()) + " values of '" + p.name + "'");
+                                 std::to_string(p.values.size()) + " values of " + quote(p.name));
     // A name with blanks would split into extra words and corrupt the header.
     if (p.name.empty() || std::any_of(p.name.begin(), p.name.end(),
                                       [](unsigned char c) { return c <= ' ' || c >= 127; }))
-      throw file_error(path, "cannot write: invalid property name '" + p.name + "'");
+      throw file_error(path, "cannot write: invalid property name " + quote(p.name));
   }
 
   OutputFile file(path);

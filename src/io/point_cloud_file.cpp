@@ -17,8 +17,8 @@ PointCloud read_point_cloud(const std::filesystem::path& path) {
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext == ".ply") return read_ply(path);
   if (ext == ".xyz" || ext == ".txt" || ext == ".pts") return read_xyz(path);
-  throw file_error(path, "unknown point cloud format '" + path.extension().string() +
-                             "' (expected .ply, .xyz, .txt or .pts)");
+  throw file_error(path, "unknown point cloud format " + quote(path.extension().string()) +
+                             " (expected .ply, .xyz, .txt or .pts)");
 }
 
 void tidy_normals(PointCloud& cloud) {

@@ -258,13 +258,13 @@ ivec3 parse_dims(std::string_view text) {
   std::int64_t v[3];
   if (parts.size() != 3 || text.find_first_not_of("0123456789xX") != std::string_view::npos ||
       !parse_int64(parts[0], v[0]) || !parse_int64(parts[1], v[1]) || !parse_int64(parts[2], v[2]))
-    throw Error("--dims '" + std::string(text) + "': expected XxYxZ, e.g. 64x64x64");
+    throw Error("--dims " + quote(text) + ": expected XxYxZ, e.g. 64x64x64");
   for (int a = 0; a < 3; ++a) {
-    if (v[a] <= 0) throw Error("--dims '" + std::string(text) + "': every dimension must be positive");
-    if (v[a] > (std::int64_t(1) << 30)) throw Error("--dims '" + std::string(text) + "': dimension too large (overflow)");
+    if (v[a] <= 0) throw Error("--dims " + quote(text) + ": every dimension must be positive");
+    if (v[a] > (std::int64_t(1) << 30)) throw Error("--dims " + quote(text) + ": dimension too large (overflow)");
     d[a] = int(v[a]);
   }
-  checked_voxel_count(d, "--dims '" + std::string(text) + "'");
+  checked_voxel_count(d, "--dims " + quote(text));
   return d;
 }
 
@@ -273,7 +273,7 @@ vec3 parse_spacing(std::string_view text) {
   vec3 s;
   if (parts.size() != 3 || !parse_float(parts[0], s.x) || !parse_float(parts[1], s.y) || !parse_float(parts[2], s.z) ||
       !(s.x > 0 && s.y > 0 && s.z > 0))
-    throw Error("--spacing '" + std::string(text) + "': expected three positive numbers sx,sy,sz");
+    throw Error("--spacing " + quote(text) + ": expected three positive numbers sx,sy,sz");
   return s;
 }
 
@@ -281,15 +281,15 @@ VoxelType parse_voxel_type(std::string_view text) {
   for (VoxelType t : {VoxelType::int8, VoxelType::uint8, VoxelType::int16, VoxelType::uint16, VoxelType::int32,
                       VoxelType::uint32, VoxelType::float32, VoxelType::float64})
     if (text == voxel_type_name(t)) return t;
-  throw Error("--type '" + std::string(text) +
-              "': expected int8, uint8, int16, uint16, int32, uint32, float32 or float64");
+  throw Error("--type " + quote(text) +
+              ": expected int8, uint8, int16, uint16, int32, uint32, float32 or float64");
 }
 
 std::int64_t parse_skip(std::string_view text) {
   std::int64_t n = 0;
   if (text.find_first_not_of("0123456789") != std::string_view::npos || !parse_int64(text, n) || n < 0 ||
       n > (std::int64_t(1) << 50))
-    throw Error("--skip '" + std::string(text) + "': expected a byte count >= 0");
+    throw Error("--skip " + quote(text) + ": expected a byte count >= 0");
   return n;
 }
 
@@ -351,10 +351,10 @@ VolumeFile read_nrrd_file(const std::filesystem::path& path) {
     if (line[0] == '#') continue;
     if (line.find(":=") != std::string::npos) continue;  // key/value pairs carry no geometry
     const std::size_t colon = line.find(": ");
-    if (colon == std::string::npos) throw file_error(path, "malformed NRRD header line '" + line + "'");
+    if (colon == std::string::npos) throw file_error(path, "malformed NRRD header line " + quote(line));
     const std::string field = lower(trim(line.substr(0, colon)));
     const std::string value = trim(line.substr(colon + 2));
-    const auto bad = [&] { return file_error(path, "unsupported NRRD " + field + " '" + value + "'"); };
+    const auto bad = [&] { return file_error(path, "unsupported NRRD " + printable(field) + " " + quote(value)); };
     if (field == "type") {
       type = nrrd_type(lower(value));
       if (!type) throw bad();
@@ -370,7 +370,7 @@ VolumeFile read_nrrd_file(const std::filesystem::path& path) {
         throw bad();
       for (int a = 0; a < 3; ++a) {
         if (v[a] <= 0 || v[a] > (std::int64_t(1) << 30))
-          throw file_error(path, "NRRD sizes '" + value + "': every size must be positive and not overflow");
+          throw file_error(path, "NRRD sizes " + quote(value) + ": every size must be positive and not overflow");
         dims[a] = int(v[a]);
       }
       checked_voxel_count(dims, path.string());
@@ -397,8 +397,8 @@ VolumeFile read_nrrd_file(const std::filesystem::path& path) {
         vec3 d;
         if (!parse_vector(parts[a], d)) throw bad();
         for (int b = 0; b < 3; ++b)
-          if (b != a && d[b] != 0) throw file_error(path, "unsupported NRRD space directions '" + value + "' (only diagonal)");
-        if (!(d[a] > 0)) throw file_error(path, "unsupported NRRD space directions '" + value + "' (only positive diagonal)");
+          if (b != a && d[b] != 0) throw file_error(path, "unsupported NRRD space directions " + quote(value) + " (only diagonal)");
+        if (!(d[a] > 0)) throw file_error(path, "unsupported NRRD space directions " + quote(value) + " (only positive diagonal)");
         spacing[a] = d[a];
       }
     } else if (field == "space origin") {
@@ -414,7 +414,7 @@ VolumeFile read_nrrd_file(const std::filesystem::path& path) {
                field == "centerings" || field == "min" || field == "max" || field == "old min" || field == "old max") {
       // Descriptive only: they change nothing about where the voxels are.
     } else {
-      throw file_error(path, "unsupported NRRD field '" + field + "'");
+      throw file_error(path, "unsupported NRRD field " + quote(field));
     }
   }
   if (!type) throw file_error(path, "NRRD header has no type");

@@ -47,9 +47,9 @@ PointCloud read_xyz(const std::filesystem::path& path) {
       if (token.size() > 1 && token[0] == '+') token.remove_prefix(1);  // from_chars rejects '+'
       const auto [stop, ec] = std::from_chars(token.data(), token.data() + token.size(), v[count]);
       if (ec == std::errc::result_out_of_range)
-        throw fail("number out of range '" + std::string(token.substr(0, 40)) + "'");
+        throw fail("number out of range " + quote(token, 40));
       if (ec != std::errc() || stop != token.data() + token.size())
-        throw fail("malformed number '" + std::string(token.substr(0, 40)) + "'");
+        throw fail("malformed number " + quote(token, 40));
       ++count;
     }
     if (count == 0) continue;  // blank or comment

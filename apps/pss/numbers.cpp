@@ -1,0 +1,48 @@
+#include "numbers.hpp"
+
+#include <cerrno>
+#include <cctype>
+#include <cfloat>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "pss/core/text.hpp"
+
+namespace pss::app {
+
+namespace {
+
+std::string number(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", x);
+  return text;
+}
+
+}  // namespace
+
+CLI::Validator finite_range(double lo, double hi, bool lo_open) {
+  const bool unbounded = hi == double(FLT_MAX);
+  const std::string range = unbounded && lo == -double(FLT_MAX) ? "a finite number"
+                            : unbounded && lo_open            ? "a finite number > " + number(lo)
+                            : (lo_open ? "a finite number > " + number(lo) + " and <= "
+                                       : "a finite number from " + number(lo) + " to ") + number(hi);
+  return CLI::Validator(
+      [lo, hi, lo_open, range](std::string& text) -> std::string {
+        const char* begin = text.c_str();
+        char* end = nullptr;
+        errno = 0;
+        const double x = std::strtod(begin, &end);
+        const bool parsed = end != begin && *end == '\0' && !std::isspace(static_cast<unsigned char>(*begin));
+        if (!parsed || !std::isfinite(x) || errno == ERANGE || x > hi || (lo_open ? !(x > lo) : !(x >= lo)))
+          return "expected " + range + " (got " + quote(text) + ")";
+        return {};
+      },
+      lo_open && hi == double(FLT_MAX) ? "POSITIVE" : "NUMBER", "finite range");
+}
+
+CLI::Validator finite_positive() { return finite_range(0, double(FLT_MAX), true); }
+
+CLI::Validator finite_number() { return finite_range(-double(FLT_MAX), double(FLT_MAX)); }
+
+}  // namespace pss::app

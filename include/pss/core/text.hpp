@@ -1,0 +1,29 @@
+// Quoting what a user supplied (a flag's value, a header's field, a file's name) inside a
+// one-line error message: every byte outside printable ASCII becomes \xNN, so a newline or a
+// terminal escape in the input cannot break the line or the terminal, and the text is cut
+// after a bounded number of bytes with "…", so a 20 MB header line is not echoed whole.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+
+namespace pss {
+
+// The longest input echoed by quote(): enough to recognise a value, short enough for a line.
+inline constexpr std::size_t kQuotedBytes = 80;
+
+// `text` with non-printable bytes as \xNN (a backslash as \\, so an escape is unambiguous),
+// the first `max_bytes` bytes of it only, then "…" when there were more.
+std::string printable(std::string_view text, std::size_t max_bytes = kQuotedBytes);
+
+// printable(text) between single quotes: 'text'.
+std::string quote(std::string_view text, std::size_t max_bytes = kQuotedBytes);
+
+// A whole message made safe to print as one line: control bytes (a newline, an escape) as
+// \xNN, the rest as is (quote() already escaped what the message echoes), cut after
+// `max_bytes` with "…". For text that did not pass through quote(), e.g. CLI11's messages,
+// which echo the argument they refuse.
+std::string one_line(std::string_view message, std::size_t max_bytes = 1024);
+
+}  // namespace pss

@@ -1,0 +1,52 @@
+#include "pss/core/text.hpp"
+
+namespace pss {
+
+std::string printable(std::string_view text, std::size_t max_bytes) {
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string out;
+  const std::size_t n = text.size() < max_bytes ? text.size() : max_bytes;
+  out.reserve(n + 8);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c == '\\') {
+      out += "\\\\";
+    } else if (c >= 0x20 && c < 0x7f) {
+      out += char(c);
+    } else {
+      out += "\\x";
+      out += kHex[c >> 4];
+      out += kHex[c & 15];
+    }
+  }
+  if (text.size() > n) out += "…";
+  return out;
+}
+
+std::string quote(std::string_view text, std::size_t max_bytes) {
+  // Appended, not "'" + ...: GCC 12 warns (-Wrestrict, a false positive) on operator+.
+  std::string out = "'";
+  out += printable(text, max_bytes);
+  out += '\'';
+  return out;
+}
+
+std::string one_line(std::string_view message, std::size_t max_bytes) {
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string out;
+  const std::size_t n = message.size() < max_bytes ? message.size() : max_bytes;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto c = static_cast<unsigned char>(message[i]);
+    if (c < 0x20 || c == 0x7f) {
+      out += "\\x";
+      out += kHex[c >> 4];
+      out += kHex[c & 15];
+    } else {
+      out += char(c);
+    }
+  }
+  if (message.size() > n) out += "…";
+  return out;
+}
+
+}  // namespace pss
