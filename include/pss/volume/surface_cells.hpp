@@ -85,7 +85,7 @@ PSS_INLINE bool is_data_surface(const FieldView& v, const CellView& cells, const
 }
 
 // The cells of `fields` for `feature`; `reach` (world units) is how far from a crossed cell
-// a sample may lie and still be projected (prepare_volume: the ball of trust b).
+// a sample may lie and still be projected (prepare_volume: b/2, half the marching step).
 SurfaceCells find_surface_cells(const VolumeFields& fields, const FeatureParams& feature, float reach);
 
 }  // namespace pss
