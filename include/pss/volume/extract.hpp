@@ -46,7 +46,7 @@ PSS_INLINE ExtractedPoint extract_candidate(const VolumeScene& s, vec3 r) {
   ExtractedPoint out;
   const BrickView& bricks = s.bricks;
   if (!bricks.is_occupied(bricks.brick_of(s.fields.volume.to_grid(r)))) return out;
-  if (!passes_feature_test(s.fields, s.cells, s.feature, r)) return out;
+  if (!passes_feature_test(s.fields, s.cells, s.feature, r, s.params.step)) return out;
   const VolumeParams& p = s.params;
   vec3 x = r;
   VoxelNeighbourhood nb;

@@ -50,13 +50,19 @@ struct SurfaceCells {
 };
 
 // The fragment test (§5.1) at the world position p: p is within reach of a crossed cell,
-// and for a gradient surface θ2 > threshold there (the paper's own test).
-PSS_INLINE bool passes_feature_test(const FieldView& v, const CellView& cells, const FeatureParams& f, vec3 p) {
+// and the data say the surface may be within `reach` of p: for an iso-surface the
+// first-order distance |v − f(p)|/|∇f(p)| is at most twice the reach (twice: on a step
+// sharper than a voxel the Sobel gradient halves the slope), for a gradient surface
+// θ2 > threshold there (the paper's own test).
+PSS_INLINE bool passes_feature_test(const FieldView& v, const CellView& cells, const FeatureParams& f, vec3 p,
+                                    float reach) {
   const vec3 g = v.volume.to_grid(p);
   if (!cells.has(g, kCellInReach)) return false;
-  if (f.kind == FeatureKind::iso) return true;
   const TrilinearCell cell = TrilinearCell::at(v.volume.dims, g);
-  return theta_gradient(trilinear(v.gradients, v.volume.dims, cell), v.inv_max_gradient2) > f.threshold;
+  const vec3 gradient = trilinear(v.gradients, v.volume.dims, cell);
+  if (f.kind == FeatureKind::gradient) return theta_gradient(gradient, v.inv_max_gradient2) > f.threshold;
+  const float difference = abs(f.iso - trilinear(v.volume.values, v.volume.dims, cell));
+  return difference <= 2.0f * reach * glm::length(gradient);
 }
 
 // Whether a projection that settled at p, with the fitted surface's normal n, is a hit:
