@@ -36,13 +36,6 @@ struct Dataset {
   std::vector<float> isos;
 };
 
-RawVolumeFormat uint8_raw(int x, int y, int z) {
-  RawVolumeFormat f;
-  f.dims = ivec3(x, y, z);
-  f.type = VoxelType::uint8;
-  return f;
-}
-
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -61,11 +54,11 @@ int main(int argc, char** argv) {
   }
   if (!images.empty()) std::filesystem::create_directories(images);
   const std::vector<Dataset> datasets = {
-      {"tooth", "tooth_103x94x161_uint8.raw", uint8_raw(103, 94, 161), {60, 110}},
+      {"tooth", "tooth_103x94x161_uint8.raw", test::uint8_raw(ivec3(103, 94, 161)), {60, 110}},
       {"engine", "engine_256x256x128_uint8.nrrd", std::nullopt, {75, 180}},
-      {"fuel", "fuel_64x64x64_uint8.raw", uint8_raw(64, 64, 64), {30, 100}},
-      {"bucky", "bucky_32x32x32_uint8.raw", uint8_raw(32, 32, 32), {100, 200}},
-      {"neghip", "neghip_64x64x64_uint8.raw", uint8_raw(64, 64, 64), {40, 120}},
+      {"fuel", "fuel_64x64x64_uint8.raw", test::uint8_raw(ivec3(64, 64, 64)), {30, 100}},
+      {"bucky", "bucky_32x32x32_uint8.raw", test::uint8_raw(ivec3(32, 32, 32)), {100, 200}},
+      {"neghip", "neghip_64x64x64_uint8.raw", test::uint8_raw(ivec3(64, 64, 64)), {40, 120}},
   };
   const vec2 views[] = {{30, 10}, {200, -30}, {120, 60}};
 

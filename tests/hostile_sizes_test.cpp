@@ -3,7 +3,6 @@
 // and clouds at extreme scales. Each is refused with one line naming the file or flag, no
 // output left behind; or, for scales, gives the same surface up to the scale.
 #include <gtest/gtest.h>
-#include <zlib.h>
 
 #include <cmath>
 #include <filesystem>
@@ -18,26 +17,15 @@
 #include "pss/io/volume_file.hpp"
 #include "pss/points/project_cloud.hpp"
 #include "support/cli.hpp"
+#include "support/gzip.hpp"
 #include "support/shapes.hpp"
 
 namespace pss {
 namespace {
 
 namespace fs = std::filesystem;
+using test::gzip;
 
-std::string gzip(const std::string& data) {
-  z_stream z{};
-  deflateInit2(&z, Z_BEST_COMPRESSION, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY);
-  std::string out(deflateBound(&z, uLong(data.size())) + 32, '\0');
-  z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
-  z.avail_in = uInt(data.size());
-  z.next_out = reinterpret_cast<Bytef*>(out.data());
-  z.avail_out = uInt(out.size());
-  deflate(&z, Z_FINISH);
-  out.resize(z.total_out);
-  deflateEnd(&z);
-  return out;
-}
 
 std::string error_of(auto&& f) {
   try {

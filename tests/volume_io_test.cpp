@@ -2,7 +2,6 @@
 // detached, raw and gzip; and every bad input as a one-line error, through the CLI too
 // (no output file left behind).
 #include <gtest/gtest.h>
-#include <zlib.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -16,11 +15,13 @@
 #include "pss/core/error.hpp"
 #include "pss/io/output_file.hpp"
 #include "pss/io/volume_file.hpp"
+#include "support/gzip.hpp"
 
 namespace pss {
 namespace {
 
 namespace fs = std::filesystem;
+using test::gzip;
 
 fs::path temp_dir() {
   const fs::path d = fs::temp_directory_path() / ("pss_volume_io_" + std::to_string(::getpid()));
@@ -33,19 +34,6 @@ void write_bytes(const fs::path& p, const std::string& bytes) {
   out << bytes;
 }
 
-std::string gzip(const std::string& data) {
-  z_stream z{};
-  deflateInit2(&z, Z_DEFAULT_COMPRESSION, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY);
-  std::string out(deflateBound(&z, uLong(data.size())) + 32, '\0');
-  z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
-  z.avail_in = uInt(data.size());
-  z.next_out = reinterpret_cast<Bytef*>(out.data());
-  z.avail_out = uInt(out.size());
-  deflate(&z, Z_FINISH);
-  out.resize(z.total_out);
-  deflateEnd(&z);
-  return out;
-}
 
 // 2×3×4 voxels valued i + 10j + 100k.
 std::string ramp_uint8() {

@@ -27,13 +27,6 @@ struct Scan {
   std::vector<float> isos;
 };
 
-RawVolumeFormat uint8_cube(int x, int y, int z) {
-  RawVolumeFormat f;
-  f.dims = ivec3(x, y, z);
-  f.type = VoxelType::uint8;
-  return f;
-}
-
 void expect_agreement(const Scan& scan) {
   const Volume volume = read_volume(std::filesystem::path(PSS_SOURCE_DIR "/data") / scan.file, scan.raw);
   for (const float iso : scan.isos) {
@@ -63,14 +56,16 @@ void expect_agreement(const Scan& scan) {
 
 // The tooth's background (70–90, noisy) lies just below 110 and above 60: both used to
 // fill the box with sheets. 125 is its histogram's valley.
-TEST(VolumeRealData, Tooth) { expect_agreement({"tooth_103x94x161_uint8.raw", uint8_cube(103, 94, 161), {60, 110, 125}}); }
+TEST(VolumeRealData, Tooth) {
+  expect_agreement({"tooth_103x94x161_uint8.raw", test::uint8_raw(ivec3(103, 94, 161)), {60, 110, 125}});
+}
 TEST(VolumeRealData, Engine) { expect_agreement({"engine_256x256x128_uint8.nrrd", std::nullopt, {75, 180}}); }
-TEST(VolumeRealData, Fuel) { expect_agreement({"fuel_64x64x64_uint8.raw", uint8_cube(64, 64, 64), {30, 60}}); }
+TEST(VolumeRealData, Fuel) { expect_agreement({"fuel_64x64x64_uint8.raw", test::uint8_raw(ivec3(64, 64, 64)), {30, 60}}); }
 // Fuel at 100 and bucky at 150–200 are scatters of blobs one or two voxels across, below
 // the PSS's feature size h = 2 voxels (§5.1), which it smooths away or merges (see
 // docs/benchmarks.md); these levels are the scans' own surfaces.
-TEST(VolumeRealData, Bucky) { expect_agreement({"bucky_32x32x32_uint8.raw", uint8_cube(32, 32, 32), {60, 100}}); }
-TEST(VolumeRealData, Neghip) { expect_agreement({"neghip_64x64x64_uint8.raw", uint8_cube(64, 64, 64), {40, 120}}); }
+TEST(VolumeRealData, Bucky) { expect_agreement({"bucky_32x32x32_uint8.raw", test::uint8_raw(ivec3(32, 32, 32)), {60, 100}}); }
+TEST(VolumeRealData, Neghip) { expect_agreement({"neghip_64x64x64_uint8.raw", test::uint8_raw(ivec3(64, 64, 64)), {40, 120}}); }
 
 }  // namespace
 }  // namespace pss

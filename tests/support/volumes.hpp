@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "pss/core/stats.hpp"
+#include "pss/io/volume_file.hpp"
 #include "pss/volume/render_volume.hpp"
 #include "pss/volume/volume.hpp"
 
@@ -111,6 +112,14 @@ inline Volume sample_volume(const Field& f, const SampleVolumeOptions& o) {
         v.values[std::size_t(view.index(i, j, k))] = x;
       }
   return v;
+}
+
+// How the shipped raw scans are read: uint8, x fastest, unit spacing.
+inline RawVolumeFormat uint8_raw(ivec3 dims) {
+  RawVolumeFormat f;
+  f.dims = dims;
+  f.type = VoxelType::uint8;
+  return f;
 }
 
 // The iso-surface f = iso of a unit-spaced volume, prepared for rendering or extraction
