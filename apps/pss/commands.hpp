@@ -2,7 +2,6 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
-#include <initializer_list>
 #include <string>
 
 namespace pss::app {
@@ -14,10 +13,6 @@ struct ComputeOptions {
   std::string stats_path;
 };
 void add_compute_options(CLI::App& command, ComputeOptions& options);
-
-// Throws file_error for an output (empty ones are skipped) whose directory does not exist,
-// so that a run that could not save its results computes nothing.
-void check_output_directories(std::initializer_list<std::string> paths);
 
 void add_info_command(CLI::App& app);
 void add_project_command(CLI::App& app);

@@ -1,9 +1,5 @@
 #include "commands.hpp"
 
-#include <filesystem>
-
-#include "pss/core/error.hpp"
-
 namespace pss::app {
 
 void add_compute_options(CLI::App& command, ComputeOptions& options) {
@@ -12,14 +8,6 @@ void add_compute_options(CLI::App& command, ComputeOptions& options) {
       ->capture_default_str();
   command.add_option("--threads", options.threads, "CPU threads (default: all cores)")->check(CLI::NonNegativeNumber);
   command.add_option("--stats", options.stats_path, "write timings per phase and run parameters as JSON");
-}
-
-void check_output_directories(std::initializer_list<std::string> paths) {
-  for (const std::string& path : paths) {
-    if (path.empty()) continue;
-    const std::filesystem::path parent = std::filesystem::absolute(path).parent_path();
-    if (!std::filesystem::is_directory(parent)) throw file_error(path, "cannot write: no directory " + parent.string());
-  }
 }
 
 }  // namespace pss::app
