@@ -149,6 +149,41 @@ TEST_F(OutputFileTest, MissingDirectoryIsAFileError) {
   EXPECT_TRUE(listing().empty());
 }
 
+// Inside an OutputSet nothing appears until the set commits, and then everything does.
+TEST_F(OutputFileTest, OutputSetCommitsAllOrNothing) {
+  write("a.txt", "old");
+  {
+    pss::OutputSet set({}, {file("a.txt"), file("b.txt")});
+    pss::write_text_file(file("a.txt"), "new");
+    pss::write_text_file(file("b.txt"), "b");
+    EXPECT_EQ(slurp(file("a.txt")), "old") << "replaced before the set commits";
+    EXPECT_FALSE(fs::exists(file("b.txt")));
+  }
+  EXPECT_EQ(listing(), std::vector<std::string>{"a.txt"}) << "a temporary left by an uncommitted set";
+  EXPECT_EQ(slurp(file("a.txt")), "old");
+  {
+    pss::OutputSet set({}, {file("a.txt"), file("b.txt")});
+    pss::write_text_file(file("a.txt"), "new");
+    pss::write_text_file(file("b.txt"), "b");
+    set.commit();
+  }
+  EXPECT_EQ(listing(), (std::vector<std::string>{"a.txt", "b.txt"}));
+  EXPECT_EQ(slurp(file("a.txt")), "new");
+  EXPECT_EQ(slurp(file("b.txt")), "b");
+}
+
+TEST_F(OutputFileTest, OutputSetRefusesBadDestinationsBeforeCreatingAnything) {
+  fs::create_directories(file("dir"));
+  write("in.txt", "input");
+  expect_file_error([&] { pss::OutputSet set({}, {file("a.txt"), file("dir")}); }, file("dir"),
+                    "cannot write: Is a directory");
+  expect_file_error([&] { pss::OutputSet set({file("in.txt")}, {file("a.txt"), file("in.txt")}); }, file("in.txt"),
+                    "cannot write: it is the input");
+  expect_file_error([&] { pss::OutputSet set({}, {file("a.txt"), file("a.txt")}); }, file("a.txt"),
+                    "cannot write: named twice as an output");
+  EXPECT_EQ(listing(), (std::vector<std::string>{"dir", "in.txt"}));
+}
+
 // ---------------------------------------------------------------------------------------
 using PlyTest = TempDirTest;
 

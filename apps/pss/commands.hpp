@@ -2,7 +2,6 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
-#include <initializer_list>
 #include <string>
 
 #include "pss/points/cloud.hpp"
@@ -17,10 +16,6 @@ struct ComputeOptions {
   std::string stats_path;
 };
 void add_compute_options(CLI::App& command, ComputeOptions& options);
-
-// Throws file_error for an output (empty ones are skipped) whose directory does not exist,
-// so that a run that could not save its results computes nothing.
-void check_output_directories(std::initializer_list<std::string> paths);
 
 // estimate_spacing of a cloud read from `file`, its errors ("the points coincide") naming
 // the file.

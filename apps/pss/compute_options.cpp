@@ -1,7 +1,5 @@
 #include "commands.hpp"
 
-#include <filesystem>
-
 #include "numbers.hpp"
 #include "pss/core/error.hpp"
 
@@ -24,18 +22,6 @@ SpacingEstimate estimate_spacing_of(const PointCloud& cloud, const std::string& 
     return estimate_spacing(cloud.positions);
   } catch (const Error& e) {
     throw file_error(file, e.what());
-  }
-}
-
-void check_output_directories(std::initializer_list<std::string> paths) {
-  for (const std::string& path : paths) {
-    if (path.empty()) continue;
-    // The error_code overloads: a name too long for the system is a message, not an exception.
-    std::error_code error;
-    const std::filesystem::path parent = std::filesystem::absolute(path, error).parent_path();
-    if (error) throw file_error(path, "cannot write: " + error.message());
-    if (!std::filesystem::is_directory(parent, error))
-      throw file_error(path, "cannot write: no directory " + printable(parent.string(), kPathBytes));
   }
 }
 

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "commands.hpp"
+#include "pss/io/output_file.hpp"
 #include "pss/io/ply.hpp"
 #include "pss/volume/extract.hpp"
 #include "volume_options.hpp"
@@ -20,7 +21,7 @@ struct ExtractOptions {
 
 void run_extract(const ExtractOptions& o) {
   const auto start = std::chrono::steady_clock::now();
-  check_output_directories({o.output, o.compute.stats_path});
+  OutputSet outputs({o.volume.input}, {o.output, o.compute.stats_path});
   set_cpu_threads(o.compute.threads);
   const Backend backend = select_backend(o.compute.backend);
   Stats stats;
@@ -37,7 +38,6 @@ void run_extract(const ExtractOptions& o) {
               "%lld candidates, %lld accepted, b = %g\n", (long long)counts.kept, o.volume.input.c_str(), seconds,
               stats.time("projection"), backend_name(backend), cpu_threads(), (long long)counts.candidates,
               (long long)counts.accepted, volume.params.step);
-  std::printf("wrote %s\n", o.output.c_str());
   if (!o.compute.stats_path.empty()) {
     auto& j = stats.values();
     j["command"] = "extract";
@@ -50,8 +50,10 @@ void run_extract(const ExtractOptions& o) {
     j["points"] = counts.kept;
     j["volume"] = describe(volume, o.volume);
     stats.write(o.compute.stats_path);
-    std::printf("wrote %s\n", o.compute.stats_path.c_str());
   }
+  outputs.commit();
+  std::printf("wrote %s\n", o.output.c_str());
+  if (!o.compute.stats_path.empty()) std::printf("wrote %s\n", o.compute.stats_path.c_str());
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include "commands.hpp"
 #include "numbers.hpp"
 #include "pss/core/error.hpp"
+#include "pss/io/output_file.hpp"
 #include "pss/io/ply.hpp"
 #include "pss/io/point_cloud_file.hpp"
 #include "pss/points/project_cloud.hpp"
@@ -24,6 +25,7 @@ struct ProjectOptions {
 
 void run_project(const ProjectOptions& o) {
   const auto start = std::chrono::steady_clock::now();
+  OutputSet outputs({o.input}, {o.output, o.compute.stats_path});
   set_cpu_threads(o.compute.threads);
   const Backend backend = select_backend(o.compute.backend);
   Stats stats;
@@ -68,7 +70,6 @@ void run_project(const ProjectOptions& o) {
   std::printf("h = %g, rho = %g, plane fit %s; converged %lld, not converged %lld, too few neighbours %lld, "
               "degenerate normal %lld\n", params.h, params.rho, o.method.c_str(), (long long)c.converged,
               (long long)c.not_converged, (long long)c.too_few_neighbours, (long long)c.degenerate_normal);
-  std::printf("wrote %s\n", o.output.c_str());
 
   if (!o.compute.stats_path.empty()) {
     auto& v = stats.values();
@@ -85,6 +86,9 @@ void run_project(const ProjectOptions& o) {
     v["points_per_second"] = double(cloud.size()) / projection_s;
     stats.write(o.compute.stats_path);
   }
+  outputs.commit();
+  std::printf("wrote %s\n", o.output.c_str());
+  if (!o.compute.stats_path.empty()) std::printf("wrote %s\n", o.compute.stats_path.c_str());
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include "commands.hpp"
 #include "numbers.hpp"
 #include "pss/core/error.hpp"
+#include "pss/io/output_file.hpp"
 #include "pss/io/point_cloud_file.hpp"
 #include "pss/points/render_cloud.hpp"
 #include "pss/points/spacing.hpp"
@@ -27,7 +28,7 @@ int iterations_of(const std::string& text) { return text == "auto" ? kAutoIterat
 
 void run_render(const RenderCloudOptions& o) {
   const auto start = std::chrono::steady_clock::now();
-  check_output_paths(o.render);
+  OutputSet outputs({o.input}, {o.render.output, o.render.hits_path, o.render.compute.stats_path});
   set_cpu_threads(o.render.compute.threads);
   const Backend backend = select_backend(o.render.compute.backend);
   Stats stats;
@@ -81,6 +82,7 @@ void run_render(const RenderCloudOptions& o) {
                    {"secondary_offset", params.secondary_offset}};
     stats.write(o.render.compute.stats_path);
   }
+  outputs.commit();
   print_written(o.render);
 }
 

@@ -89,10 +89,6 @@ void add_render_options(CLI::App& command, RenderOptions& o) {
   add_compute_options(command, o.compute);
 }
 
-void check_output_paths(const RenderOptions& o) {
-  check_output_directories({o.output, o.hits_path, o.compute.stats_path});
-}
-
 TraceSettings trace_settings(const RenderOptions& o, const Camera& camera) {
   TraceSettings s;
   s.shading = ShadingParams::for_camera(camera);

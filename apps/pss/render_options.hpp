@@ -26,10 +26,6 @@ struct RenderOptions {
 
 void add_render_options(CLI::App& command, RenderOptions& options);
 
-// Throws file_error for an output whose directory does not exist, so that nothing is
-// computed, and nothing written, for a run that could not save its results.
-void check_output_paths(const RenderOptions& options);
-
 // The shading and secondary-ray settings of the options for this camera.
 TraceSettings trace_settings(const RenderOptions& options, const Camera& camera);
 

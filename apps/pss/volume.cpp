@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "commands.hpp"
+#include "pss/io/output_file.hpp"
 #include "pss/render/frame_outputs.hpp"
 #include "render_options.hpp"
 #include "volume_options.hpp"
@@ -20,7 +21,7 @@ struct VolumeCommandOptions {
 
 void run_volume(const VolumeCommandOptions& o) {
   const auto start = std::chrono::steady_clock::now();
-  check_output_paths(o.render);
+  OutputSet outputs({o.volume.input}, {o.render.output, o.render.hits_path, o.render.compute.stats_path});
   set_cpu_threads(o.render.compute.threads);
   const Backend backend = select_backend(o.render.compute.backend);
   Stats stats;
@@ -53,6 +54,7 @@ void run_volume(const VolumeCommandOptions& o) {
     j["volume"] = describe(volume, o.volume);
     stats.write(o.render.compute.stats_path);
   }
+  outputs.commit();
   print_written(o.render);
   if (s.hits == 0)
     std::fprintf(stderr, "pss volume: no ray hit the surface of %s (%lld cells cross it)\n", o.volume.input.c_str(),

@@ -1,12 +1,19 @@
 // Atomic output: everything is written to a temporary file beside the destination and
 // renamed onto it by commit(), so a crash or an error never leaves a half-written file
 // under the final name (rename within one directory is atomic on POSIX).
+//
+// A command with several outputs (an image, --hits, --stats) makes them all-or-nothing with
+// an OutputSet: it checks every destination before any work and reserves its temporary;
+// while the set is alive, OutputFile::commit() leaves its file as a temporary in the set,
+// and OutputSet::commit() renames them all at the end. Temporaries are removed on SIGINT,
+// SIGTERM and SIGHUP as well as on errors.
 #pragma once
 
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace pss {
 
@@ -20,13 +27,51 @@ class OutputFile {
   OutputFile& operator=(const OutputFile&) = delete;
 
   std::ostream& stream() { return out_; }  // binary mode
-  // Flushes, checks every write succeeded, and renames onto the destination.
+  // Flushes, checks every write succeeded, and renames onto the destination; inside an
+  // OutputSet it hands the finished temporary to the set instead, which renames it later.
   void commit();
 
  private:
   std::filesystem::path destination_;
   std::filesystem::path temporary_;
   std::ofstream out_;
+  bool committed_ = false;
+  bool reserved_ = false;  // the temporary belongs to the active OutputSet
+};
+
+// The outputs of one command, committed together. Empty paths are skipped.
+class OutputSet {
+ public:
+  // Checks each output and throws file_error(output, "cannot write: ...") for one that
+  // exists and is not a regular file (directory, FIFO, device, socket, symlink), whose
+  // directory is missing or not writable, that is one of the inputs, or that is named twice.
+  // Then reserves (creates, empty) the temporary of each output, which proves it can be
+  // created. Becomes the active set of this thread until destroyed.
+  OutputSet(const std::vector<std::filesystem::path>& inputs, const std::vector<std::filesystem::path>& outputs);
+  // Removes every temporary not committed.
+  ~OutputSet();
+  OutputSet(const OutputSet&) = delete;
+  OutputSet& operator=(const OutputSet&) = delete;
+
+  // Renames every finished temporary onto its destination. Throws file_error for an output
+  // that was reserved but never written. POSIX has no atomic rename of several files: a
+  // rename that fails after others succeeded (disk pulled out) leaves those in place.
+  void commit();
+
+  // The set OutputFile hands its temporaries to, or nullptr.
+  static OutputSet* active();
+
+ private:
+  friend class OutputFile;
+  struct Entry {
+    std::filesystem::path destination, temporary;
+    bool written = false;
+  };
+  Entry* find(const std::filesystem::path& destination);
+  void adopt(const std::filesystem::path& destination, const std::filesystem::path& temporary);
+
+  std::vector<Entry> entries_;
+  OutputSet* previous_ = nullptr;
   bool committed_ = false;
 };
 
