@@ -14,30 +14,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class CliProject : public testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("pss-cli-project-" + std::to_string(::getpid()));
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  std::string write(const std::string& name, const std::string& text) const {
-    std::ofstream(path(name), std::ios::binary) << text;
-    return path(name);
-  }
-  // The failure contract: exit non-zero, one line on stderr naming `names`, no output file.
-  void expect_clean_failure(const std::string& args, const std::string& names, const std::string& output) {
-    const test::CliResult r = test::run_pss(args);
-    EXPECT_NE(r.exit_code, 0) << args;
-    EXPECT_EQ(test::line_count(r.err), 1) << r.err;
-    EXPECT_NE(r.err.find(names), std::string::npos) << r.err;
-    EXPECT_FALSE(fs::exists(output)) << output;
-    for (const auto& entry : fs::directory_iterator(dir_))
-      EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
-  }
-  fs::path dir_;
-};
+class CliProject : public test::CliTest {};
 
 const std::string kHeader = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
 

@@ -27,14 +27,6 @@ namespace fs = std::filesystem;
 using test::gzip;
 
 
-std::string error_of(auto&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
 
 long peak_rss_kib() {
   rusage u{};
@@ -42,48 +34,26 @@ long peak_rss_kib() {
   return u.ru_maxrss;
 }
 
-class HostileSizes : public testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("pss-hostile-sizes-" + std::to_string(::getpid()));
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  std::string write(const std::string& name, const std::string& bytes) const {
-    std::ofstream(path(name), std::ios::binary) << bytes;
-    return path(name);
-  }
-  // Exit non-zero, one line on stderr naming `names`, no output file.
-  void expect_clean_failure(const std::string& args, const std::string& names, const std::string& output) {
-    const test::CliResult r = test::run_pss(args);
-    EXPECT_NE(r.exit_code, 0) << args;
-    EXPECT_EQ(test::line_count(r.err), 1) << r.err;
-    EXPECT_NE(r.err.find(names), std::string::npos) << r.err;
-    EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
-    EXPECT_FALSE(fs::exists(output)) << output;
-  }
-  fs::path dir_;
-};
+class HostileSizes : public test::CliTest {};
 
 // 2^20 · 2^20 · 2^30 = 2^70 wraps to 0 in int64: the product must be checked, and a size
 // message must never print a negative count.
 TEST_F(HostileSizes, SizeProductsThatOverflowAreRefused) {
   const std::string huge = "1048576x1048576x1073741824";
-  std::string m = error_of([&] { parse_dims(huge); });
+  std::string m = test::error_of([&] { parse_dims(huge); });
   EXPECT_NE(m.find("2^31"), std::string::npos) << m;
   EXPECT_EQ(m.find(" -"), std::string::npos) << m;  // no negative count
-  m = error_of([] { parse_dims("100000x100000x100000"); });
+  m = test::error_of([] { parse_dims("100000x100000x100000"); });
   EXPECT_NE(m.find("1000000000000000 voxels"), std::string::npos) << m;
 
   const std::string nrrd = write("huge.nrrd", "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 1048576 1048576 1073741824\n"
                                               "encoding: raw\n\n");
-  m = error_of([&] { read_nrrd(nrrd); });
+  m = test::error_of([&] { read_nrrd(nrrd); });
   EXPECT_NE(m.find(nrrd), std::string::npos) << m;
   EXPECT_NE(m.find("2^31"), std::string::npos) << m;
   const std::string mha = write("huge.mha", "ObjectType = Image\nNDims = 3\nDimSize = 1048576 1048576 1073741824\n"
                                             "ElementType = MET_UCHAR\nElementDataFile = LOCAL\n");
-  m = error_of([&] { read_metaimage(mha); });
+  m = test::error_of([&] { read_metaimage(mha); });
   EXPECT_NE(m.find(mha), std::string::npos) << m;
   EXPECT_NE(m.find("2^31"), std::string::npos) << m;
 
@@ -103,9 +73,9 @@ TEST_F(HostileSizes, AGzipBombIsRefusedWithoutAllocatingItsClaim) {
                                             "ElementType = MET_FLOAT\nCompressedData = True\n"
                                             "ElementDataFile = LOCAL\n" + zeros);
   const long before = peak_rss_kib();
-  std::string m = error_of([&] { read_nrrd(bomb); });
+  std::string m = test::error_of([&] { read_nrrd(bomb); });
   EXPECT_NE(m.find("holds 65536 bytes, the header promises 8589934592"), std::string::npos) << m;
-  m = error_of([&] { read_metaimage(mha); });
+  m = test::error_of([&] { read_metaimage(mha); });
   EXPECT_NE(m.find("holds 65536 bytes, the header promises 8589934592"), std::string::npos) << m;
   EXPECT_LT(peak_rss_kib() - before, 256L * 1024) << "KiB of peak memory for a " << zeros.size() << "-byte file";
 

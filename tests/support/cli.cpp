@@ -1,6 +1,7 @@
 #include "support/cli.hpp"
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -33,5 +34,29 @@ CliResult run_pss(const std::string& args) {
 }
 
 int line_count(const std::string& s) { return int(std::count(s.begin(), s.end(), '\n')); }
+
+void CliTest::SetUp() {
+  const std::string name = testing::UnitTest::GetInstance()->current_test_info()->name();
+  dir_ = std::filesystem::temp_directory_path() / ("pss-" + name + "-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir_);
+}
+
+void CliTest::TearDown() { std::filesystem::remove_all(dir_); }
+
+std::string CliTest::write(const std::string& name, const std::string& bytes) const {
+  std::ofstream(path(name), std::ios::binary) << bytes;
+  return path(name);
+}
+
+void CliTest::expect_clean_failure(const std::string& args, const std::string& names, const std::string& output) {
+  const CliResult r = run_pss(args);
+  EXPECT_NE(r.exit_code, 0) << args;
+  EXPECT_EQ(line_count(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find(names), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(output)) << output;
+  for (const auto& entry : std::filesystem::directory_iterator(dir_))
+    EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
+}
 
 }  // namespace pss::test

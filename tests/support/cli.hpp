@@ -1,7 +1,10 @@
 // Running the pss binary from tests: exit status and what it printed.
 #pragma once
 
+#include <filesystem>
 #include <string>
+
+#include <gtest/gtest.h>
 
 namespace pss::test {
 
@@ -17,4 +20,35 @@ CliResult run_pss(const std::string& args);
 // Count of '\n' in s: a one-line message has exactly one.
 int line_count(const std::string& s);
 
+// A fixture with a private folder for a test's files (removed afterwards) and the CLI's
+// failure contract.
+class CliTest : public testing::Test {
+ protected:
+  void SetUp() override;
+  void TearDown() override;
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  // Writes `bytes` to the folder's file `name`; returns its path.
+  std::string write(const std::string& name, const std::string& bytes) const;
+  // Exit non-zero, one line on stderr naming `names` and no internal error, no `output`
+  // file and no temporary left in the folder.
+  void expect_clean_failure(const std::string& args, const std::string& names, const std::string& output);
+  std::filesystem::path dir_;
+};
+
+// The message of the pss::Error that f() throws, or "" if it throws none.
+template <class F>
+std::string error_of(F&& f);
+
 }  // namespace pss::test
+
+#include "pss/core/error.hpp"
+
+template <class F>
+std::string pss::test::error_of(F&& f) {
+  try {
+    f();
+  } catch (const pss::Error& e) {
+    return e.what();
+  }
+  return "";
+}
