@@ -91,22 +91,31 @@ TEST(VolumeTheta, ExponentialFormRecoversTheIsoSurfacePrintedFormDoesNot) {
   EXPECT_GT(bad.rms_distance, 0.5f);
 }
 
-TEST(VolumeProjection, PredictorAndCorrectorLandOnAFloatSphere) {
-  const vec3 c(20.0f);
-  const float radius = 11.0f;
-  const Field f = test::sphere_distance(c, radius);
-  test::SampleVolumeOptions o;
-  o.dims = ivec3(40);
-  const VolumeFields base = compute_fields(test::sample_volume(f, o));
+// A float distance-field sphere of radius 11 about (20, 20, 20) in 40³ voxels, its θ1
+// weights for the iso-value 0 with k = 1 voxel (|∇f| = 1), and 300 points within 1.5
+// voxels of it.
+struct CleanSphere {
+  vec3 center{20.0f};
+  float radius = 11.0f;
+  Field field = test::sphere_distance(center, radius);
   FeatureParams feature;
-  feature.iso = 0;
-  feature.smoothing = 1;  // |∇f| = 1: k = 1 voxel
-  VolumeFields fields = base;
-  set_feature(fields, feature);
-  const auto points = points_near_sphere(c, radius, 1.5f, 300, 5);
+  VolumeFields fields;
+  std::vector<vec3> points = points_near_sphere(center, radius, 1.5f, 300, 5);
+
+  CleanSphere() {
+    test::SampleVolumeOptions o;
+    o.dims = ivec3(40);
+    fields = compute_fields(test::sample_volume(field, o));
+    feature.smoothing = 1;
+    set_feature(fields, feature);
+  }
+};
+
+TEST(VolumeProjection, PredictorAndCorrectorLandOnAFloatSphere) {
+  const CleanSphere sphere;
   for (VolumeMethod m : {VolumeMethod::predictor, VolumeMethod::predictor_corrector}) {
     const VolumeParams params = VolumeParams::from_voxels(1.0f, m);
-    const Errors e = project_all(fields, feature, params, f, points);
+    const Errors e = project_all(sphere.fields, sphere.feature, params, sphere.field, sphere.points);
     std::printf("method %d: rms %.4f max %.4f normal %.3f deg failed %d\n", int(m), e.rms_distance, e.max_distance,
                 e.max_normal_deg, e.failed);
     // The lattice noise bound of the test above; normals to its slope over the disc,
@@ -124,29 +133,19 @@ TEST(VolumeProjection, PredictorAndCorrectorLandOnAFloatSphere) {
 // given, and lands markedly closer. A corrector that returned P(r) unchanged, or one no
 // better than the predictor, fails here.
 TEST(VolumeProjection, CorrectorImprovesTheCleanSphere) {
-  const vec3 c(20.0f);
-  const float radius = 11.0f;
-  const Field f = test::sphere_distance(c, radius);
-  test::SampleVolumeOptions o;
-  o.dims = ivec3(40);
-  VolumeFields fields = compute_fields(test::sample_volume(f, o));
-  FeatureParams feature;
-  feature.smoothing = 1;
-  set_feature(fields, feature);
-  const auto points = points_near_sphere(c, radius, 1.5f, 300, 5);
-  const Errors predicted = project_all(fields, feature, VolumeParams::from_voxels(1.0f, VolumeMethod::predictor), f,
-                                       points);
-  const Errors corrected = project_all(
-      fields, feature, VolumeParams::from_voxels(1.0f, VolumeMethod::predictor_corrector), f, points);
+  const CleanSphere s;
+  const VolumeParams predictor = VolumeParams::from_voxels(1.0f, VolumeMethod::predictor);
+  const VolumeParams corrector = VolumeParams::from_voxels(1.0f, VolumeMethod::predictor_corrector);
+  const Errors predicted = project_all(s.fields, s.feature, predictor, s.field, s.points);
+  const Errors corrected = project_all(s.fields, s.feature, corrector, s.field, s.points);
   EXPECT_LT(corrected.rms_distance, 0.8f * predicted.rms_distance);
-  const VolumeParams params = VolumeParams::from_voxels(1.0f, VolumeMethod::predictor_corrector);
   VoxelNeighbourhood nb;
   int moved = 0;
-  for (const vec3& r : points) {
-    const VolumeProjection p = project_volume_point(fields.view(), params, r, nb);
+  for (const vec3& r : s.points) {
+    const VolumeProjection p = project_volume_point(s.fields.view(), corrector, r, nb);
     moved += glm::length(p.point - p.predicted) > 1e-3f;
   }
-  EXPECT_GT(moved, int(points.size()) * 9 / 10);
+  EXPECT_GT(moved, int(s.points.size()) * 9 / 10);
 }
 
 }  // namespace pss
