@@ -11,22 +11,18 @@
 
 namespace pss::app {
 
-namespace {
-
-std::string number(double x) {
+std::string format_number(double x) {
   char text[32];
   std::snprintf(text, sizeof text, "%g", x);
   return text;
 }
 
-}  // namespace
-
 CLI::Validator finite_range(double lo, double hi, bool lo_open) {
   const bool unbounded = hi == double(FLT_MAX);
   const std::string range = unbounded && lo == -double(FLT_MAX) ? "a finite number"
-                            : unbounded && lo_open            ? "a finite number > " + number(lo)
-                            : (lo_open ? "a finite number > " + number(lo) + " and <= "
-                                       : "a finite number from " + number(lo) + " to ") + number(hi);
+                            : unbounded && lo_open            ? "a finite number > " + format_number(lo)
+                            : (lo_open ? "a finite number > " + format_number(lo) + " and <= "
+                                       : "a finite number from " + format_number(lo) + " to ") + format_number(hi);
   return CLI::Validator(
       [lo, hi, lo_open, range](std::string& text) -> std::string {
         const char* begin = text.c_str();

@@ -10,6 +10,9 @@
 
 namespace pss::app {
 
+// x as messages print it (%g).
+std::string format_number(double x);
+
 // A finite number x with lo <= x <= hi (lo < x when lo_open).
 CLI::Validator finite_range(double lo, double hi, bool lo_open = false);
 

@@ -1,28 +1,20 @@
 #include "volume_options.hpp"
 
-#include <algorithm>
-#include <cstdio>
-
 #include "numbers.hpp"
 #include "pss/core/error.hpp"
 #include "pss/io/volume_file.hpp"
+#include "pss/volume/histogram.hpp"
 
 namespace pss::app {
 
 namespace {
 
-std::string format_number(float x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", double(x));
-  return text;
-}
-
 // An iso-value the data never reaches has no surface: say so, with the range.
 void check_iso_value(const Volume& volume, const std::string& file, float iso) {
-  const auto [lo, hi] = std::minmax_element(volume.values.begin(), volume.values.end());
-  if (!(iso >= *lo && iso <= *hi))
-    throw Error("--iso " + format_number(iso) + " lies outside the values of " + file + ": [" + format_number(*lo) +
-                ", " + format_number(*hi) + "]");
+  const ValueStats range = value_stats(volume.values);
+  if (!(iso >= range.min && iso <= range.max))
+    throw Error("--iso " + format_number(iso) + " lies outside the values of " + file + ": [" +
+                format_number(range.min) + ", " + format_number(range.max) + "]");
 }
 
 }  // namespace
