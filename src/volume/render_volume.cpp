@@ -28,12 +28,10 @@ PreparedVolume prepare_volume(VolumeFields fields, const FeatureParams& feature,
   }
   {
     ScopedPhase phase(stats, "bricks");
-    // Samples are b apart along a ray, so where a ray crosses the surface (inside a crossed
-    // cell) one of them lies within b/2: projecting the samples within b/2 of a crossed cell
-    // finds every crossing, and the ball of trust b takes the projection there. Reaching
-    // farther (b, b + 1 voxel) found no hit more on any shipped scan and cost up to 1.6×
-    // the projections (engine, iso 90).
-    out.cells = find_surface_cells(out.fields, feature, 0.5f * params.step);
+    // Projecting the samples within b/2 of a crossed cell finds every crossing of a ray, and
+    // the ball of trust b takes the projection there. Reaching farther (b, b + 1 voxel) found
+    // no hit more on any shipped scan and cost up to 1.6× the projections (engine, iso 90).
+    out.cells = find_surface_cells(out.fields, feature, params.sample_reach());
     out.bricks = build_bricks(out.cells);
   }
   return out;

@@ -141,7 +141,7 @@ PSS_INLINE VolumeHit march_volume(const VolumeScene& s, const Ray& ray, float t_
       j = max(j + 1, floor((exit - t0) / b) + 1);
       continue;
     }
-    if (passes_feature_test(s.fields, s.cells, s.feature, ray.at(t), 0.5f * s.params.step)) {
+    if (passes_feature_test(s.fields, s.cells, s.feature, ray.at(t), s.params.sample_reach())) {
       if (resolve_sample(s, ray, t, hit, first, nb)) return hit;
       first = false;
     }

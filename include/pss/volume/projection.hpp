@@ -32,6 +32,9 @@ struct VolumeParams {
   // How far a hit may stand off the data's own surface along its normal (surface_cells.hpp):
   // the PSS smooths at the scale h; 0.75h takes noise of a fifth of the contrast per voxel.
   PSS_HOST_DEVICE float surface_reach() const { return 0.75f * h; }
+  // How far from a crossed cell a ray's sample is projected: samples are b apart, so every
+  // crossing of a ray has one within b/2 (prepare_volume, surface_cells.hpp).
+  PSS_HOST_DEVICE float sample_reach() const { return 0.5f * step; }
 
   // Defaults in voxel units u (VolumeView::voxel_size), see docs/paper-notes.md: h = 2u,
   // k = 0.75 (b = 1.5u), neighbourhood radius 1.5h, ε = 0.1u, α1 = 0.9; t iterations stop
