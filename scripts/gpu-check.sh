@@ -12,9 +12,10 @@ set -uo pipefail
 cd "$(dirname "$0")/.."
 
 # What install-deps.sh installs, less the compilers and build tools, plus the libraries
-# those packages need at run time (their Depends, which a prefix does not resolve).
+# those packages need at run time (their Depends, which a prefix does not resolve; zlib's
+# runtime is on every system, and a second one on the library path would shadow it).
 packages=(libglm-dev libcli11-dev libstb-dev libstb0 nlohmann-json3-dev libnanoflann-dev
-          zlib1g-dev zlib1g libnifti2-dev libnifti2-2 libniftiio-dev libniftiio2 libznz-dev libznz3
+          zlib1g-dev libnifti2-dev libnifti2-2 libniftiio-dev libniftiio2 libznz-dev libznz3
           libnifticdf-dev libnifticdf2 libgtest-dev libgmock-dev googletest)
 if [[ ${1:-} == --packages ]]; then
   echo "${packages[@]}"
@@ -30,11 +31,14 @@ failed=()
 summary=()
 log() { printf '[gpu-check %(%T)T] %s\n' -1 "$*"; }
 # stage NAME COMMAND...: runs one stage, its output in OUT_DIR/NAME.log, and records the outcome.
+# Each stage is stopped after PSS_GPU_CHECK_STAGE_SECONDS (default 900).
 stage() {
   local name=$1 start=$SECONDS
   shift
   log "$name: $*"
-  if "$@" >"$out/$name.log" 2>&1; then
+  local limit=(timeout "${PSS_GPU_CHECK_STAGE_SECONDS:-900}")
+  [[ $(type -t "$1") != function ]] || limit=()  # the functions below limit their own commands
+  if "${limit[@]}" "$@" >"$out/$name.log" 2>&1; then
     summary+=("ok     $name ($((SECONDS - start)) s)")
   else
     failed+=("$name")
@@ -43,8 +47,9 @@ stage() {
   fi
 }
 
-# 1. The packages, unpacked into the prefix. Our binaries find its libraries through the
-#    build tree's RPATH, so nothing outside build-gpu/ changes.
+# 1. The packages, unpacked into the prefix: nothing is installed, nothing outside
+#    build-gpu/ changes, and the programs built find the prefix's libraries on the library
+#    path (the build tree's RUNPATH alone misses their own dependencies: libniftiio needs libznz).
 unpack() {
   local deb missing=()
   for p in "${packages[@]}"; do
@@ -61,6 +66,7 @@ unpack() {
   done
 }
 stage unpack unpack
+export LD_LIBRARY_PATH="$prefix/usr/lib/x86_64-linux-gnu${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 
 # 2. Build for this machine's GPU only (the default builds three architectures).
 arch=$(nvidia-smi --query-gpu=compute_cap --format=csv,noheader 2>/dev/null | head -n1 | tr -d ' .')
@@ -83,11 +89,11 @@ done
 
 # 5. Images to look at, from both backends.
 images() {
-  local pss=build-gpu/pss b
+  local pss=(timeout "${PSS_GPU_CHECK_STAGE_SECONDS:-900}" build-gpu/pss) b
   for b in cuda cpu; do
-    $pss render data/bun_zipper.ply -o "$out/bunny-$b.png" --iterations 2 --shadows --reflections --backend $b \
+    "${pss[@]}" render data/bun_zipper.ply -o "$out/bunny-$b.png" --iterations 2 --shadows --reflections --backend $b \
       --stats "$out/bunny-$b.json" || return 1
-    $pss volume data/engine_256x256x128_uint8.nrrd --iso 75 --view 30,30 -o "$out/engine-$b.png" --backend $b \
+    "${pss[@]}" volume data/engine_256x256x128_uint8.nrrd --iso 75 --view 30,30 -o "$out/engine-$b.png" --backend $b \
       --stats "$out/engine-$b.json" || return 1
   done
 }
@@ -96,8 +102,8 @@ stage images images
 # 6. Benchmarks, both backends of the same build side by side (PSS_GPU_CHECK_BENCH=0 skips them).
 [[ ${PSS_GPU_CHECK_BENCH:-1} == 0 ]] || {
 stage bench-tables-cuda build-gpu/bench/bench_paper_tables --backend cuda --runs 5 --json "$out/paper_tables_cuda.json"
-stage bench-tables-cpu build-gpu/bench/bench_paper_tables --backend cpu --runs 3 --json "$out/paper_tables_cpu.json"
-stage bench-project build-gpu/bench/bench_project --runs 5 --json "$out/project.json"
+stage bench-tables-cpu build-gpu/bench/bench_paper_tables --backend cpu --runs "${PSS_GPU_CHECK_CPU_RUNS:-3}" --json "$out/paper_tables_cpu.json"
+stage bench-project build-gpu/bench/bench_project --runs 5 --large --json "$out/project.json"
 }
 for f in "$out"/bench-*.log; do
   echo "== $(basename "$f" .log)"

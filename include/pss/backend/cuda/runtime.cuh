@@ -23,8 +23,13 @@ template <class T>
 class DeviceBuffer {
  public:
   DeviceBuffer() = default;
+  // Zeroed, so that the padding of the structs kernels write is defined when it is copied back
+  // (compute-sanitizer's initcheck reports it otherwise).
   explicit DeviceBuffer(std::size_t n) : size_(n) {
-    if (n) PSS_CUDA_CHECK(cudaMalloc(&data_, n * sizeof(T)));
+    if (n) {
+      PSS_CUDA_CHECK(cudaMalloc(&data_, n * sizeof(T)));
+      PSS_CUDA_CHECK(cudaMemset(data_, 0, n * sizeof(T)));
+    }
   }
   explicit DeviceBuffer(std::span<const T> host) : DeviceBuffer(host.size()) { upload(host); }
   ~DeviceBuffer() {
