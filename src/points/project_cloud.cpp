@@ -4,9 +4,11 @@
 #include <cstdio>
 #include <string>
 
-#include "pss/backend/cpu/parallel_for.hpp"
+#include "pss/backend/mirror.hpp"
+#include "pss/backend/parallel_for.hpp"
 #include "pss/core/error.hpp"
 #include "pss/points/orient_normals.hpp"
+#include "pss/spatial/grid_mirror.hpp"
 #include "unit_frame.hpp"
 
 namespace pss {
@@ -45,23 +47,25 @@ CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& p
   unit_params.h = float(double(params.h) / frame.scale);
   unit_params.rho = float(double(params.rho) / frame.scale);
   unit_params.t_tolerance = float(double(params.t_tolerance) / frame.scale);
-  std::vector<ProjectedPoint> projected(n);
+  std::vector<ProjectedPoint> projected;
   {
     ScopedPhase phase(stats, "spatial index");
     const UniformGrid grid(positions, unit_params.rho);
     phase.stop();
     // Without input normals the eigenvector's sign is arbitrary; orientation comes after.
     const std::vector<vec3> hints = input.has_normals() ? input.normals : std::vector<vec3>(n, vec3(0.0f));
-    ScopedPhase projection(stats, "projection");
+    const GridMirror g(backend, grid);
+    const Mirror<vec3> r(backend, positions), hint(backend, hints);
+    Mirror<ProjectedPoint> out(backend, n);
+    const GridView view = g.view();
+    const vec3* rp = r.data();
+    const vec3* hp = hint.data();
+    ProjectedPoint* o = out.data();
     Progress progress("projecting", std::int64_t(n));
-    const GridView view = grid.view();
-    if (backend == Backend::cuda) {
-      cuda::project_points(view, positions, hints, unit_params, projected, &progress);
-    } else {
-      cpu::parallel_for(std::int64_t(n), [&](std::int64_t i) {
-        projected[i] = project_point(view, positions[i], hints[i], unit_params);
-      }, &progress);
-    }
+    parallel_for(backend, "projection", std::int64_t(n), PSS_KERNEL(std::int64_t i) {
+      o[i] = project_point(view, rp[i], hp[i], unit_params);
+    }, stats, &progress);
+    projected = out.take();
   }
 
   CloudProjection out;

@@ -4,9 +4,12 @@
 #include <cmath>
 #include <string>
 
-#include "pss/backend/cpu/parallel_for.hpp"
+#include "pss/backend/mirror.hpp"
+#include "pss/backend/parallel_for.hpp"
 #include "pss/core/error.hpp"
 #include "pss/points/project_cloud.hpp"
+#include "pss/render/render_frame.hpp"
+#include "pss/spatial/grid_mirror.hpp"
 #include "unit_frame.hpp"
 
 namespace pss {
@@ -22,27 +25,27 @@ void validate(const RayPssParams& p) {
   if (p.max_candidates < 1) throw Error("candidates per ray must be at least 1");
 }
 
-namespace {
+namespace points_detail {  // not anonymous: nvcc wants kernels' enclosing functions to have linkage
 
 std::vector<LocalFit> fit_all(const UniformGrid& grid, const PointCloud& cloud, const RayPssParams& params,
-                              Backend backend) {
+                              Backend backend, Stats& stats) {
   // In the grid's (cell-sorted) order, so that neighbouring samples share cached cells.
-  const std::span<const vec3> points = grid.sorted_points();
-  std::vector<vec3> hints(points.size(), vec3(0.0f));
+  const std::size_t n = grid.sorted_points().size();
+  std::vector<vec3> hints(n, vec3(0.0f));
   if (cloud.has_normals())
-    for (std::size_t i = 0; i < points.size(); ++i) hints[i] = cloud.normals[grid.original_index()[i]];
-  std::vector<LocalFit> fits(points.size());
+    for (std::size_t i = 0; i < n; ++i) hints[i] = cloud.normals[grid.original_index()[i]];
+  const GridMirror g(backend, grid);
+  const Mirror<vec3> hint(backend, hints);
+  Mirror<LocalFit> fits(backend, n);
+  const GridView view = g.view();
+  const vec3* hp = hint.data();
+  LocalFit* o = fits.data();
   const float h = params.projection.h, rho = params.projection.rho;
-  Progress progress("local polynomials", std::int64_t(points.size()));
-  if (backend == Backend::cuda) {
-    cuda::fit_local_polynomials(grid.view(), points, hints, h, rho, fits, &progress);
-  } else {
-    const GridView view = grid.view();
-    cpu::parallel_for(std::int64_t(points.size()), [&](std::int64_t i) {
-      fits[i] = fit_local_polynomial(view, points[i], hints[i], h, rho);
-    }, &progress);
-  }
-  return fits;
+  Progress progress("local polynomials", std::int64_t(n));
+  parallel_for(backend, "local polynomials", std::int64_t(n), PSS_KERNEL(std::int64_t i) {
+    o[i] = fit_local_polynomial(view, view.points[i], hp[i], h, rho);
+  }, stats, &progress);
+  return fits.take();
 }
 
 // The range-query grid is part of the preprocessing (the paper's 3D neighbourhood texture).
@@ -70,7 +73,28 @@ std::vector<Aabb> disc_boxes(const std::vector<LocalPolynomial>& locals, float b
   return boxes;
 }
 
-}  // namespace
+}  // namespace points_detail
+using namespace points_detail;
+
+// The arrays of a PointSurfaceView in device memory, uploaded on the first GPU frame.
+struct PreparedCloud::DeviceCopy {
+  explicit DeviceCopy(const PreparedCloud& cloud)
+      : grid(Backend::cuda, cloud.grid_),
+        nodes(Backend::cuda, std::span<const BvhNode>(cloud.bvh_.view().nodes, std::size_t(cloud.bvh_.view().node_count))),
+        primitives(Backend::cuda, cloud.bvh_.primitives()),
+        locals(Backend::cuda, cloud.locals_),
+        view(cloud.view()) {
+    view.grid = grid.view();
+    view.bvh.nodes = nodes.data();
+    view.bvh.primitives = primitives.data();
+    view.locals = locals.data();
+  }
+  GridMirror grid;
+  Mirror<BvhNode> nodes;
+  Mirror<int> primitives;
+  Mirror<LocalPolynomial> locals;
+  PointSurfaceView view;
+};
 
 PreparedCloud::PreparedCloud(const PointCloud& cloud, const RayPssParams& params, Backend backend, Stats& stats)
     : params_((validate(params), params)),
@@ -78,7 +102,7 @@ PreparedCloud::PreparedCloud(const PointCloud& cloud, const RayPssParams& params
       bvh_(std::span<const Aabb>{}) {
   {
     ScopedPhase phase(stats, "preprocess");
-    for (const LocalFit& f : fit_all(grid_, cloud, params, backend)) {
+    for (const LocalFit& f : fit_all(grid_, cloud, params, backend, stats)) {
       if (f.status == LocalFitStatus::too_few_neighbours)
         ++left_out_;
       else
@@ -102,10 +126,17 @@ PointSurfaceView PreparedCloud::view() const {
   return v;
 }
 
+PreparedCloud::~PreparedCloud() = default;
+
+PointSurfaceView PreparedCloud::view_on(Backend backend) const {
+  if (backend == Backend::cpu) return view();
+  if (!device_) device_ = std::make_unique<DeviceCopy>(*this);
+  return device_->view;
+}
+
 RenderedFrame render_cloud(const PreparedCloud& cloud, const Camera& camera, const TraceSettings& settings, Backend backend,
                    Stats& stats) {
-  if (backend == Backend::cuda) return cuda::render_points(cloud.view(), camera, settings, stats);
-  return render_frame_cpu(PointFinder{cloud.view()}, camera, settings, stats);
+  return render_frame(backend, PointFinder{cloud.view_on(backend)}, camera, settings, stats);
 }
 
 }  // namespace pss

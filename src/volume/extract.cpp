@@ -6,7 +6,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "pss/backend/cpu/parallel_for.hpp"
+#include "pss/backend/parallel_for.hpp"
 #include "pss/core/error.hpp"
 
 namespace pss {
@@ -36,19 +36,19 @@ ExtractLattice extraction_lattice(const VolumeScene& scene) {
 }
 
 PointCloud extract_surface(const PreparedVolume& volume, Backend backend, Stats& stats, ExtractionCounts& counts) {
-  const VolumeScene scene = volume.scene();
-  const ExtractLattice lattice = extraction_lattice(scene);
-  std::vector<ExtractedPoint> candidates(std::size_t(lattice.size()));
+  const ExtractLattice lattice = extraction_lattice(volume.scene());
   counts.candidates = lattice.size();
+  std::vector<ExtractedPoint> candidates;
   {
-    ScopedPhase phase(stats, "projection");
+    const SceneMirror mirror(backend, volume);
+    Mirror<ExtractedPoint> out(backend, std::size_t(lattice.size()));
+    const VolumeScene scene = mirror.scene();
+    ExtractedPoint* o = out.data();
     Progress progress("candidates", lattice.size());
-    if (backend == Backend::cuda) {
-      cuda::extract_candidates(scene, lattice, candidates, &progress);
-    } else {
-      cpu::parallel_for(lattice.size(), [&](std::int64_t i) { candidates[i] = extract_candidate(scene, lattice.at(i)); },
-                        &progress);
-    }
+    parallel_for(backend, "projection", lattice.size(), PSS_KERNEL(std::int64_t i) {
+      o[i] = extract_candidate(scene, lattice.at(i));
+    }, stats, &progress);
+    candidates = out.take();
   }
   ScopedPhase phase(stats, "deduplicate");
   // One point per cell of side b: the one that moved least from its candidate.

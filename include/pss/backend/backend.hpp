@@ -1,6 +1,7 @@
 // Which backend runs the kernels. The same host+device functions run on either.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 
@@ -21,6 +22,18 @@ namespace cuda {
 bool built();          // this binary has the CUDA backend
 int device_count();    // 0 without a driver or device
 std::string device_name();
+
+#if PSS_HAVE_CUDA
+// Device memory for Mirror (mirror.hpp); each failure is an Error naming the call. A
+// CPU-only build has none: it never selects the CUDA backend.
+void* allocate(std::size_t bytes);  // zeroed
+void release(void* device) noexcept;
+void upload(void* device, const void* host, std::size_t bytes);
+void download(void* host, const void* device, std::size_t bytes);
+#endif
 }  // namespace cuda
+
+// The one place a CPU-only build says it cannot run `what` on the GPU.
+[[noreturn]] void cuda_not_built(std::string_view what);
 
 }  // namespace pss

@@ -19,6 +19,7 @@ class Progress {
 
   void advance(std::int64_t n);
   static bool enabled_for_terminal();
+  bool shown() const { return enabled_; }
 
  private:
   void draw(std::int64_t done);

@@ -45,10 +45,4 @@ void validate(const ProjectionParams& params);
 // whole cloud); a diagonal of 0 (coincident points) passes.
 void check_neighbourhood(const ProjectionParams& params, double diagonal);
 
-namespace cuda {
-// Runs project_point for each query on the GPU; `grid` is a host view that is uploaded.
-void project_points(const GridView& grid, std::span<const vec3> queries, std::span<const vec3> hints,
-                    const ProjectionParams& params, std::span<ProjectedPoint> out, Progress* progress);
-}  // namespace cuda
-
 }  // namespace pss

@@ -3,10 +3,12 @@
 // the shared render pipeline, on the CPU or the GPU.
 #pragma once
 
+#include <memory>
 #include <span>
 #include <vector>
 
 #include "pss/backend/backend.hpp"
+#include "pss/core/stats.hpp"
 #include "pss/points/cloud.hpp"
 #include "pss/points/ray_pss.hpp"
 #include "pss/render/rendered_frame.hpp"
@@ -34,8 +36,11 @@ class PreparedCloud {
   PreparedCloud(const PointCloud& cloud, const RayPssParams& params, Backend backend, Stats& stats);
   PreparedCloud(const PreparedCloud&) = delete;
   PreparedCloud& operator=(const PreparedCloud&) = delete;
+  ~PreparedCloud();
 
-  PointSurfaceView view() const;
+  PointSurfaceView view() const;  // on the host
+  // The view the kernels of `backend` read; the GPU's copy is uploaded once, on first use.
+  PointSurfaceView view_on(Backend backend) const;
   std::span<const LocalPolynomial> locals() const { return locals_; }  // BVH order
   std::int64_t left_out() const { return left_out_; }  // samples with < 3 neighbours
   const Bvh& bvh() const { return bvh_; }
@@ -46,6 +51,8 @@ class PreparedCloud {
   std::vector<LocalPolynomial> locals_;
   std::int64_t left_out_ = 0;
   Bvh bvh_;
+  struct DeviceCopy;
+  mutable std::unique_ptr<DeviceCopy> device_;
 };
 
 // Throws Error for parameters that are not positive and finite.
@@ -53,14 +60,5 @@ void validate(const RayPssParams& params);
 
 RenderedFrame render_cloud(const PreparedCloud& cloud, const Camera& camera, const TraceSettings& settings, Backend backend,
                    Stats& stats);
-
-namespace cuda {
-// fit_local_polynomial for every point, on the GPU; `grid` is a host view that is uploaded.
-void fit_local_polynomials(const GridView& grid, std::span<const vec3> points, std::span<const vec3> hints, float h,
-                           float rho, std::span<LocalFit> out, Progress* progress);
-// The frame on the GPU: the view's arrays (host pointers) are uploaded, the same kernels run.
-RenderedFrame render_points(const PointSurfaceView& surface, const Camera& camera, const TraceSettings& settings,
-                    Stats& stats);
-}  // namespace cuda
 
 }  // namespace pss

@@ -7,9 +7,10 @@
 #include <cstdint>
 #include <span>
 
+#include "pss/backend/backend.hpp"
 #include "pss/core/progress.hpp"
 #include "pss/points/cloud.hpp"
-#include "pss/volume/render_volume.hpp"
+#include "pss/volume/prepared.hpp"
 
 namespace pss {
 
@@ -72,10 +73,5 @@ struct ExtractionCounts {
 // Projects every candidate (on the backend), then keeps, per cell of side b, the accepted
 // point whose candidate moved least. Normals point along ∇f.
 PointCloud extract_surface(const PreparedVolume& volume, Backend backend, Stats& stats, ExtractionCounts& counts);
-
-namespace cuda {
-void extract_candidates(const VolumeScene& host_scene, const ExtractLattice& lattice, std::span<ExtractedPoint> out,
-                        Progress* progress);
-}  // namespace cuda
 
 }  // namespace pss

@@ -6,9 +6,9 @@
 #include <cstdint>
 
 #include "pss/backend/backend.hpp"
-#include "pss/core/stats.hpp"
 #include "pss/render/rendered_frame.hpp"
 #include "pss/volume/marcher.hpp"
+#include "pss/volume/prepared.hpp"
 
 namespace pss {
 
@@ -42,26 +42,6 @@ struct VolumeFinder {
   PSS_HOST_DEVICE float secondary_offset() const { return 1.5f * scene.params.step; }
 };
 
-// What rendering and extraction prepare once per volume and feature: gradients, weights,
-// surface cells, bricks.
-struct PreparedVolume {
-  VolumeFields fields;
-  SurfaceCells cells;
-  BrickGrid bricks;
-  FeatureParams feature;
-  VolumeParams params;
-
-  VolumeScene scene() const { return {fields.view(), cells.view(), bricks.view(), feature, params}; }
-  // What a camera should frame: the cells the surface crosses, or the whole box if none.
-  Aabb surface_bounds() const {
-    return cells.crossed_bounds.empty() ? fields.volume.view().bounds() : cells.crossed_bounds;
-  }
-};
-
-// Weights, surface cells and bricks for `feature` (fields must hold the gradients).
-PreparedVolume prepare_volume(VolumeFields fields, const FeatureParams& feature, const VolumeParams& params,
-                              Stats& stats);
-
 RenderedFrame render_volume(const PreparedVolume& volume, const Camera& camera, const TraceSettings& settings,
                             Backend backend, Stats& stats);
 
@@ -69,11 +49,5 @@ RenderedFrame render_volume(const PreparedVolume& volume, const Camera& camera, 
 // red, those the corrector still moved farther than ε green, both keeping the shading's
 // brightness so that the shape stays readable.
 void paint_debug_projection(RenderedFrame& frame);
-
-namespace cuda {
-// The same frame on the GPU: the volume, gradients, weights and bricks are uploaded once.
-RenderedFrame render_volume(const VolumeScene& host_scene, const Camera& camera, const TraceSettings& settings,
-                            Stats& stats);
-}  // namespace cuda
 
 }  // namespace pss

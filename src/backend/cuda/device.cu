@@ -1,5 +1,6 @@
+// The CUDA device queries and the device memory behind Mirror (backend/mirror.hpp).
 #include "pss/backend/backend.hpp"
-#include "pss/backend/cuda/runtime.cuh"
+#include "pss/backend/cuda/launch.cuh"
 
 namespace pss::cuda {
 
@@ -20,6 +21,27 @@ std::string device_name() {
   cudaDeviceProp prop{};
   PSS_CUDA_CHECK(cudaGetDeviceProperties(&prop, 0));
   return prop.name;
+}
+
+void* allocate(std::size_t bytes) {
+  void* p = nullptr;
+  PSS_CUDA_CHECK(cudaMalloc(&p, bytes));
+  // Zeroed, so that the padding of the structs kernels write is defined when it is copied
+  // back (compute-sanitizer's initcheck reports it otherwise).
+  const cudaError_t status = cudaMemset(p, 0, bytes);
+  if (status != cudaSuccess) cudaFree(p);
+  check(status, "cudaMemset");
+  return p;
+}
+
+void release(void* device) noexcept { cudaFree(device); }
+
+void upload(void* device, const void* host, std::size_t bytes) {
+  PSS_CUDA_CHECK(cudaMemcpy(device, host, bytes, cudaMemcpyHostToDevice));
+}
+
+void download(void* host, const void* device, std::size_t bytes) {
+  PSS_CUDA_CHECK(cudaMemcpy(host, device, bytes, cudaMemcpyDeviceToHost));
 }
 
 }  // namespace pss::cuda

@@ -1,0 +1,87 @@
+// The GPU half of pss::parallel_for (backend/parallel_for.hpp), for files compiled as CUDA:
+// every runtime call checked, the block size from the occupancy API, and each named phase
+// timed with CUDA events.
+#pragma once
+
+#include <cuda_runtime.h>
+
+#include <cstdint>
+#include <string>
+
+#include "pss/core/error.hpp"
+#include "pss/core/progress.hpp"
+
+namespace pss::cuda {
+
+inline void check(cudaError_t status, const char* what) {
+  if (status != cudaSuccess) throw Error(std::string("CUDA error in ") + what + ": " + cudaGetErrorString(status));
+}
+#define PSS_CUDA_CHECK(call) ::pss::cuda::check((call), #call)
+
+template <class F>
+__global__ void for_each_index(std::int64_t begin, std::int64_t end, F f) {
+  const std::int64_t i = begin + std::int64_t(blockIdx.x) * blockDim.x + threadIdx.x;
+  if (i < end) f(i);
+}
+
+// The block size that keeps the most threads of this kernel resident (its registers and
+// stack decide), found once per kernel.
+template <class F>
+int block_size(const char* phase) {
+  static const int block = [&] {
+    int min_grid = 0, size = 0;
+    check(cudaOccupancyMaxPotentialBlockSize(&min_grid, &size, for_each_index<F>), phase);
+    return size;
+  }();
+  return block;
+}
+
+class PhaseTimer {
+ public:
+  explicit PhaseTimer(const char* phase) : phase_(phase) {
+    check(cudaEventCreate(&start_), phase);
+    check(cudaEventCreate(&stop_), phase);
+    check(cudaEventRecord(start_), phase);
+  }
+  ~PhaseTimer() {
+    cudaEventDestroy(start_);
+    cudaEventDestroy(stop_);
+  }
+  PhaseTimer(const PhaseTimer&) = delete;
+  PhaseTimer& operator=(const PhaseTimer&) = delete;
+  // Waits for the phase's kernels; their errors surface here, named by the phase.
+  double seconds() {
+    check(cudaEventRecord(stop_), phase_);
+    check(cudaEventSynchronize(stop_), phase_);
+    check(cudaGetLastError(), phase_);
+    float ms = 0;
+    check(cudaEventElapsedTime(&ms, start_, stop_), phase_);
+    return 1e-3 * ms;
+  }
+
+ private:
+  const char* phase_;
+  cudaEvent_t start_{}, stop_{};
+};
+
+// f(i) for i in [0, n) on the GPU; returns the phase's device time. A progress bar that is
+// shown splits the work into batches, waiting for each; otherwise it is one launch.
+template <class F>
+double launch(const char* phase, std::int64_t n, const F& f, Progress* progress) {
+  const int block = block_size<F>(phase);
+  PhaseTimer timer(phase);
+  const std::int64_t batch = progress && progress->shown() ? std::int64_t(1) << 16 : n;
+  for (std::int64_t begin = 0; begin < n; begin += batch) {
+    const std::int64_t end = begin + batch < n ? begin + batch : n;
+    const unsigned blocks = unsigned((end - begin + block - 1) / block);
+    for_each_index<<<blocks, block>>>(begin, end, f);
+    check(cudaGetLastError(), phase);
+    if (batch < n) {
+      check(cudaDeviceSynchronize(), phase);
+      progress->advance(end - begin);
+    }
+  }
+  return timer.seconds();
+}
+
+}  // namespace pss::cuda

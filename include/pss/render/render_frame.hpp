@@ -1,0 +1,56 @@
+// The frame driver of both backends, for any surface finder (see trace.hpp) whose views
+// point to that backend's memory: primary rays, secondary rays, shading, each a kernel and a
+// named phase of --stats; then the hits and the image on the host. Files that include it
+// launch kernels (backend/parallel_for.hpp).
+#pragma once
+
+#include <cstdint>
+
+#include "pss/backend/mirror.hpp"
+#include "pss/backend/parallel_for.hpp"
+#include "pss/render/rendered_frame.hpp"
+
+namespace pss {
+
+template <class Finder>
+RenderedFrame render_frame(Backend backend, const Finder& finder, const Camera& camera, const TraceSettings& settings,
+                           Stats& stats) {
+  const std::int64_t n = std::int64_t(camera.width) * camera.height;
+  Mirror<Hit> hits(backend, std::size_t(n));
+  Mirror<SecondaryHits> secondary(backend, std::size_t(n));
+  Mirror<vec3> pixels(backend, std::size_t(n));
+  Hit* h = hits.data();
+  SecondaryHits* s = secondary.data();
+  vec3* px = pixels.data();
+  const Finder f = finder;
+  const Camera cam = camera;
+  const TraceSettings ts = settings;
+  {
+    Progress progress("primary rays", n);
+    parallel_for(backend, "primary", n, PSS_KERNEL(std::int64_t i) {
+      h[i] = f.primary(cam.primary_ray(int(i % cam.width), int(i / cam.width)));
+    }, stats, &progress);
+  }
+  if (ts.shadows || ts.reflections) {
+    Progress progress("secondary rays", n);
+    parallel_for(backend, "secondary", n, PSS_KERNEL(std::int64_t i) {
+      s[i] = trace_secondary(f, ts, cam.primary_ray(int(i % cam.width), int(i / cam.width)), h[i]);
+    }, stats, &progress);
+  }
+  parallel_for(backend, "shading", n, PSS_KERNEL(std::int64_t i) {
+    const SecondaryHits none;  // what a pixel without secondary rays sees
+    px[i] = shade_pixel(ts, cam.primary_ray(int(i % cam.width), int(i / cam.width)), h[i],
+                        ts.shadows || ts.reflections ? s[i] : none);
+  }, stats);
+
+  RenderedFrame frame;
+  frame.camera = camera;
+  frame.hits = hits.take();
+  for (const SecondaryHits& x : secondary.take()) frame.secondary_rays += x.rays;
+  frame.image.width = camera.width;
+  frame.image.height = camera.height;
+  frame.image.pixels = pixels.take();
+  return frame;
+}
+
+}  // namespace pss
