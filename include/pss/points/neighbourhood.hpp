@@ -10,25 +10,24 @@
 
 namespace pss {
 
-struct Neighbourhood {
-  // ρ = 2h around the default h holds ~60 samples (points/spacing.hpp); twice that covers
-  // uneven sampling without spilling in most places.
-  static constexpr int kCapacity = 128;
+template <int Capacity>
+struct NeighbourhoodOf {
+  static constexpr int kCapacity = Capacity;
 
   const GridView* grid;
   vec3 center;
   float rho, h;
   int count = 0;
-  vec3 point[kCapacity];
-  float weight[kCapacity];
+  vec3 point[Capacity > 0 ? Capacity : 1];
+  float weight[Capacity > 0 ? Capacity : 1];
 
   // Gathers N(center) and calls first(p, w) for each sample as it goes.
   template <class F>
-  PSS_HOST_DEVICE Neighbourhood(const GridView& g, vec3 c, float radius, float width, F&& first)
+  PSS_HOST_DEVICE NeighbourhoodOf(const GridView& g, vec3 c, float radius, float width, F&& first)
       : grid(&g), center(c), rho(radius), h(width) {
     grid->for_each_in_radius(center, rho, [&](vec3 p, float d2, int) {
       const float w = gaussian_weight(d2, h);
-      if (count < kCapacity) {
+      if (count < Capacity) {
         point[count] = p;
         weight[count] = w;
       }
@@ -40,12 +39,25 @@ struct Neighbourhood {
   // f(p, w) for every sample again, in the same order.
   template <class F>
   PSS_HOST_DEVICE void for_each(F&& f) const {
-    if (count <= kCapacity) {
+    if (count <= Capacity) {
       for (int i = 0; i < count; ++i) f(point[i], weight[i]);
     } else {
       grid->for_each_in_radius(center, rho, [&](vec3 p, float d2, int) { f(p, gaussian_weight(d2, h)); });
     }
   }
 };
+
+// ρ = 2h around the default h holds ~60 samples (points/spacing.hpp); 128 covers uneven
+// sampling without spilling in most places. A GPU thread walks the grid again instead
+// (PSS_DEVICE_NEIGHBOURS = 0): 2 KB of stack per thread would cost more than the exp()s;
+// docs/benchmarks.md has both measured.
+#ifndef PSS_DEVICE_NEIGHBOURS
+#define PSS_DEVICE_NEIGHBOURS 0
+#endif
+#if defined(__CUDA_ARCH__)
+using Neighbourhood = NeighbourhoodOf<PSS_DEVICE_NEIGHBOURS>;
+#else
+using Neighbourhood = NeighbourhoodOf<128>;
+#endif
 
 }  // namespace pss

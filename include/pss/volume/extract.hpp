@@ -50,7 +50,7 @@ PSS_INLINE ExtractedPoint extract_candidate(const VolumeScene& s, vec3 r) {
   if (!passes_feature_test(s.fields, s.cells, s.feature, r, s.params.step)) return out;
   const VolumeParams& p = s.params;
   vec3 x = r;
-  VoxelNeighbourhood nb;
+  VoxelScratch nb;
   for (int attempt = 0; attempt <= p.max_retries; ++attempt) {
     const VolumeProjection proj = project_volume_point(s.fields, p, x, nb);
     if (proj.status != VolumeProjectionStatus::ok || length2(proj.point - r) > p.step * p.step) return out;

@@ -78,8 +78,9 @@ PSS_INLINE float intersection_in_ball(const VolumeProjection& proj, const Ray& r
 // ray's first sample regardless, to show what it does there.)
 inline constexpr float kCorrectorReach = 4.0f;
 
-PSS_INLINE bool resolve_sample(const VolumeScene& s, const Ray& ray, float t_sample, VolumeHit& hit, bool first,
-                               VoxelNeighbourhood& nb) {
+template <class Nb>
+PSS_HOST_DEVICE bool resolve_sample(const VolumeScene& s, const Ray& ray, float t_sample, VolumeHit& hit, bool first,
+                                    Nb& nb) {
   const VolumeParams& p = s.params;
   const vec3 r = ray.at(t_sample);
   const float eps2 = p.epsilon * p.epsilon;
@@ -122,7 +123,7 @@ PSS_INLINE VolumeHit march_volume(const VolumeScene& s, const Ray& ray, float t_
   const vec3 grid_origin = v.to_grid(ray.origin);
   const vec3 grid_dir = ray.dir / v.spacing;
   bool first = true;
-  VoxelNeighbourhood nb;
+  VoxelScratch nb;
   // Samples t0 + j·b, indexed by j so that skipping lands exactly on the lattice.
   const float last = (t1 - t0) / b;
   for (float j = 0; j <= last;) {

@@ -102,33 +102,16 @@ PSS_HOST_DEVICE void for_each_voxel_near(const VolumeView& v, vec3 x, float radi
 // "the neighbouring voxels" reach). The capacity bounds ρ (neighbourhood_bound).
 inline constexpr int kMaxNeighbours = 512;
 
-struct VoxelNeighbourhood {
-  vec3 center;
-  int count = 0;
-  vec3 offset[kMaxNeighbours];   // pᵢ − center
-  float window[kMaxNeighbours];  // (1 − dᵢ²/ρ²)²
-  float theta[kMaxNeighbours];   // θ1 or θ2 of pᵢ, times the window and the facing
-
-  // θ counts a voxel only as far as its gradient faces the way of n, the surface being
-  // fitted (facing(), below): the two faces of a wall thinner than the ball are sheets of
-  // opposite orientation, and a fit over both would settle between them. With
-  // `weighted_only` (the predictor, whose sums all carry θ), voxels whose windowed θ is
-  // below 1e-5 are left out: they could not move any sum by more than that fraction.
-  PSS_HOST_DEVICE void gather(const FieldView& fields, vec3 c, float radius, vec3 n, bool weighted_only) {
-    center = c;
-    count = 0;
-    const float inv_r2 = 1.0f / (radius * radius);
-    for_each_voxel_near(fields.volume, c, radius, [&](vec3 d, std::int64_t index) {
-      if (count == kMaxNeighbours) return;
-      const float u = 1.0f - length2(d) * inv_r2;
-      const float w = u * u * fields.weights[index] * facing(fields.gradients[index], n);
-      if (weighted_only && w < 1e-5f) return;
-      offset[count] = d;
-      window[count] = u * u;
-      theta[count] = w;
-      ++count;
-    });
-  }
+// Whether a voxel at offset d from the centre counts, and with which weights: the window
+// (1 − d²/ρ²)² and θ (θ1 or θ2 times the window and the facing). θ counts a voxel only as far
+// as its gradient faces the way of n, the surface being fitted: the two faces of a wall
+// thinner than the ball are sheets of opposite orientation, and a fit over both would settle
+// between them. With `weighted_only` (the predictor, whose sums all carry θ), voxels whose
+// windowed θ is below 1e-5 are left out: they could not move any sum by more than that fraction.
+struct VoxelWeights {
+  float inv_r2;
+  vec3 n;
+  bool weighted_only;
 
   // 1 for a gradient within 60° of n, falling linearly to 0 at 90° and beyond: continuous,
   // so that the fit changes smoothly as n turns.
@@ -136,7 +119,75 @@ struct VoxelNeighbourhood {
     const float g = glm::length(gradient);
     return g > 0 ? clamp(2.0f * glm::dot(gradient, n) / g, 0.0f, 1.0f) : 0.0f;
   }
+  PSS_HOST_DEVICE bool operator()(const FieldView& fields, vec3 d, std::int64_t index, float& window, float& theta) const {
+    const float u = 1.0f - length2(d) * inv_r2;
+    window = u * u;
+    theta = window * fields.weights[index] * facing(fields.gradients[index], n);
+    return !(weighted_only && theta < 1e-5f);
+  }
 };
+
+// N(x) gathered once into a flat array (the CPU's: the iterations of Eq. 3 and 4 and Brent's
+// evaluations then run over contiguous memory). 10 KB: too much for a GPU thread's stack.
+struct VoxelNeighbourhood {
+  vec3 center;
+  int count = 0;
+  vec3 offset[kMaxNeighbours];   // pᵢ − center
+  float window[kMaxNeighbours];  // (1 − dᵢ²/ρ²)²
+  float theta[kMaxNeighbours];   // θ1 or θ2 of pᵢ, times the window and the facing
+
+  PSS_HOST_DEVICE void gather(const FieldView& fields, vec3 c, float radius, vec3 n, bool weighted_only) {
+    center = c;
+    count = 0;
+    const VoxelWeights weights{1.0f / (radius * radius), n, weighted_only};
+    for_each_voxel_near(fields.volume, c, radius, [&](vec3 d, std::int64_t index) {
+      if (count == kMaxNeighbours) return;
+      float w, t;
+      if (!weights(fields, d, index, w, t)) return;
+      offset[count] = d;
+      window[count] = w;
+      theta[count] = t;
+      ++count;
+    });
+  }
+  // f(pᵢ − center, window, θ) for each voxel of N, in the lattice's order.
+  template <class F>
+  PSS_HOST_DEVICE void for_each(F&& f) const {
+    for (int i = 0; i < count; ++i) f(offset[i], window[i], theta[i]);
+  }
+};
+
+// The same N(x) walked on the lattice again at each pass instead of stored (the GPU's: a few
+// registers instead of 10 KB of stack per thread). The same voxels in the same order, so the
+// same sums.
+struct WalkedVoxelNeighbourhood {
+  const FieldView* fields = nullptr;
+  vec3 center;
+  float radius = 0;
+  VoxelWeights weights{};
+
+  PSS_HOST_DEVICE void gather(const FieldView& f, vec3 c, float r, vec3 n, bool weighted_only) {
+    fields = &f;
+    center = c;
+    radius = r;
+    weights = VoxelWeights{1.0f / (r * r), n, weighted_only};
+  }
+  template <class F>
+  PSS_HOST_DEVICE void for_each(F&& f) const {
+    for_each_voxel_near(fields->volume, center, radius, [&](vec3 d, std::int64_t index) {
+      float w, t;
+      if (weights(*fields, d, index, w, t)) f(d, w, t);
+    });
+  }
+};
+
+// The neighbourhood type of each backend, for the kernels' scratch space (a build with
+// PSS_DEVICE_VOXEL_CACHE=1 stores it on the GPU too, for comparison: docs/benchmarks.md).
+#if defined(__CUDA_ARCH__) && !PSS_DEVICE_VOXEL_CACHE
+using VoxelScratch = WalkedVoxelNeighbourhood;
+#else
+using VoxelScratch = VoxelNeighbourhood;
+#endif
 
 // The most voxels a ball of this radius can hold on this grid, for the host's check: each
 // voxel's cell lies in the ball grown by half a cell diagonal.
@@ -155,37 +206,40 @@ namespace detail {
 // Θᵢ(t) = α1·θᵢ + α2·θ3(‖pᵢ − (x0 + t·n)‖), with its derivative for Brent. zᵢ = ⟨n, pᵢ − x0⟩,
 // sᵢ = zᵢ − t, ‖pᵢ − x0 − t·n‖² = ‖pᵢ − x0‖² − 2t·zᵢ + t², so dθ3/dt = 2sᵢθ3/h². Both
 // parts of Θ carry the neighbourhood's window.
+template <class Nb>
 struct CorrectorEnergy {
-  const VoxelNeighbourhood& nb;
+  const Nb& nb;
   vec3 n;
   float h, alpha;
 
   PSS_HOST_DEVICE float operator()(float t, float& derivative) const {
     float e = 0, de = 0;
     const float inv_h2 = 1.0f / (h * h);
-    for (int i = 0; i < nb.count; ++i) {
-      const vec3 d = nb.offset[i];
+    nb.for_each([&](vec3 d, float window, float theta) {
       const float z = glm::dot(d, n);
       const float s = z - t;
-      const float theta3 = nb.window[i] * exp(-(length2(d) - 2 * t * z + t * t) * inv_h2);
-      const float w = alpha * nb.theta[i] + (1 - alpha) * theta3;
+      const float theta3 = window * exp(-(length2(d) - 2 * t * z + t * t) * inv_h2);
+      const float w = alpha * theta + (1 - alpha) * theta3;
       e += w * s * s;
       de += (1 - alpha) * 2 * s * theta3 * inv_h2 * s * s - 2 * w * s;
-    }
+    });
     derivative = de;
     return e;
   }
 };
 
-// The polynomial in the frame (origin, n) fitted with weights w(i) over the neighbourhood,
-// and the orthogonal projection of the origin onto its graph (project_origin_onto_graph).
-template <class W>
-PSS_HOST_DEVICE VolumeProjection fit_and_project(const VoxelNeighbourhood& nb, vec3 origin, vec3 n, float h, W&& weight) {
+// The polynomial in the frame (origin, n) fitted with weights weight(d, window, θ) over the
+// neighbourhood, and the orthogonal projection of the origin onto its graph
+// (project_origin_onto_graph).
+template <class Nb, class W>
+PSS_HOST_DEVICE VolumeProjection fit_and_project(const Nb& nb, vec3 origin, vec3 n, float h, W&& weight) {
   VolumeProjection out;
   out.frame = Frame::from_normal(origin, n);
   PolynomialFit fit(h);
   const vec3 shift = nb.center - origin;
-  for (int i = 0; i < nb.count; ++i) fit.add(out.frame.direction_to_local(nb.offset[i] + shift), weight(i));
+  nb.for_each([&](vec3 d, float window, float theta) {
+    fit.add(out.frame.direction_to_local(d + shift), weight(d, window, theta));
+  });
   out.polynomial = fit.solve();
   vec3 local;
   const bool projected = project_origin_onto_graph(out.polynomial, local);
@@ -203,7 +257,8 @@ PSS_HOST_DEVICE VolumeProjection fit_and_project(const VoxelNeighbourhood& nb, v
 // iteration gathers N(·) once, around the q of the previous iteration, and shifts the
 // moments to the new q; at convergence that is the paper's N(q). The polynomial is fitted
 // with θ in the frame of H(n, q), and P(r) is q's orthogonal projection onto it.
-PSS_INLINE VolumeProjection predict(const FieldView& fields, const VolumeParams& params, vec3 r, VoxelNeighbourhood& nb) {
+template <class Nb>
+PSS_HOST_DEVICE VolumeProjection predict(const FieldView& fields, const VolumeParams& params, vec3 r, Nb& nb) {
   VolumeProjection fail;
   fail.predicted = fail.point = r;
   fail.normal = vec3(0, 0, 1);
@@ -221,11 +276,11 @@ PSS_INLINE VolumeProjection predict(const FieldView& fields, const VolumeParams&
     float w = 0;
     vec3 m(0.0f);  // Σθ(pᵢ − q)
     Sym3 c;        // Σθ(pᵢ − q)(pᵢ − q)ᵀ
-    for (int i = 0; i < nb.count; ++i) {
-      w += nb.theta[i];
-      m += nb.theta[i] * nb.offset[i];
-      c.add_outer(nb.offset[i], nb.theta[i]);
-    }
+    nb.for_each([&](vec3 d, float, float theta) {
+      w += theta;
+      m += theta * d;
+      c.add_outer(d, theta);
+    });
     if (!(w > 0)) return fail;
     // Eq. 3 for fixed n: t = Σθ⟨n, pᵢ − r⟩ / Σθ.
     const float dt = glm::dot(m, n) / w;
@@ -243,7 +298,7 @@ PSS_INLINE VolumeProjection predict(const FieldView& fields, const VolumeParams&
     if (eig.status != EigenStatus::invalid) n = eig.vector;
     if (abs(dt) < params.t_tolerance) break;
   }
-  VolumeProjection out = detail::fit_and_project(nb, r + t * n, n, params.h, [&](int i) { return nb.theta[i]; });
+  VolumeProjection out = detail::fit_and_project(nb, r + t * n, n, params.h, [](vec3, float, float theta) { return theta; });
   out.predicted = out.point;
   return out;
 }
@@ -252,8 +307,9 @@ PSS_INLINE VolumeProjection predict(const FieldView& fields, const VolumeParams&
 // with derivatives, then n becomes the smallest eigenvector of C2(x0) = Σ Θᵢ(pᵢ − x0)(pᵢ − x0)ᵀ
 // over N(x0), until t settles. The polynomial is fitted with Θ in the frame (x0, n), and γ
 // is x0's orthogonal projection onto it.
-PSS_INLINE VolumeProjection correct(const FieldView& fields, const VolumeParams& params,
-                                    const VolumeProjection& predicted, VoxelNeighbourhood& nb) {
+template <class Nb>
+PSS_HOST_DEVICE VolumeProjection correct(const FieldView& fields, const VolumeParams& params,
+                                         const VolumeProjection& predicted, Nb& nb) {
   const vec3 x0 = predicted.point;
   vec3 n = predicted.frame.n;
   const float h = params.h, alpha = params.alpha;
@@ -261,25 +317,24 @@ PSS_INLINE VolumeProjection correct(const FieldView& fields, const VolumeParams&
   nb.gather(fields, x0, params.radius, n, false);
   float t = 0;
   for (int it = 0; it < params.max_corrector_iterations; ++it) {
-    const detail::CorrectorEnergy energy{nb, n, h, alpha};
+    const detail::CorrectorEnergy<Nb> energy{nb, n, h, alpha};
     // Brent searches t ± h from the minimiser of the α1 part alone (a θ-weighted mean of
     // the heights, closed form), which is where the α2 part only nudges it.
     float w = 0, wz = 0;
-    for (int i = 0; i < nb.count; ++i) {
-      w += nb.theta[i];
-      wz += nb.theta[i] * glm::dot(nb.offset[i], n);
-    }
+    nb.for_each([&](vec3 d, float, float theta) {
+      w += theta;
+      wz += theta * glm::dot(d, n);
+    });
     const float start = w > 0 ? clamp(wz / w, t - h, t + h) : t;
     const float t_next = brent_minimize(energy, t - h, t + h, start, params.t_tolerance).x;
     const vec3 center = t_next * n;  // relative to x0
     Sym3 c;
     float weight_sum = 0;
-    for (int i = 0; i < nb.count; ++i) {
-      const vec3 d = nb.offset[i];
-      const float w = alpha * nb.theta[i] + (1 - alpha) * nb.window[i] * exp(-length2(d - center) * inv_h2);
+    nb.for_each([&](vec3 d, float window, float theta) {
+      const float w = alpha * theta + (1 - alpha) * window * exp(-length2(d - center) * inv_h2);
       c.add_outer(d, w);
       weight_sum += w;
-    }
+    });
     if (weight_sum > 0) {
       const EigenResult eig = smallest_eigenvector(c.scaled(1.0f / weight_sum), n, kEigenIterations);
       if (eig.status != EigenStatus::invalid) n = eig.vector;
@@ -289,8 +344,8 @@ PSS_INLINE VolumeProjection correct(const FieldView& fields, const VolumeParams&
     if (settled) break;
   }
   const vec3 center = t * n;
-  VolumeProjection out = detail::fit_and_project(nb, x0, n, h, [&](int i) {
-    return alpha * nb.theta[i] + (1 - alpha) * nb.window[i] * exp(-length2(nb.offset[i] - center) * inv_h2);
+  VolumeProjection out = detail::fit_and_project(nb, x0, n, h, [&](vec3 d, float window, float theta) {
+    return alpha * theta + (1 - alpha) * window * exp(-length2(d - center) * inv_h2);
   });
   out.predicted = predicted.point;
   return out;
@@ -298,8 +353,9 @@ PSS_INLINE VolumeProjection correct(const FieldView& fields, const VolumeParams&
 
 // P(r) alone or followed by the corrector, as the method asks.
 // `nb` is scratch space, the caller's so that a loop of projections reuses it.
-PSS_INLINE VolumeProjection project_volume_point(const FieldView& fields, const VolumeParams& params, vec3 r,
-                                                 VoxelNeighbourhood& nb) {
+template <class Nb>
+PSS_HOST_DEVICE VolumeProjection project_volume_point(const FieldView& fields, const VolumeParams& params, vec3 r,
+                                                      Nb& nb) {
   const VolumeProjection p = predict(fields, params, r, nb);
   if (p.status != VolumeProjectionStatus::ok || params.method == VolumeMethod::predictor) return p;
   return correct(fields, params, p, nb);
