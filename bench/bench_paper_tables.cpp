@@ -2,7 +2,8 @@
 // would (with --stats) and reports frames per second of the per-frame phases (primary,
 // secondary, shading; preprocessing and acceleration structures are built once, as in the
 // paper). Median of --runs runs.
-//   build/bench/bench_paper_tables [--runs 3] [--backend cpu] [--json FILE] [--only table1|table2|scaling]
+// With --frames N each run renders N frames and counts the median one (pss --frames).
+//   build/bench/bench_paper_tables [--runs 3] [--frames 1] [--backend cpu] [--json FILE] [--only table1|table2|scaling]
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -27,6 +28,7 @@ namespace {
 
 struct Options {
   int runs = 3;
+  int frames = 1;
   std::string backend = "cpu";
   std::string json_path = "out/bench/paper_tables.json";
   std::string only;
@@ -37,7 +39,8 @@ struct Options {
 json run_pss(const Options& o, const std::string& args) {
   const fs::path stats = o.scratch / "stats.json";
   fs::remove(stats);
-  const std::string command = std::string(PSS_CLI) + " " + args + " --backend " + o.backend + " --stats " +
+  const std::string command = std::string(PSS_CLI) + " " + args + " --backend " + o.backend +
+                              " --frames " + std::to_string(o.frames) + " --stats " +
                               stats.string() + " >/dev/null 2>" + (o.scratch / "err.txt").string();
   const int status = std::system(command.c_str());
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
@@ -179,6 +182,7 @@ int main(int argc, char** argv) {
     const std::string flag = argv[i], value = argv[i + 1];
     if (flag == "--runs") o.runs = std::max(1, std::stoi(value));
     else if (flag == "--backend") o.backend = value;
+    else if (flag == "--frames") o.frames = std::max(1, std::stoi(value));
     else if (flag == "--json") o.json_path = value;
     else if (flag == "--only") o.only = value;
   }
@@ -190,6 +194,6 @@ int main(int argc, char** argv) {
   if (o.only.empty() || o.only == "scaling") scaling(o, rows);
   fs::remove_all(o.scratch);
   if (!fs::path(o.json_path).parent_path().empty()) fs::create_directories(fs::path(o.json_path).parent_path());
-  pss::write_text_file(o.json_path, json{{"benchmark", "paper_tables"}, {"runs", o.runs}, {"rows", rows}}.dump(2) + "\n");
+  pss::write_text_file(o.json_path, json{{"benchmark", "paper_tables"}, {"runs", o.runs}, {"frames", o.frames}, {"rows", rows}}.dump(2) + "\n");
   std::printf("\nwrote %s\n", o.json_path.c_str());
 }

@@ -56,7 +56,8 @@ void run_render(const RenderCloudOptions& o) {
   const Camera camera = Camera::framing(cloud.bounds(), o.render.camera);
   const TraceSettings settings = trace_settings(o.render, camera);
   const PreparedCloud prepared(cloud, params, backend, stats);
-  const RenderedFrame frame = render_cloud(prepared, camera, settings, backend, stats);
+  const RenderedFrame frame =
+      render_frames(o.render, stats, [&](Stats& s) { return render_cloud(prepared, camera, settings, backend, s); });
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   stats.add_time("total", seconds);
   const double frame_s = frame_seconds(stats);

@@ -81,6 +81,10 @@ void add_render_options(CLI::App& command, RenderOptions& o) {
       ->capture_default_str();
   command.add_option("--hits", o.hits_path,
                      "write the primary hits as binary PLY: x y z nx ny nz and the pixel's px py");
+  command.add_option("--frames", o.frames,
+                     "render the frame N times and report the median frame's time (as a viewer sees it)")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
   command.add_flag("--shadows", o.shadows, "shadow rays toward the key light");
   command.add_flag("--reflections", o.reflections, "one mirror reflection per primary hit (ray depth 2)");
   command.add_option("--reflectivity", o.reflectivity, "Fresnel reflectance at normal incidence, with --reflections")

@@ -3,7 +3,9 @@
 // while parsing, so a bad one is a one-line usage error before any work or output.
 #pragma once
 
+#include <algorithm>
 #include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "pss/backend/backend.hpp"
@@ -21,6 +23,7 @@ struct RenderOptions {
   bool shadows = false;
   bool reflections = false;
   float reflectivity = ShadingParams{}.reflectivity;
+  int frames = 1;          // --frames: the same frame again, as a viewer would draw it
   ComputeOptions compute;  // --backend, --threads, --stats
 };
 
@@ -32,6 +35,30 @@ TraceSettings trace_settings(const RenderOptions& options, const Camera& camera)
 // What both commands do with a finished frame. The frame's seconds are the paper's
 // per-frame work: primary + secondary + shading.
 double frame_seconds(const Stats& stats);
+
+// Renders the frame options.frames times with render(Stats&) and keeps the last. The
+// phases go to stats from the median frame: the first frames of a run also pay for the
+// GPU's clocks rising and its caches filling, which a viewer drawing frame after frame
+// does not. --stats lists every frame's seconds.
+template <class Render>
+RenderedFrame render_frames(const RenderOptions& options, Stats& stats, Render&& render) {
+  std::vector<Stats> runs(std::size_t(options.frames));
+  std::vector<double> seconds;
+  RenderedFrame frame;
+  for (Stats& s : runs) {
+    frame = render(s);
+    seconds.push_back(frame_seconds(s));
+  }
+  std::vector<std::size_t> order(runs.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::nth_element(order.begin(), order.begin() + order.size() / 2, order.end(),
+                   [&](std::size_t a, std::size_t b) { return seconds[a] < seconds[b]; });
+  for (const auto& [phase, s] : runs[order[order.size() / 2]].times()) stats.add_time(phase, s);
+  stats.values()["frames"] = options.frames;
+  stats.values()["every_frame_seconds"] = seconds;
+  return frame;
+}
+
 // The PNG and --hits, each written atomically.
 void write_frame_outputs(const RenderOptions& options, const RenderedFrame& frame);
 // "wrote FILE" for each output, --stats included.

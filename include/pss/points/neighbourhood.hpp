@@ -48,11 +48,11 @@ struct NeighbourhoodOf {
 };
 
 // ρ = 2h around the default h holds ~60 samples (points/spacing.hpp); 128 covers uneven
-// sampling without spilling in most places. A GPU thread walks the grid again instead
-// (PSS_DEVICE_NEIGHBOURS = 0): 2 KB of stack per thread would cost more than the exp()s;
-// docs/benchmarks.md has both measured.
+// sampling without spilling in most places. On the GPU too: walking the grid again at each
+// pass (PSS_DEVICE_NEIGHBOURS=0, 128–880 bytes of stack instead of 2.2–2.8 KB) measured
+// 9 % slower frames and half the projection rate on an H100 (docs/benchmarks.md).
 #ifndef PSS_DEVICE_NEIGHBOURS
-#define PSS_DEVICE_NEIGHBOURS 0
+#define PSS_DEVICE_NEIGHBOURS 128
 #endif
 #if defined(__CUDA_ARCH__)
 using Neighbourhood = NeighbourhoodOf<PSS_DEVICE_NEIGHBOURS>;

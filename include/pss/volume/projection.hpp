@@ -127,8 +127,8 @@ struct VoxelWeights {
   }
 };
 
-// N(x) gathered once into a flat array (the CPU's: the iterations of Eq. 3 and 4 and Brent's
-// evaluations then run over contiguous memory). 10 KB: too much for a GPU thread's stack.
+// N(x) gathered once into a flat array: the iterations of Eq. 3 and 4 and Brent's
+// evaluations then run over contiguous memory.
 struct VoxelNeighbourhood {
   vec3 center;
   int count = 0;
@@ -157,9 +157,8 @@ struct VoxelNeighbourhood {
   }
 };
 
-// The same N(x) walked on the lattice again at each pass instead of stored (the GPU's: a few
-// registers instead of 10 KB of stack per thread). The same voxels in the same order, so the
-// same sums.
+// The same N(x) walked on the lattice again at each pass instead of stored: a few registers
+// instead of 10 KB of stack per GPU thread. The same voxels in the same order, so the same sums.
 struct WalkedVoxelNeighbourhood {
   const FieldView* fields = nullptr;
   vec3 center;
@@ -181,9 +180,11 @@ struct WalkedVoxelNeighbourhood {
   }
 };
 
-// The neighbourhood type of each backend, for the kernels' scratch space (a build with
-// PSS_DEVICE_VOXEL_CACHE=1 stores it on the GPU too, for comparison: docs/benchmarks.md).
-#if defined(__CUDA_ARCH__) && !PSS_DEVICE_VOXEL_CACHE
+// The kernels' scratch space. Stored on the GPU too: walking the lattice again at each pass
+// (a build with PSS_DEVICE_VOXEL_WALK=1; 0–400 bytes of stack per thread instead of 10 KB)
+// made predictor-corrector frames 1.6–2× slower on an H100, the corrector's Brent
+// evaluations each walking it again (docs/benchmarks.md).
+#if defined(__CUDA_ARCH__) && PSS_DEVICE_VOXEL_WALK
 using VoxelScratch = WalkedVoxelNeighbourhood;
 #else
 using VoxelScratch = VoxelNeighbourhood;
