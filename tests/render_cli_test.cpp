@@ -2,11 +2,14 @@
 // one-line error with a non-zero exit and no output file.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
+#include <iterator>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -75,6 +78,30 @@ TEST_F(RenderCli, WritesImageHitsAndStats) {
   ply.read(header.data(), std::streamsize(header.size()));
   EXPECT_NE(header.find("property int px"), std::string::npos);
   EXPECT_NE(header.find("property int py"), std::string::npos);
+}
+
+// --frames N draws the same frame N times, as a viewer would: the same image, every frame's
+// time in --stats, and the phases of the median frame (not their sum).
+TEST_F(RenderCli, FramesRepeatTheSameFrameAndReportTheMedian) {
+  std::string err;
+  const std::string common = path("sphere.xyz") + " --size 40x30 --shadows";
+  ASSERT_EQ(run(common + " -o " + path("one.png") + " --stats " + path("one.json"), err), 0) << err;
+  ASSERT_EQ(run(common + " -o " + path("five.png") + " --frames 5 --stats " + path("five.json"), err), 0) << err;
+  std::ifstream a(path("one.png"), std::ios::binary), b(path("five.png"), std::ios::binary);
+  EXPECT_TRUE(std::equal(std::istreambuf_iterator<char>(a), {}, std::istreambuf_iterator<char>(b), {}));
+  const nlohmann::json stats = nlohmann::json::parse(std::ifstream(path("five.json")));
+  EXPECT_EQ(stats["frames"], 5);
+  const std::vector<double> every = stats["every_frame_seconds"];
+  ASSERT_EQ(every.size(), 5u);
+  std::vector<double> sorted = every;
+  std::sort(sorted.begin(), sorted.end());
+  const double frame = stats["seconds"]["primary"].get<double>() + stats["seconds"]["secondary"].get<double>() +
+                       stats["seconds"]["shading"].get<double>();
+  EXPECT_NEAR(frame, sorted[2], 1e-9);
+  EXPECT_NEAR(stats["frame_seconds"].get<double>(), sorted[2], 1e-9);
+  EXPECT_NE(run(common + " -o " + path("zero.png") + " --frames 0", err), 0);
+  EXPECT_NE(err.find("--frames"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(path("zero.png")));
 }
 
 TEST_F(RenderCli, OnePointCloudRendersTheBackground) {

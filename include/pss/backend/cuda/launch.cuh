@@ -25,12 +25,17 @@ __global__ void for_each_index(std::int64_t begin, std::int64_t end, F f) {
 }
 
 // The block size that keeps the most threads of this kernel resident (its registers and
-// stack decide), found once per kernel.
+// stack decide), found once per kernel, at most 128: our items diverge (rays that miss
+// next to rays that project 30 candidates), and a block holds its place on the SM until its
+// slowest warp ends. Uncapped, the occupancy API's choice made 1920×1080 frames 13.0 → 16.9 ms
+// on an H100 (docs/benchmarks.md).
+inline constexpr int kMaxBlock = 128;
+
 template <class F>
 int block_size(const char* phase) {
   static const int block = [&] {
     int min_grid = 0, size = 0;
-    check(cudaOccupancyMaxPotentialBlockSize(&min_grid, &size, for_each_index<F>), phase);
+    check(cudaOccupancyMaxPotentialBlockSize(&min_grid, &size, for_each_index<F>, 0, kMaxBlock), phase);
     return size;
   }();
   return block;
