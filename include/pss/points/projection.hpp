@@ -54,8 +54,9 @@ namespace detail {
 
 // Eq. 2's energy along n for fixed n: E(t) = Σ θ3(‖pᵢ − q‖)·⟨pᵢ − q, n⟩², q = r + t·n,
 // and its derivative, with zᵢ = ⟨pᵢ − r, n⟩ and ‖pᵢ − q‖² = ‖pᵢ − r‖² − 2t·zᵢ + t².
+template <class Nb>
 struct MlsEnergy {
-  const Neighbourhood& neighbours;
+  const Nb& neighbours;
   vec3 r, n;
   float h;
 
@@ -77,8 +78,10 @@ struct MlsEnergy {
 
 }  // namespace detail
 
-PSS_INLINE Projection project_to_pss(const GridView& grid, vec3 r, const ProjectionParams& params,
-                                     vec3 normal_hint) {
+// Nb is the neighbourhood's storage (neighbourhood.hpp); every capacity gives the same result.
+template <class Nb = Neighbourhood>
+PSS_HOST_DEVICE Projection project_to_pss(const GridView& grid, vec3 r, const ProjectionParams& params,
+                                          vec3 normal_hint) {
   Projection out;
   out.point = r;
   out.normal = length2(normal_hint) > 0 ? glm::normalize(normal_hint) : vec3(0, 0, 1);
@@ -90,7 +93,7 @@ PSS_INLINE Projection project_to_pss(const GridView& grid, vec3 r, const Project
   // weighted mean m, its normal is the smallest eigenvector of the covariance about m.
   // N(r) is gathered once, with its weights θ3(‖pᵢ − r‖); every later pass reads it again.
   WeightedMoments moments(r);
-  const Neighbourhood neighbours(grid, r, params.rho, params.h, [&](vec3 p, float w) { moments.add(p, w); });
+  const Nb neighbours(grid, r, params.rho, params.h, [&](vec3 p, float w) { moments.add(p, w); });
   out.neighbours = moments.count;
   if (moments.count < 3 || !(moments.weight_sum > 0)) return out;
 
@@ -104,7 +107,7 @@ PSS_INLINE Projection project_to_pss(const GridView& grid, vec3 r, const Project
     // eigenvector of C(q) = Σ θ3(‖pᵢ − q‖)(pᵢ − q)(pᵢ − q)ᵀ, the plane through q.
     status = ProjectionStatus::not_converged;
     for (int it = 0; it < params.max_mls_iterations; ++it) {
-      const detail::MlsEnergy energy{neighbours, r, n, params.h};
+      const detail::MlsEnergy<Nb> energy{neighbours, r, n, params.h};
       const float t_next = brent_minimize(energy, t - params.h, t + params.h, t, params.t_tolerance).x;
       const vec3 q = r + t_next * n;
       WeightedMoments at_q(q);
