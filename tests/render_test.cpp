@@ -208,6 +208,54 @@ TEST(Render, OnePointCloudRendersTheBackground) {
   EXPECT_EQ(summarize(frame).hits, 0);
 }
 
+// Shadow rays leave from just off the surface (the finder's secondary offset along n): a
+// sphere hovering over a plane shades the plane beneath it, and nothing lit shadows itself;
+// with the full secondary intersection and with the paper's rough one (--secondary paper).
+class ShadowRays : public testing::TestWithParam<SecondaryMode> {};
+
+TEST_P(ShadowRays, ASphereShadowsThePlaneBelowAndNotItself) {
+  test::SampleOptions o;
+  o.count = 3000;
+  PointCloud cloud = test::sample(test::Sphere{vec3(0, 0, 1), 0.5f}, o);
+  o.count = 8600;  // about the sphere's density on a 3×3 square
+  const PointCloud plane = test::sample_plane(1.5f, o);
+  cloud.positions.insert(cloud.positions.end(), plane.positions.begin(), plane.positions.end());
+  Stats stats;
+  RayPssParams params = RayPssParams::from_h(test::suggested_h(cloud));
+  params.secondary = GetParam();
+  const PreparedCloud prepared(cloud, params, Backend::cpu, stats);
+  const PointFinder finder{prepared.view()};
+  TraceSettings settings;
+  settings.shadows = true;
+  settings.shading.key_direction = vec3(0, 0, 1);  // straight up
+  // The key light's visibility at the first hit of the ray from `eye` toward `target`.
+  const auto light_at = [&](vec3 eye, vec3 target) {
+    const Ray ray{eye, glm::normalize(target - eye)};
+    const Hit hit = finder.primary(ray);
+    EXPECT_TRUE(hit.found()) << target.x << ' ' << target.y << ' ' << target.z;
+    EXPECT_LT(glm::length(hit.point - target), 0.05f);
+    return trace_secondary(finder, settings, ray, hit).shadow;
+  };
+  int shadowed = 0, lit_plane = 0, lit_sphere = 0;
+  for (int k = -3; k <= 3; ++k) {
+    const float x = 0.1f * float(k);
+    const vec3 under(x, 0.05f, 0);  // seen from the side, below the sphere
+    shadowed += light_at(under + 3.0f * glm::normalize(vec3(1, 0.2f, 0.25f)), under) == 0.0f;
+    const vec3 beside(x + 1.1f, 0.05f, 0);  // out of the sphere's shadow
+    lit_plane += light_at(beside + vec3(0, 0, 3), beside) == 1.0f;
+    const vec3 top(x, 0.05f, 1 + std::sqrt(0.25f - x * x - 0.0025f));  // the sphere's lit cap
+    lit_sphere += light_at(top + vec3(0, 0, 3), top) == 1.0f;
+  }
+  EXPECT_EQ(shadowed, 7);
+  EXPECT_EQ(lit_plane, 7);
+  EXPECT_EQ(lit_sphere, 7);
+}
+
+INSTANTIATE_TEST_SUITE_P(Secondary, ShadowRays, testing::Values(SecondaryMode::full, SecondaryMode::paper),
+                         [](const testing::TestParamInfo<SecondaryMode>& info) {
+                           return info.param == SecondaryMode::full ? "full" : "paper";
+                         });
+
 TEST(Render, PlanarCloudIsAFlatSurface) {
   test::SampleOptions o;
   o.count = 4000;
