@@ -1,7 +1,9 @@
-// The ray/PSS intersection's parts against brute force: nearest_local_hit (BVH, ball and
-// slab clipping) against a loop over every local polynomial in its ball.
+// The ray/PSS intersection's parts against brute force and analytic truth: nearest_local_hit
+// (BVH, ball and slab clipping) against a loop over every local polynomial in its ball, and
+// intersect_pss's hits against a sphere's first crossing.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "pss/points/render_cloud.hpp"
@@ -62,6 +64,42 @@ TEST(RayPss, NearestLocalHitIsTheNearestOfAllLocalPolynomials) {
   }
   EXPECT_GT(hits, 1000);
   EXPECT_GT(grazing, 50);
+}
+
+// A candidate whose next ray/polynomial intersection leaves the ball B(p_i, b) is given up
+// (paper §5.2): followed on, the iteration can settle on another part of the surface, farther
+// along the ray. On a sphere every hit must be the ray's first crossing, also for the grazing
+// rays near the silhouette where the polynomials' intersections jump farthest.
+TEST(RayPss, HitsAreTheFirstCrossingNearTheSilhouette) {
+  test::SampleOptions o;
+  o.count = 4000;
+  const test::Sphere sphere;
+  const PointCloud cloud = test::sample(sphere, o);
+  Stats stats;
+  const RayPssParams params = RayPssParams::from_h(test::suggested_h(cloud));
+  const PreparedCloud prepared(cloud, params, Backend::cpu, stats);
+  const PointSurfaceView view = prepared.view();
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f), radius(0.9f, 1.0f);
+  int hits = 0, far = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const vec3 eye = 3.0f * glm::normalize(vec3(u(rng), u(rng), u(rng)));
+    // Aim at a point of the silhouette's neighbourhood: across the view direction.
+    const vec3 across = glm::normalize(glm::cross(eye, vec3(u(rng), u(rng), u(rng))));
+    const Ray ray{eye, glm::normalize(radius(rng) * across - eye)};
+    const Hit hit = intersect_pss(view, ray, 0.0f, kInfinity, params.max_iterations);
+    if (!hit.found()) continue;
+    // The analytic crossings t1 ≤ t2 of the unit sphere.
+    const float bq = glm::dot(ray.origin, ray.dir), c = glm::dot(ray.origin, ray.origin) - 1.0f;
+    const float disc = bq * bq - c;
+    if (disc <= 0) continue;  // the PSS's silhouette lies a little outside the sphere's
+    const float t1 = -bq - std::sqrt(disc), t2 = -bq + std::sqrt(disc);
+    ++hits;
+    // Near tangency the two crossings merge: only a hit nearer the second one counts.
+    far += std::abs(hit.t - t2) < std::abs(hit.t - t1) && t2 - t1 > 4 * params.ball_radius;
+  }
+  EXPECT_GT(hits, 5000);
+  EXPECT_EQ(far, 0) << "of " << hits;
 }
 
 }  // namespace
