@@ -3,6 +3,7 @@
 // intersect_pss's hits against a sphere's first crossing.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -67,9 +68,9 @@ TEST(RayPss, NearestLocalHitIsTheNearestOfAllLocalPolynomials) {
 }
 
 // A candidate whose next ray/polynomial intersection leaves the ball B(p_i, b) is given up
-// (paper §5.2): followed on, the iteration can settle on another part of the surface, farther
-// along the ray. On a sphere every hit must be the ray's first crossing, also for the grazing
-// rays near the silhouette where the polynomials' intersections jump farthest.
+// (paper §5.2), so every hit, a capped one (iterations spent, not converged) included, lies in
+// some sample's ball: within b of the clean sphere. And it is the ray's first crossing, also
+// for the grazing rays near the silhouette, where the polynomials' intersections jump farthest.
 TEST(RayPss, HitsAreTheFirstCrossingNearTheSilhouette) {
   test::SampleOptions o;
   o.count = 4000;
@@ -81,7 +82,8 @@ TEST(RayPss, HitsAreTheFirstCrossingNearTheSilhouette) {
   const PointSurfaceView view = prepared.view();
   std::mt19937 rng(11);
   std::uniform_real_distribution<float> u(-1.0f, 1.0f), radius(0.9f, 1.0f);
-  int hits = 0, far = 0;
+  int hits = 0, far = 0, capped = 0;
+  float off_surface = 0;
   for (int i = 0; i < 20000; ++i) {
     const vec3 eye = 3.0f * glm::normalize(vec3(u(rng), u(rng), u(rng)));
     // Aim at a point of the silhouette's neighbourhood: across the view direction.
@@ -89,6 +91,8 @@ TEST(RayPss, HitsAreTheFirstCrossingNearTheSilhouette) {
     const Ray ray{eye, glm::normalize(radius(rng) * across - eye)};
     const Hit hit = intersect_pss(view, ray, 0.0f, kInfinity, params.max_iterations);
     if (!hit.found()) continue;
+    off_surface = std::max(off_surface, std::abs(sphere.distance(hit.point)));
+    capped += (hit.flags & kHitCapped) != 0;
     // The analytic crossings t1 ≤ t2 of the unit sphere.
     const float bq = glm::dot(ray.origin, ray.dir), c = glm::dot(ray.origin, ray.origin) - 1.0f;
     const float disc = bq * bq - c;
@@ -99,6 +103,8 @@ TEST(RayPss, HitsAreTheFirstCrossingNearTheSilhouette) {
     far += std::abs(hit.t - t2) < std::abs(hit.t - t1) && t2 - t1 > 4 * params.ball_radius;
   }
   EXPECT_GT(hits, 5000);
+  EXPECT_GT(capped, 50);
+  EXPECT_LT(off_surface, params.ball_radius);
   EXPECT_EQ(far, 0) << "of " << hits;
 }
 
