@@ -212,7 +212,7 @@ TEST(VolumeRender, BrickSkippingKeepsTheHits) {
     for (int y = 0; y < camera.height; ++y)
       for (int x = 0; x < camera.width; ++x) {
         const Ray ray = camera.primary_ray(x, y);
-        const VolumeHit a = march_volume(skipping, ray), b = march_volume(exhaustive, ray);
+        const Hit a = march_volume(skipping, ray), b = march_volume(exhaustive, ray);
         ASSERT_EQ(a.found(), b.found()) << view.azimuth_deg;
         if (!a.found()) continue;
         ++hits;

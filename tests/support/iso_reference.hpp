@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "pss/render/camera.hpp"
-#include "pss/render/hit.hpp"
+#include "pss/core/hit.hpp"
 #include "pss/volume/volume.hpp"
 #include "support/marching_tetrahedra.hpp"
 

@@ -8,7 +8,7 @@
 
 #include "pss/points/local_polynomials.hpp"
 #include "pss/points/projection.hpp"
-#include "pss/render/hit.hpp"
+#include "pss/core/hit.hpp"
 #include "pss/spatial/bvh.hpp"
 
 namespace pss {

@@ -10,7 +10,7 @@
 
 #include <cstdint>
 
-#include "pss/render/hit.hpp"
+#include "pss/core/hit.hpp"
 #include "pss/render/shading.hpp"
 
 namespace pss {

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 
+#include "pss/core/hit.hpp"
 #include "pss/volume/bricks.hpp"
 #include "pss/volume/projection.hpp"
 
@@ -20,21 +21,6 @@ struct VolumeScene {
   BrickView bricks;
   FeatureParams feature;
   VolumeParams params;
-};
-
-// --debug-projection (the paper's Figure 2): what the first projection on the ray did.
-enum VolumeDebugFlags : std::uint8_t {
-  kPredictorMoved = 1,  // |P(r) − r| > ε
-  kCorrectorMoved = 2,  // |γ − P(r)| > ε
-};
-
-struct VolumeHit {
-  float t = kInfinity;  // ray parameter of the hit; infinity when none
-  vec3 point{0.0f};
-  vec3 normal{0.0f};    // unit, along ∇f (not yet turned to the viewer)
-  std::uint8_t debug = 0;
-  std::uint16_t projections = 0;  // projections run
-  PSS_HOST_DEVICE bool found() const { return t < kInfinity; }
 };
 
 // Slab test; false when the ray misses the box. Unlike the BVH's ray_box (spatial/bvh.hpp),
@@ -79,7 +65,7 @@ PSS_INLINE float intersection_in_ball(const VolumeProjection& proj, const Ray& r
 inline constexpr float kCorrectorReach = 4.0f;
 
 template <class Nb>
-PSS_HOST_DEVICE bool resolve_sample(const VolumeScene& s, const Ray& ray, float t_sample, VolumeHit& hit, bool first,
+PSS_HOST_DEVICE bool resolve_sample(const VolumeScene& s, const Ray& ray, float t_sample, Hit& hit, bool first,
                                     Nb& nb) {
   const VolumeParams& p = s.params;
   const vec3 r = ray.at(t_sample);
@@ -88,14 +74,14 @@ PSS_HOST_DEVICE bool resolve_sample(const VolumeScene& s, const Ray& ray, float 
   for (int attempt = 0; attempt <= p.max_retries; ++attempt) {
     const vec3 x = ray.at(t);
     VolumeProjection proj = predict(s.fields, p, x, nb);
-    ++hit.projections;
+    ++hit.iterations;
     if (proj.status != VolumeProjectionStatus::ok) return false;
     const bool record = p.debug_projection && first && attempt == 0;
-    if (record && length2(proj.predicted - x) > eps2) hit.debug |= kPredictorMoved;
+    if (record && length2(proj.predicted - x) > eps2) hit.flags |= kHitPredictorMoved;
     const bool could_accept = length2(proj.point - x) <= kCorrectorReach * kCorrectorReach * eps2;
     if (p.method == VolumeMethod::predictor_corrector && (could_accept || record)) {
       proj = correct(s.fields, p, proj, nb);
-      if (record && length2(proj.point - proj.predicted) > eps2) hit.debug |= kCorrectorMoved;
+      if (record && length2(proj.point - proj.predicted) > eps2) hit.flags |= kHitCorrectorMoved;
       if (proj.status != VolumeProjectionStatus::ok) return false;
     }
     if (length2(proj.point - x) <= eps2) {
@@ -103,7 +89,8 @@ PSS_HOST_DEVICE bool resolve_sample(const VolumeScene& s, const Ray& ray, float 
       if (!is_data_surface(s.fields, s.cells, s.feature, x, proj.normal, p.surface_reach())) return false;
       hit.t = t;
       hit.point = x;
-      hit.normal = proj.normal;
+      hit.normal = proj.normal;  // along ∇f
+      hit.flags |= kHitFound | kHitConverged;
       return true;
     }
     t = intersection_in_ball(proj, ray, t, r, p.step);
@@ -113,8 +100,8 @@ PSS_HOST_DEVICE bool resolve_sample(const VolumeScene& s, const Ray& ray, float 
 }
 
 // Marches up to t_max (kInfinity for primary rays).
-PSS_INLINE VolumeHit march_volume(const VolumeScene& s, const Ray& ray, float t_max = kInfinity) {
-  VolumeHit hit;
+PSS_INLINE Hit march_volume(const VolumeScene& s, const Ray& ray, float t_max = kInfinity) {
+  Hit hit;
   float t0, t1;
   if (!clip_to_box(ray, s.fields.volume.bounds(), t0, t1)) return hit;
   t1 = min(t1, t_max);

@@ -12,31 +12,12 @@
 
 namespace pss {
 
-// The volume's own bits of Hit::flags, for --debug-projection (the paper's Figure 2).
-enum VolumeHitFlag : std::uint32_t {
-  kHitPredictorMoved = 1u << 8,  // the ray's first projection: |P(r) − r| > ε
-  kHitCorrectorMoved = 1u << 9,  // and |γ − P(r)| > ε
-};
-
-PSS_INLINE Hit to_hit(const VolumeHit& v) {
-  Hit h;
-  h.iterations = v.projections;
-  if (v.debug & kPredictorMoved) h.flags |= kHitPredictorMoved;
-  if (v.debug & kCorrectorMoved) h.flags |= kHitCorrectorMoved;
-  if (!v.found()) return h;
-  h.point = v.point;
-  h.t = v.t;
-  h.normal = v.normal;
-  h.flags |= kHitFound | kHitConverged;
-  return h;
-}
-
 // The Finder of render/trace.hpp for a volume.
 struct VolumeFinder {
   VolumeScene scene;
 
-  PSS_HOST_DEVICE Hit primary(const Ray& ray) const { return to_hit(march_volume(scene, ray)); }
-  PSS_HOST_DEVICE Hit secondary(const Ray& ray, float t_max) const { return to_hit(march_volume(scene, ray, t_max)); }
+  PSS_HOST_DEVICE Hit primary(const Ray& ray) const { return march_volume(scene, ray); }
+  PSS_HOST_DEVICE Hit secondary(const Ray& ray, float t_max) const { return march_volume(scene, ray, t_max); }
   // Samples within b of the surface pass the fragment test; from 1.5·b away the surface
   // just left projects outside the ball of trust and is not found again.
   PSS_HOST_DEVICE float secondary_offset() const { return 1.5f * scene.params.step; }

@@ -1,5 +1,6 @@
-// What a surface finder reports for one ray: the shared currency between the renderers
-// (point clouds §5.2, volumes §5.1) and the shading, secondary rays and outputs.
+// What a surface finder reports for one ray, the one hit type of both finders (point clouds
+// §5.2, volumes §5.1): the shared currency of the kernels, the shading, secondary rays and
+// outputs.
 #pragma once
 
 #include <cstdint>
@@ -13,6 +14,9 @@ enum HitFlag : std::uint8_t {
   kHitConverged = 2,  // the last projection moved the point less than ε
   kHitCapped = 4,     // accepted because the iteration cap was reached (paper Table 2: 2 or 3)
   kHitRough = 8,      // a first approximation, never projected (paper's secondary rays)
+  // The volume's --debug-projection (the paper's Figure 2): what the ray's first projection did.
+  kHitPredictorMoved = 16,  // |P(r) − r| > ε
+  kHitCorrectorMoved = 32,  // and |γ − P(r)| > ε
 };
 
 struct Hit {
