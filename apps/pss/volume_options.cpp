@@ -59,10 +59,14 @@ void add_volume_options(CLI::App& command, VolumeOptions& o, bool method_flag) {
   o.iso_option = iso;
 }
 
-PreparedVolume load_volume(const VolumeOptions& o, Stats& stats) {
+std::optional<RawVolumeFormat> check_volume_options(const VolumeOptions& o) {
   if (o.iso_option->count() == 0 && !o.gradient) throw Error("choose the surface: --iso V or --gradient");
   if (o.threshold > 0 && !o.gradient) throw Error("--threshold applies to --gradient surfaces only");
-  const std::optional<RawVolumeFormat> raw = raw_volume_format(o.raw);
+  return raw_volume_format(o.raw);
+}
+
+PreparedVolume load_volume(const VolumeOptions& o, Stats& stats) {
+  const std::optional<RawVolumeFormat> raw = check_volume_options(o);
   Volume volume;
   {
     ScopedPhase phase(stats, "read");
