@@ -6,7 +6,8 @@
 # starts as a copy of the seeds fuzz/corpus/TARGET/ and keeps what each run adds. A crash,
 # sanitizer report, leak, timeout (10 s) or RSS over 2 GiB is written to
 # out/fuzz/crashes/TARGET/; the log of a run is out/fuzz/logs/TARGET.log. Prints one line per
-# target: executions, coverage (edges), corpus size, findings. Exits 1 if a run found any.
+# target: executions, coverage (edges), corpus size (inputs libFuzzer keeps), findings; exits
+# 1 if a run found any. TARGET may also be a list: nifti,cli.
 # A finding that is fixed goes into fuzz/corpus/TARGET/, which the test suite replays.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -15,11 +16,13 @@ target=${1:-all}
 seconds=${2:-600}
 if [[ $target == all ]]; then
   targets=("${all[@]}")
-elif [[ " ${all[*]} " == *" $target "* ]]; then
-  targets=("$target")
 else
-  echo "usage: scripts/fuzz.sh [all|${all[*]// /|}] [SECONDS]" >&2
-  exit 2
+  IFS=, read -ra targets <<<"$target"
+  for t in "${targets[@]}"; do
+    [[ " ${all[*]} " == *" $t "* ]] && continue
+    echo "usage: scripts/fuzz.sh [all|$(IFS='|'; echo "${all[*]}")] [SECONDS]   (TARGET may be a list: nifti,cli)" >&2
+    exit 2
+  done
 fi
 [[ $seconds =~ ^[1-9][0-9]*$ ]] || { echo "scripts/fuzz.sh: SECONDS must be a positive integer" >&2; exit 2; }
 
@@ -77,10 +80,10 @@ for t in "${targets[@]}"; do
   execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | tail -1 | grep -o '[0-9]*$' || true)
   rate=$(grep -o 'stat::average_exec_per_sec: *[0-9]*' "$log" | tail -1 | grep -o '[0-9]*$' || true)
   edges=$(grep -o 'cov: [0-9]*' "$log" | tail -1 | grep -o '[0-9]*$' || true)
-  corpus=$(find "out/fuzz/$t" -type f | wc -l)
+  corpus=$(grep -o 'corp: [0-9]*' "$log" | tail -1 | grep -o '[0-9]*$' || true)
   crashes=$(find "out/fuzz/crashes/$t" -type f -newer "$stamp" | wc -l)
   ((crashes == 0)) || found=1
-  printf '%-10s %12s %10s %8s %8s  %s\n' "$t" "${execs:-?}" "${rate:-?}" "${edges:-?}" "$corpus" \
+  printf '%-10s %12s %10s %8s %8s  %s\n' "$t" "${execs:-?}" "${rate:-?}" "${edges:-?}" "${corpus:-?}" \
     "$( ((crashes == 0)) && echo none || echo "$crashes in out/fuzz/crashes/$t/ (log: $log)")"
 done
 exit $found
