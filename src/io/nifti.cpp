@@ -67,18 +67,19 @@ std::int64_t read_some(gzFile g, char* into, std::int64_t n) {
   return got;
 }
 
-// Appends up to min(n, piece) bytes of the stream to `into`; false at its end.
-bool read_more(const std::filesystem::path& path, gzFile g, std::string& into, std::int64_t n, std::int64_t piece) {
-  const std::size_t old = into.size();
-  into.resize(old + std::size_t(std::min(n, piece)));
-  const std::int64_t r = read_some(g, into.data() + old, std::int64_t(into.size() - old));
-  if (r < 0) throw file_error(path, "corrupt gzip data");
-  into.resize(old + std::size_t(r));
-  return r > 0;
+// Reads and drops up to n bytes; returns how many there were.
+std::int64_t skip_bytes(const std::filesystem::path& path, gzFile g, std::int64_t n) {
+  constexpr std::int64_t kPiece = std::int64_t(1) << 20;
+  std::vector<char> buffer(std::size_t(std::min(std::max<std::int64_t>(n, 0), kPiece)));
+  std::int64_t done = 0;
+  while (done < n) {
+    const std::int64_t r = read_some(g, buffer.data(), std::min(n - done, kPiece));
+    if (r < 0) throw file_error(path, "corrupt gzip data");
+    if (r == 0) break;
+    done += r;
+  }
+  return done;
 }
-
-// What one read asks for: the voxels' buffer grows by this much at most per read.
-constexpr std::int64_t kPiece = std::int64_t(1) << 20;
 
 // The header fields pss needs, validated, in the machine's byte order, and the voxels'
 // bytes as the file holds them.
@@ -160,9 +161,9 @@ CheckedHeader read_checked(const std::filesystem::path& path) {
   c.big_endian = swap != (std::endian::native == std::endian::big);
   c.compressed = compressed;
 
-  // Every voxel must be there. An uncompressed file's size says so before anything is read;
-  // the buffer of a compressed one grows as the data arrives, so memory follows what the
-  // file holds, not what its header claims.
+  // Every voxel must be there before memory is taken for them: an uncompressed file's size
+  // says so; a compressed one is read through once, then again into a buffer of the size it
+  // proved to hold (as much as the header claims, but no more than the file holds).
   const std::int64_t count = checked_voxel_count(c.dims, path.string());
   const std::int64_t voxel_bytes = count * voxel_type_size(*type);
   const std::int64_t needed = c.vox_offset + voxel_bytes;
@@ -171,24 +172,25 @@ CheckedHeader read_checked(const std::filesystem::path& path) {
                                 " bytes, but vox_offset " + std::to_string(c.vox_offset) + " + " + describe(c.dims) +
                                 " " + voxel_type_name(*type) + " voxels need " + std::to_string(needed));
   };
+  std::int64_t position = 348;
   if (!compressed) {
     std::error_code ec;
     const std::int64_t size = std::int64_t(std::filesystem::file_size(path, ec));
     if (ec) throw file_error(path, "cannot read: " + ec.message());
     if (size < needed) throw too_short(size);
+  } else {
+    const std::int64_t have = position + skip_bytes(path, g.get(), needed - position);
+    if (have < needed) throw too_short(have);
+    if (gzrewind(g.get()) != 0) throw file_error(path, "cannot read: gzrewind failed");
+    position = 0;
   }
-  std::string skipped;  // the extensions, between the header and vox_offset: the library's business
-  std::int64_t have = 348;
-  while (have < c.vox_offset && read_more(path, g.get(), skipped, c.vox_offset - have, kPiece)) {
-    have += std::int64_t(skipped.size());
-    skipped.clear();
-  }
-  if (have == c.vox_offset)
-    while (std::int64_t(c.voxels.size()) < voxel_bytes &&
-           read_more(path, g.get(), c.voxels, voxel_bytes - std::int64_t(c.voxels.size()), kPiece)) {
-    }
-  have += std::int64_t(c.voxels.size());
-  if (have < needed) throw too_short(have);
+  // The extensions, between the header and vox_offset, are the library's business.
+  position += skip_bytes(path, g.get(), c.vox_offset - position);
+  if (position != c.vox_offset) throw too_short(position);  // shorter than a moment ago
+  c.voxels.resize(std::size_t(voxel_bytes));
+  const std::int64_t read = read_some(g.get(), c.voxels.data(), voxel_bytes);
+  if (read < 0) throw file_error(path, "corrupt gzip data");
+  if (read < voxel_bytes) throw too_short(c.vox_offset + read);  // shorter than a moment ago
   return c;
 }
 
