@@ -96,6 +96,12 @@ std::vector<std::string> with_non_finite(std::vector<std::string> out_of_range) 
   out_of_range.insert(out_of_range.end(), kNonFinite.begin(), kNonFinite.end());
   return out_of_range;
 }
+// The same for a flag that must be > 0: also a positive value that is 0 as a float (--h 1e-50
+// meant "estimate h").
+std::vector<std::string> positive_or_refused(std::vector<std::string> out_of_range) {
+  out_of_range.push_back("1e-50");
+  return with_non_finite(std::move(out_of_range));
+}
 
 const std::vector<BadFlag> kComputeFlags = {
     {"--threads", {"nan", "inf", "-inf", "0", "-1", "100000", "1025"}},
@@ -110,12 +116,13 @@ const std::vector<BadFlag> kRenderFlags = {
 
 const std::vector<BadFlag> kVolumeFlags = {
     {"--iso", {"nan", "inf", "-inf", "1e39", "-1e39"}},
-    {"--h", with_non_finite({"0", "-1"})},
+    // Below half a voxel the rays' steps multiply (--h 1e-10 hung): the range starts at 0.5.
+    {"--h", with_non_finite({"0", "-1", "0.25"})},
     {"--k", with_non_finite({"0", "0.01", "1.5"})},
     {"--radius", with_non_finite({"0", "0.4", "5"})},
     {"--alpha", with_non_finite({"-0.1", "1.1"})},
-    {"--smoothing", with_non_finite({"0", "-1"})},
-    {"--error", with_non_finite({"0", "-1"})},
+    {"--smoothing", positive_or_refused({"0", "-1"})},
+    {"--error", positive_or_refused({"0", "-1"})},
     {"--threshold", with_non_finite({"-0.5", "1.5"})},
 };
 
@@ -173,8 +180,8 @@ TEST_F(HostileParams, RenderRefusesEveryBadNumber) {
   ASSERT_EQ(test::run_pss(base).exit_code, 0);
   fs::remove(out);
   const std::vector<BadFlag> own = {
-      {"--h", with_non_finite({"0", "-1"})},       {"--rho", with_non_finite({"0", "-1"})},
-      {"--b", with_non_finite({"0", "-1"})},       {"--epsilon", with_non_finite({"0", "-1"})},
+      {"--h", positive_or_refused({"0", "-1"})},   {"--rho", positive_or_refused({"0", "-1"})},
+      {"--b", positive_or_refused({"0", "-1"})},   {"--epsilon", positive_or_refused({"0", "-1"})},
       {"--iterations", {"nan", "inf", "-inf", "0", "-1", "1e3", "99999999999"}},
   };
   for (const auto* table : {&kComputeFlags, &kRenderFlags, &own})
@@ -188,8 +195,8 @@ TEST_F(HostileParams, ProjectRefusesEveryBadNumber) {
   ASSERT_EQ(test::run_pss(base).exit_code, 0);
   fs::remove(out);
   const std::vector<BadFlag> own = {
-      {"--h", with_non_finite({"0", "-1"})},
-      {"--rho", with_non_finite({"0", "-1"})},
+      {"--h", positive_or_refused({"0", "-1"})},
+      {"--rho", positive_or_refused({"0", "-1"})},
       {"--iterations", {"nan", "inf", "-inf", "0", "101", "1e3"}},
   };
   for (const auto* table : {&kComputeFlags, &own})

@@ -86,13 +86,15 @@ TEST_F(HostileSizes, AGzipBombIsRefusedWithoutAllocatingItsClaim) {
   expect_clean_failure("volume " + bomb + " --iso 1 -o " + path("out.png"), bomb, path("out.png"));
 }
 
-// Each candidate of the extraction lattice is a projection: b = h = 1e-5 on a 32³ box is
-// 3.2 million per axis, refused with the numbers rather than an internal error.
+// Each candidate of the extraction lattice is a projection: b = h = 1e-5 on a 32³ box was
+// 3.2 million per axis (now --h is refused below 0.5); the smallest b the flags allow still
+// makes more than the cap, refused with the numbers rather than an internal error.
 TEST_F(HostileSizes, AnExtractionLatticePastTheCapIsRefused) {
   std::string ramp;
   for (int i = 0; i < 32 * 32 * 32; ++i) ramp.push_back(char(i % 32 * 8));
   const std::string raw = write("ramp.raw", ramp);
-  expect_clean_failure("extract " + raw + " --dims 32x32x32 --iso 100 --h 1e-5 -o " + path("out.ply"), "2^28",
+  // --h 0.5 voxel, --k 0.05: b = 0.025, 1240^3 candidates.
+  expect_clean_failure("extract " + raw + " --dims 32x32x32 --iso 100 --h 0.5 --k 0.05 -o " + path("out.ply"), "2^28",
                        path("out.ply"));
 }
 

@@ -413,6 +413,30 @@ TEST_F(VolumeFormats, NiftiLiesAreOneLineErrors) {
   expect_error([&] { read_volume(dir_ / "nothere.nii", std::nullopt); }, dir_ / "nothere.nii", "cannot open");
 }
 
+// The NIfTI library turns non-finite float voxels into 0 as it reads them; pss reads the
+// voxels itself, so that a NaN or infinity is refused as in every other format (found by
+// fuzz/corpus/nifti/float-nan).
+TEST_F(VolumeFormats, NiftiNonFiniteVoxelIsAnError) {
+  for (const VoxelType type : {VoxelType::float32, VoxelType::float64})
+    for (const float bad : {NAN, INFINITY}) {
+      Nifti1Header h;
+      h.datatype = std::int16_t(nifti_datatype(type));
+      h.bitpix = std::int16_t(8 * voxel_type_size(type));
+      std::string data = voxels(type, false);
+      if (type == VoxelType::float32) std::memcpy(data.data() + 4 * 5, &bad, 4);
+      else {
+        const double d = bad;
+        std::memcpy(data.data() + 8 * 5, &d, 8);
+      }
+      const std::string file = nifti_file(h, data, false);
+      expect_error([&] { read_volume(write("n.nii", file), std::nullopt); }, dir_ / "n.nii",
+                   "voxel 5 is not a finite number");
+      write_gz(dir_ / "n.nii.gz", file);
+      expect_error([&] { read_volume(dir_ / "n.nii.gz", std::nullopt); }, dir_ / "n.nii.gz",
+                   "voxel 5 is not a finite number");
+    }
+}
+
 TEST_F(VolumeFormats, DispatchOnExtension) {
   EXPECT_TRUE(has_volume_header("a/B.NII.GZ"));
   EXPECT_TRUE(has_volume_header("x.Mhd"));

@@ -3,13 +3,17 @@
 // (no output file left behind).
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <string>
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "pss/core/error.hpp"
@@ -140,6 +144,27 @@ TEST(VolumeIo, BadInputsAreOneLineErrors) {
   for (const std::string& m : {error_of([&] { read_raw_volume(d / "short.raw", f); }),
                                error_of([&] { read_nrrd(d / "trunc.nrrd"); })})
     EXPECT_EQ(m.find('\n'), std::string::npos);
+}
+
+// A header's detached data file may name anything: a FIFO blocked read_file's open until a
+// writer came, for ever (a NRRD or MetaImage header naming one hung pss). Devices and FIFOs
+// are refused before the open.
+TEST(VolumeIo, DetachedDataThatIsAFifoIsRefusedWithoutWaiting) {
+  const fs::path d = temp_dir();
+  const fs::path fifo = d / "fifo.raw";
+  fs::remove(fifo);
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  write_bytes(d / "fifo.nhdr", "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 2 3 4\nencoding: raw\ndata file: fifo.raw\n");
+  write_bytes(d / "fifo.mhd", "NDims = 3\nDimSize = 2 3 4\nElementType = MET_UCHAR\nElementDataFile = fifo.raw\n");
+  for (const char* header : {"fifo.nhdr", "fifo.mhd"}) {
+    auto message = std::async(std::launch::async, [&] { return error_of([&] { read_volume(d / header, std::nullopt); }); });
+    const bool done = message.wait_for(std::chrono::seconds(5)) == std::future_status::ready;
+    if (!done) ::close(::open(fifo.c_str(), O_WRONLY | O_NONBLOCK));  // a writer, so that the reader returns
+    EXPECT_TRUE(done) << header << ": the reader waited for a writer of its FIFO";
+    EXPECT_NE(message.get().find("fifo.raw: cannot open: not a regular file"), std::string::npos) << header;
+  }
+  EXPECT_NE(error_of([] { read_file("/dev/zero"); }).find("not a regular file"), std::string::npos);
+  fs::remove(fifo);
 }
 
 // The CLI: a bad volume is `pss: error: ...` on one line, exit status 1, and no image.

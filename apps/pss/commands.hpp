@@ -21,10 +21,19 @@ void add_compute_options(CLI::App& command, ComputeOptions& options);
 // the file.
 SpacingEstimate estimate_spacing_of(const PointCloud& cloud, const std::string& file);
 
-void add_info_command(CLI::App& app);
-void add_project_command(CLI::App& app);
-void add_render_command(CLI::App& app);
-void add_volume_command(CLI::App& app);
-void add_extract_command(CLI::App& app);
+// What a chosen subcommand does once CLI11 has parsed and validated its options: run, or
+// only check the options that need more than one flag's validator (the --iso/--gradient
+// choice, the raw-volume flags together), which reads no file and writes none. The fuzz
+// target of the option parsing (fuzz/cli.cpp) uses `check`.
+enum class Action { run, check };
+
+// The app `pss` is: its subcommands, --version, and one-line usage errors.
+void configure_app(CLI::App& app, Action action);
+
+void add_info_command(CLI::App& app, Action action);
+void add_project_command(CLI::App& app, Action action);
+void add_render_command(CLI::App& app, Action action);
+void add_volume_command(CLI::App& app, Action action);
+void add_extract_command(CLI::App& app, Action action);
 
 }  // namespace pss::app

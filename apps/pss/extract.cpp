@@ -58,13 +58,16 @@ void run_extract(const ExtractOptions& o) {
 
 }  // namespace
 
-void add_extract_command(CLI::App& app) {
+void add_extract_command(CLI::App& app, Action action) {
   auto* command = app.add_subcommand("extract", "Extract the PSS of a volume as an oriented point set (binary PLY)");
   auto o = std::make_shared<ExtractOptions>();
   add_volume_options(*command, o->volume, false);
   command->add_option("-o,--output", o->output, "output binary PLY with x y z nx ny nz")->required();
   add_compute_options(*command, o->compute);
-  command->callback([o] { run_extract(*o); });
+  command->callback([o, action] {
+    if (action == Action::run) run_extract(*o);
+    else check_volume_options(o->volume);
+  });
 }
 
 }  // namespace pss::app

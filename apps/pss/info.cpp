@@ -85,7 +85,7 @@ void print_volume(const std::string& path, const std::optional<RawVolumeFormat>&
 
 }  // namespace
 
-void add_info_command(CLI::App& app) {
+void add_info_command(CLI::App& app, Action action) {
   auto* command = app.add_subcommand(
       "info", "Print a point cloud's size, bounds, sample spacing and suggested h; or a volume's dimensions, voxel "
               "type, geometry, value histogram and suggested iso-values");
@@ -96,8 +96,9 @@ void add_info_command(CLI::App& app) {
                       "with --dims)")
       ->required();
   add_raw_volume_options(*command, *raw);
-  command->callback([path, raw] {
+  command->callback([path, raw, action] {
     const std::optional<RawVolumeFormat> format = raw_volume_format(*raw);
+    if (action == Action::check) return;
     if (format || has_volume_header(*path))
       print_volume(*path, format);
     else

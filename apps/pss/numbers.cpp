@@ -21,6 +21,7 @@ CLI::Validator finite_range(double lo, double hi, bool lo_open) {
   const bool unbounded = hi == double(FLT_MAX);
   const std::string range = unbounded && lo == -double(FLT_MAX) ? "a finite number"
                             : unbounded && lo_open            ? "a finite number > " + format_number(lo)
+                            : unbounded                       ? "a finite number >= " + format_number(lo)
                             : (lo_open ? "a finite number > " + format_number(lo) + " and <= "
                                        : "a finite number from " + format_number(lo) + " to ") + format_number(hi);
   return CLI::Validator(
@@ -32,6 +33,10 @@ CLI::Validator finite_range(double lo, double hi, bool lo_open) {
         const bool parsed = end != begin && *end == '\0' && !std::isspace(static_cast<unsigned char>(*begin));
         if (!parsed || !std::isfinite(x) || errno == ERANGE || x > hi || (lo_open ? !(x > lo) : !(x >= lo)))
           return "expected " + range + " (got " + quote(text) + ")";
+        // The flags hold floats: a positive value below float's range becomes 0, which for
+        // --h, --rho, --b and --epsilon means "the default" (--h 1e-50 was accepted so).
+        if (lo_open && !(float(x) > float(lo)))
+          return "expected " + range + " (got " + quote(text) + ", which is " + format_number(float(x)) + " as a float)";
         return {};
       },
       lo_open && hi == double(FLT_MAX) ? "POSITIVE" : "NUMBER", "finite range");

@@ -93,7 +93,7 @@ void run_project(const ProjectOptions& o) {
 
 }  // namespace
 
-void add_project_command(CLI::App& app) {
+void add_project_command(CLI::App& app, Action action) {
   auto* command = app.add_subcommand("project", "Move every point onto the point set surface (MLS projection)");
   auto o = std::make_shared<ProjectOptions>();
   command->add_option("file", o->input, "point cloud (.ply, .xyz, .txt, .pts)")->required();
@@ -108,7 +108,9 @@ void add_project_command(CLI::App& app) {
       ->check(finite_range(1, 100))
       ->capture_default_str();
   add_compute_options(*command, o->compute);
-  command->callback([o] { run_project(*o); });
+  command->callback([o, action] {
+    if (action == Action::run) run_project(*o);
+  });
 }
 
 }  // namespace pss::app

@@ -103,7 +103,7 @@ std::string check_iterations(const std::string& text) {
 
 }  // namespace
 
-void add_render_command(CLI::App& app) {
+void add_render_command(CLI::App& app, Action action) {
   auto* command = app.add_subcommand("render", "Ray trace the point set surface of a point cloud to a PNG (paper 5.2)");
   auto o = std::make_shared<RenderCloudOptions>();
   command->add_option("file", o->input, "point cloud (.ply, .xyz, .txt, .pts)")->required();
@@ -122,7 +122,9 @@ void add_render_command(CLI::App& app) {
       ->check(CLI::IsMember({"full", "paper"}))
       ->capture_default_str();
   add_render_options(*command, o->render);
-  command->callback([o] { run_render(*o); });
+  command->callback([o, action] {
+    if (action == Action::run) run_render(*o);
+  });
 }
 
 }  // namespace pss::app

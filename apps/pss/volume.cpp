@@ -64,7 +64,7 @@ void run_volume(const VolumeCommandOptions& o) {
 
 }  // namespace
 
-void add_volume_command(CLI::App& app) {
+void add_volume_command(CLI::App& app, Action action) {
   auto* command = app.add_subcommand("volume", "Extract and render the PSS of a volume to a PNG (paper 4, 5.1)");
   auto o = std::make_shared<VolumeCommandOptions>();
   add_volume_options(*command, o->volume, true);
@@ -72,7 +72,10 @@ void add_volume_command(CLI::App& app) {
                     "the paper's Figure 2: red where the predictor moved the ray's first sample farther than "
                     "epsilon, green where the corrector still did");
   add_render_options(*command, o->render);
-  command->callback([o] { run_volume(*o); });
+  command->callback([o, action] {
+    if (action == Action::run) run_volume(*o);
+    else check_volume_options(o->volume);
+  });
 }
 
 }  // namespace pss::app

@@ -27,7 +27,13 @@ struct VolumeOptions {
 
 void add_volume_options(CLI::App& command, VolumeOptions& options, bool method_flag);
 
-// Reads the volume, computes gradients, weights and bricks; every parameter resolved.
+// The checks of flags together that CLI11's validators cannot make (--iso or --gradient,
+// --threshold with --gradient, the raw flags: raw_volume_format); throws a one-line Error.
+// Reads nothing.
+std::optional<RawVolumeFormat> check_volume_options(const VolumeOptions& options);
+
+// check_volume_options, then reads the volume, computes gradients, weights and bricks;
+// every parameter resolved.
 PreparedVolume load_volume(const VolumeOptions& options, Stats& stats);
 
 // The resolved feature and method parameters, for --stats.

@@ -1,8 +1,10 @@
 // NIfTI-1 single files (.nii, .nii.gz) through the reference library (niftiio, Debian's
 // libnifti2-dev). The library reports problems on stderr and carries on with what it
 // guessed, so pss checks the header first itself: magic, byte order, dims, type, spacing,
-// and that the file holds every voxel the header promises. Only then does the library read
-// the voxels (swapped to the machine's byte order); a failure there is still our one line.
+// and that the file holds every voxel the header promises, and reads the voxels then, as
+// the other formats do (decode: either byte order; a value that is not a finite float is
+// an error, where the library would turn it into 0 without a word). The library reads the
+// header's geometry and value scaling; a failure there is still our one line.
 //
 // Geometry: spacing is |pixdim[1..3]|. The origin is the translation of the sform when its
 // code is set, else of the qform, else 0; their rotation and any flips are not applied (pss
@@ -65,13 +67,29 @@ std::int64_t read_some(gzFile g, char* into, std::int64_t n) {
   return got;
 }
 
-// The header fields pss needs, validated, in the machine's byte order.
+// Reads and drops up to n bytes; returns how many there were.
+std::int64_t skip_bytes(const std::filesystem::path& path, gzFile g, std::int64_t n) {
+  constexpr std::int64_t kPiece = std::int64_t(1) << 20;
+  std::vector<char> buffer(std::size_t(std::min(std::max<std::int64_t>(n, 0), kPiece)));
+  std::int64_t done = 0;
+  while (done < n) {
+    const std::int64_t r = read_some(g, buffer.data(), std::min(n - done, kPiece));
+    if (r < 0) throw file_error(path, "corrupt gzip data");
+    if (r == 0) break;
+    done += r;
+  }
+  return done;
+}
+
+// The header fields pss needs, validated, in the machine's byte order, and the voxels'
+// bytes as the file holds them.
 struct CheckedHeader {
   ivec3 dims;
   VoxelType type;
   bool big_endian;
   bool compressed;
   std::int64_t vox_offset;
+  std::string voxels;
 };
 
 std::string number(double x) {
@@ -80,7 +98,7 @@ std::string number(double x) {
   return buffer;
 }
 
-CheckedHeader check_header(const std::filesystem::path& path) {
+CheckedHeader read_checked(const std::filesystem::path& path) {
   std::unique_ptr<gzFile_s, GzCloser> g(gzopen(path.c_str(), "rb"));
   if (!g) throw file_error(path, std::string("cannot open: ") + std::strerror(errno));
   nifti_1_header h;
@@ -143,39 +161,46 @@ CheckedHeader check_header(const std::filesystem::path& path) {
   c.big_endian = swap != (std::endian::native == std::endian::big);
   c.compressed = compressed;
 
-  // Every voxel must be there before the library is asked to read them.
+  // Every voxel must be there before memory is taken for them: an uncompressed file's size
+  // says so; a compressed one is read through once, then again into a buffer of the size it
+  // proved to hold (as much as the header claims, but no more than the file holds).
   const std::int64_t count = checked_voxel_count(c.dims, path.string());
-  const std::int64_t needed = c.vox_offset + count * voxel_type_size(*type);
-  std::int64_t have = 0;
+  const std::int64_t voxel_bytes = count * voxel_type_size(*type);
+  const std::int64_t needed = c.vox_offset + voxel_bytes;
+  const auto too_short = [&](std::int64_t have) {
+    return file_error(path, "holds " + std::to_string(have) + (compressed ? " uncompressed" : "") +
+                                " bytes, but vox_offset " + std::to_string(c.vox_offset) + " + " + describe(c.dims) +
+                                " " + voxel_type_name(*type) + " voxels need " + std::to_string(needed));
+  };
+  std::int64_t position = 348;
   if (!compressed) {
     std::error_code ec;
-    have = std::int64_t(std::filesystem::file_size(path, ec));
+    const std::int64_t size = std::int64_t(std::filesystem::file_size(path, ec));
     if (ec) throw file_error(path, "cannot read: " + ec.message());
+    if (size < needed) throw too_short(size);
   } else {
-    std::vector<char> buffer(std::size_t(1) << 20);
-    have = 348;
-    while (have < needed) {
-      const std::int64_t want = std::min<std::int64_t>(needed - have, std::int64_t(buffer.size()));
-      const std::int64_t r = read_some(g.get(), buffer.data(), want);
-      if (r < 0) throw file_error(path, "corrupt gzip data");
-      if (r == 0) break;
-      have += r;
-    }
+    const std::int64_t have = position + skip_bytes(path, g.get(), needed - position);
+    if (have < needed) throw too_short(have);
+    if (gzrewind(g.get()) != 0) throw file_error(path, "cannot read: gzrewind failed");
+    position = 0;
   }
-  if (have < needed)
-    throw file_error(path, "holds " + std::to_string(have) + (compressed ? " uncompressed" : "") +
-                               " bytes, but vox_offset " + std::to_string(c.vox_offset) + " + " + describe(c.dims) +
-                               " " + voxel_type_name(*type) + " voxels need " + std::to_string(needed));
+  // The extensions, between the header and vox_offset, are the library's business.
+  position += skip_bytes(path, g.get(), c.vox_offset - position);
+  if (position != c.vox_offset) throw too_short(position);  // shorter than a moment ago
+  c.voxels.resize(std::size_t(voxel_bytes));
+  const std::int64_t read = read_some(g.get(), c.voxels.data(), voxel_bytes);
+  if (read < 0) throw file_error(path, "corrupt gzip data");
+  if (read < voxel_bytes) throw too_short(c.vox_offset + read);  // shorter than a moment ago
   return c;
 }
 
 }  // namespace
 
 VolumeFile read_nifti_file(const std::filesystem::path& path) {
-  const CheckedHeader header = check_header(path);
+  const CheckedHeader header = read_checked(path);
   nifti_set_debug_level(0);  // problems are reported by us, in one line
-  std::unique_ptr<nifti_image, NiftiFree> nim(nifti_image_read(path.c_str(), 1));
-  if (!nim || !nim->data) throw file_error(path, "the NIfTI library could not read the voxels");
+  std::unique_ptr<nifti_image, NiftiFree> nim(nifti_image_read(path.c_str(), 0));  // the header only
+  if (!nim) throw file_error(path, "the NIfTI library could not read the header");
   if (nim->nx != header.dims.x || nim->ny != header.dims.y || nim->nz != header.dims.z ||
       nim->nvox != std::size_t(header.dims.x) * header.dims.y * header.dims.z ||
       nifti_type(nim->datatype) != header.type)
@@ -188,12 +213,10 @@ VolumeFile read_nifti_file(const std::filesystem::path& path) {
   const mat44* m = nim->sform_code > 0 ? &nim->sto_xyz : nim->qform_code > 0 ? &nim->qto_xyz : nullptr;
   if (m) v.origin = vec3(m->m[0][3], m->m[1][3], m->m[2][3]);
   if (!(std::isfinite(v.origin.x) && std::isfinite(v.origin.y) && std::isfinite(v.origin.z))) v.origin = vec3(0.0f);
-  // The library has swapped the voxels to the machine's order.
-  v.values = decode(path, static_cast<const char*>(nim->data), v.voxel_count(), header.type,
-                    std::endian::native == std::endian::big);
+  v.values = decode(path, header.voxels.data(), v.voxel_count(), header.type, header.big_endian);
   f.source = {"NIfTI-1", header.type, header.big_endian, header.compressed, {}};
   // NIfTI §scl_slope: stored values become slope·x + inter when slope is not 0 (the library
-  // has already turned non-finite ones into 0).
+  // turns a non-finite slope or intercept into 0).
   const float slope = nim->scl_slope, inter = nim->scl_inter;
   if (slope != 0 && !(slope == 1 && inter == 0)) {
     for (std::size_t i = 0; i < v.values.size(); ++i) {

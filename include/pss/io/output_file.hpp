@@ -78,7 +78,8 @@ class OutputSet {
 void write_text_file(const std::filesystem::path& path, std::string_view text);
 
 // The whole file in memory: the readers parse from one buffer, which is much faster than
-// stream extraction. Throws file_error(path, "cannot open: ...") / "cannot read: ...".
+// stream extraction. Throws file_error(path, "cannot open: ...") / "cannot read: ..."; a
+// directory, FIFO or device is refused before it is opened.
 std::string read_file(const std::filesystem::path& path);
 
 }  // namespace pss
