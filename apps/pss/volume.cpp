@@ -29,8 +29,9 @@ void run_volume(const VolumeCommandOptions& o) {
   volume.params.debug_projection = o.debug_projection;
   const Camera camera = Camera::framing(volume.surface_bounds(), o.render.camera);
   const TraceSettings settings = trace_settings(o.render, camera);
+  const SceneMirror scene(backend, volume);  // uploaded once for all --frames
   RenderedFrame frame =
-      render_frames(o.render, stats, [&](Stats& s) { return render_volume(volume, camera, settings, backend, s); });
+      render_frames(o.render, stats, [&](Stats& s) { return render_volume(scene, camera, settings, backend, s); });
   if (o.debug_projection) paint_debug_projection(frame);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   stats.add_time("total", seconds);

@@ -4,10 +4,14 @@
 
 namespace pss {
 
+RenderedFrame render_volume(const SceneMirror& scene, const Camera& camera, const TraceSettings& settings,
+                            Backend backend, Stats& stats) {
+  return render_frame(backend, VolumeFinder{scene.scene()}, camera, settings, stats);
+}
+
 RenderedFrame render_volume(const PreparedVolume& volume, const Camera& camera, const TraceSettings& settings,
                             Backend backend, Stats& stats) {
-  const SceneMirror scene(backend, volume);
-  return render_frame(backend, VolumeFinder{scene.scene()}, camera, settings, stats);
+  return render_volume(SceneMirror(backend, volume), camera, settings, backend, stats);
 }
 
 void paint_debug_projection(RenderedFrame& frame) {

@@ -16,8 +16,10 @@ template <class Finder>
 RenderedFrame render_frame(Backend backend, const Finder& finder, const Camera& camera, const TraceSettings& settings,
                            Stats& stats) {
   const std::int64_t n = std::int64_t(camera.width) * camera.height;
+  const bool traces_secondary = settings.shadows || settings.reflections;
   Mirror<Hit> hits(backend, std::size_t(n));
-  Mirror<SecondaryHits> secondary(backend, std::size_t(n));
+  // Without secondary rays nothing is written there, and nothing need come back.
+  Mirror<SecondaryHits> secondary(backend, traces_secondary ? std::size_t(n) : 0);
   Mirror<vec3> pixels(backend, std::size_t(n));
   Hit* h = hits.data();
   SecondaryHits* s = secondary.data();
@@ -31,7 +33,7 @@ RenderedFrame render_frame(Backend backend, const Finder& finder, const Camera& 
       h[i] = f.primary(cam.primary_ray(int(i % cam.width), int(i / cam.width)));
     }, stats, &progress);
   }
-  if (ts.shadows || ts.reflections) {
+  if (traces_secondary) {
     Progress progress("secondary rays", n);
     parallel_for(backend, "secondary", n, PSS_KERNEL(std::int64_t i) {
       s[i] = trace_secondary(f, ts, cam.primary_ray(int(i % cam.width), int(i / cam.width)), h[i]);
@@ -40,7 +42,7 @@ RenderedFrame render_frame(Backend backend, const Finder& finder, const Camera& 
   parallel_for(backend, "shading", n, PSS_KERNEL(std::int64_t i) {
     const SecondaryHits none;  // what a pixel without secondary rays sees
     px[i] = shade_pixel(ts, cam.primary_ray(int(i % cam.width), int(i / cam.width)), h[i],
-                        ts.shadows || ts.reflections ? s[i] : none);
+                        traces_secondary ? s[i] : none);
   }, stats);
 
   RenderedFrame frame;

@@ -23,6 +23,10 @@ struct VolumeFinder {
   PSS_HOST_DEVICE float secondary_offset() const { return 1.5f * scene.params.step; }
 };
 
+// The scene's arrays where the kernels run: make the SceneMirror once to draw many frames
+// (on the GPU it is the upload of the volume's fields).
+RenderedFrame render_volume(const SceneMirror& scene, const Camera& camera, const TraceSettings& settings,
+                            Backend backend, Stats& stats);
 RenderedFrame render_volume(const PreparedVolume& volume, const Camera& camera, const TraceSettings& settings,
                             Backend backend, Stats& stats);
 
