@@ -34,10 +34,12 @@ std::string quote(std::string_view text, std::size_t max_bytes) {
 std::string one_line(std::string_view message, std::size_t max_bytes) {
   static constexpr char kHex[] = "0123456789abcdef";
   std::string out;
-  const std::size_t n = message.size() < max_bytes ? message.size() : max_bytes;
-  for (std::size_t i = 0; i < n; ++i) {
+  std::size_t i = 0;
+  for (; i < message.size(); ++i) {
     const auto c = static_cast<unsigned char>(message[i]);
-    if (c < 0x20 || c == 0x7f) {
+    const bool control = c < 0x20 || c == 0x7f;
+    if (out.size() + (control ? 4 : 1) > max_bytes) break;  // the bound is on what is printed
+    if (control) {
       out += "\\x";
       out += kHex[c >> 4];
       out += kHex[c & 15];
@@ -45,7 +47,7 @@ std::string one_line(std::string_view message, std::size_t max_bytes) {
       out += char(c);
     }
   }
-  if (message.size() > n) out += "…";
+  if (i < message.size()) out += "…";
   return out;
 }
 

@@ -21,9 +21,9 @@ std::string printable(std::string_view text, std::size_t max_bytes = kQuotedByte
 std::string quote(std::string_view text, std::size_t max_bytes = kQuotedBytes);
 
 // A whole message made safe to print as one line: control bytes (a newline, an escape) as
-// \xNN, the rest as is (quote() already escaped what the message echoes), cut after
-// `max_bytes` with "…". For text that did not pass through quote(), e.g. CLI11's messages,
-// which echo the argument they refuse.
+// \xNN, the rest as is (quote() already escaped what the message echoes), cut with "…"
+// where the result would pass `max_bytes` (escapes counted as printed). For text that did
+// not pass through quote(), e.g. CLI11's messages, which echo the argument they refuse.
 std::string one_line(std::string_view message, std::size_t max_bytes = 1024);
 
 }  // namespace pss
