@@ -1,12 +1,16 @@
 // The numerical building blocks against closed-form truth.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <random>
+#include <vector>
 
 #include "pss/fit/brent.hpp"
 #include "pss/fit/conjugate_gradient.hpp"
 #include "pss/fit/inverse_power.hpp"
+#include "pss/fit/moments.hpp"
 #include "pss/fit/polynomial.hpp"
 #include "pss/core/frame.hpp"
 
@@ -140,21 +144,90 @@ TEST(ConjugateGradient, SingularConsistentSystemGivesMinimumNormSolution) {
   EXPECT_EQ(r.x.w, 0);
 }
 
+// Point by point (add) and in SIMD lanes (add_all), the same exact quadratic.
 TEST(PolynomialFit, RecoversExactQuadraticAtAnyScale) {
-  for (float scale : {1e-3f, 1.0f, 1e3f}) {
-    const Polynomial truth{0.7f / scale, -0.4f / scale, 0.25f / scale, 0.1f * scale};
-    PolynomialFit fit(scale);
-    std::mt19937 rng(2);
-    std::uniform_real_distribution<float> u(-2 * scale, 2 * scale);
-    for (int i = 0; i < 50; ++i) {
-      const float x = u(rng), y = u(rng);
-      fit.add(vec3(x, y, truth(x, y)), 0.5f + 0.01f * i);
+  for (bool batched : {false, true}) {
+    for (float scale : {1e-3f, 1.0f, 1e3f}) {
+      const Polynomial truth{0.7f / scale, -0.4f / scale, 0.25f / scale, 0.1f * scale};
+      PolynomialFit fit(scale);
+      std::mt19937 rng(2);
+      std::uniform_real_distribution<float> u(-2 * scale, 2 * scale);
+      std::vector<vec3> points;
+      std::vector<float> weights;
+      for (int i = 0; i < 50; ++i) {
+        const float x = u(rng), y = u(rng);
+        points.push_back(vec3(x, y, truth(x, y)));
+        weights.push_back(0.5f + 0.01f * i);
+      }
+      if (batched)
+        fit.add_all(50, [&](int i) { return points[i]; }, [&](int i) { return weights[i]; });
+      else
+        for (int i = 0; i < 50; ++i) fit.add(points[i], weights[i]);
+      EXPECT_EQ(fit.count, 50);
+      const Polynomial g = fit.solve();
+      EXPECT_NEAR(g.a * scale, truth.a * scale, 1e-4) << batched;
+      EXPECT_NEAR(g.b * scale, truth.b * scale, 1e-4) << batched;
+      EXPECT_NEAR(g.c * scale, truth.c * scale, 1e-4) << batched;
+      EXPECT_NEAR(g.d / scale, truth.d / scale, 1e-5) << batched;
     }
-    const Polynomial g = fit.solve();
-    EXPECT_NEAR(g.a * scale, truth.a * scale, 1e-4);
-    EXPECT_NEAR(g.b * scale, truth.b * scale, 1e-4);
-    EXPECT_NEAR(g.c * scale, truth.c * scale, 1e-4);
-    EXPECT_NEAR(g.d / scale, truth.d / scale, 1e-5);
+  }
+}
+
+// The sums of WeightedMoments::add_all against the same sums in double precision.
+TEST(WeightedMoments, AddAllSumsLikeDoublePrecision) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f), w(0.0f, 1.0f);
+  const vec3 origin(10.0f, -3.0f, 2.0f);
+  std::vector<vec3> d(101);
+  std::vector<float> weight(d.size());
+  double sw = 0, first[3] = {0, 0, 0}, second[3][3] = {};
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    d[i] = vec3(u(rng), u(rng), u(rng));
+    weight[i] = w(rng);
+    sw += weight[i];
+    for (int a = 0; a < 3; ++a) {
+      first[a] += double(weight[i]) * d[i][a];
+      for (int b = 0; b < 3; ++b) second[a][b] += double(weight[i]) * d[i][a] * d[i][b];
+    }
+  }
+  WeightedMoments m(origin);
+  m.add_all(int(d.size()), [&](int i) { return d[i]; }, [&](int i) { return weight[i]; });
+  EXPECT_EQ(m.count, 101);
+  const double tol = 1e-5 * sw;
+  EXPECT_NEAR(m.weight_sum, sw, tol);
+  for (int a = 0; a < 3; ++a) EXPECT_NEAR(m.first[a], first[a], tol);
+  EXPECT_NEAR(m.second.xx, second[0][0], tol);
+  EXPECT_NEAR(m.second.xy, second[0][1], tol);
+  EXPECT_NEAR(m.second.xz, second[0][2], tol);
+  EXPECT_NEAR(m.second.yy, second[1][1], tol);
+  EXPECT_NEAR(m.second.yz, second[1][2], tol);
+  EXPECT_NEAR(m.second.zz, second[2][2], tol);
+  // The offsets are from the origin: the mean is the origin plus the weighted mean offset.
+  for (int a = 0; a < 3; ++a) EXPECT_NEAR(m.mean()[a], origin[a] + first[a] / sw, 1e-5);
+}
+
+// The branch-free exp of the Gaussian weights against exp in double precision, at every
+// float of [−87, 0] taken 1 in 1024 (every exponent, and a million arguments).
+TEST(ExpNonpositive, WithinTwoUlpOfExp) {
+  double worst = 0;
+  float worst_x = 0;
+  // Negative floats grow in magnitude with their bit pattern: walk it from −87 to −0.
+  for (std::uint32_t bits = std::bit_cast<std::uint32_t>(-87.0f); bits >= 0x80000000u; bits -= 1024) {
+    const float x = std::bit_cast<float>(bits);
+    const double truth = std::exp(double(x));
+    const double ulp = std::ldexp(1.0, std::ilogb(truth) - 23);
+    const double error = std::abs(double(exp_nonpositive(x)) - truth) / ulp;
+    if (error > worst) {
+      worst = error;
+      worst_x = x;
+    }
+  }
+  EXPECT_LE(worst, 1.0) << "at x = " << worst_x;  // 0.99 ulp over every float of [−87, 0]
+  EXPECT_EQ(exp_nonpositive(0.0f), 1.0f);
+  // Below the normal range: tiny and not negative, never a wrapped exponent.
+  for (float x : {-87.5f, -100.0f, -1e4f}) {
+    EXPECT_GE(exp_nonpositive(x), 0.0f);
+    EXPECT_LT(exp_nonpositive(x), std::ldexp(1.0f, -125));
   }
 }
 

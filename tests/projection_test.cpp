@@ -136,8 +136,9 @@ TEST(Projection, ProjectedPointsAreNearlyFixed) {
 }
 
 // A ρ-ball holding more samples than the neighbourhood's buffer (128) is read from the grid
-// again at each pass: the projection must be exactly the one of a buffer large enough to
-// hold every sample (the same samples, in the same order, with the same weights).
+// again at each pass: the projection must be the one of a buffer large enough to hold
+// every sample (the same samples with the same weights), up to the rounding of sums taken
+// in another order (the stored ones run in SIMD lanes).
 TEST(Projection, NeighbourhoodsBeyondTheBufferProjectAsIfStored) {
   test::SampleOptions o;
   o.count = 20000;
@@ -152,8 +153,8 @@ TEST(Projection, NeighbourhoodsBeyondTheBufferProjectAsIfStored) {
     const Projection stored = project_to_pss<NeighbourhoodOf<4096>>(grid.view(), r, params, vec3(0.0f));
     ASSERT_LE(stored.neighbours, 4096);
     beyond += walked.neighbours > Neighbourhood::kCapacity;
-    EXPECT_EQ(walked.point, stored.point) << i;
-    EXPECT_EQ(walked.normal, stored.normal) << i;
+    EXPECT_LT(glm::length(walked.point - stored.point), 1e-4f * params.h) << i;
+    EXPECT_LT(glm::length(walked.normal - stored.normal), 1e-5f) << i;
     EXPECT_EQ(walked.status, stored.status) << i;
   }
   EXPECT_GT(beyond, int(cloud.size() / 10) * 9 / 10);

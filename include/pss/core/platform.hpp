@@ -12,6 +12,16 @@
 #endif
 #define PSS_INLINE PSS_HOST_DEVICE inline
 
+// A loop whose body only adds into the named floats: the CPU compiler may reorder those sums
+// to run the loop in SIMD lanes (the results then differ from a sequential sum by rounding).
+// Device code runs one thread a point and needs no hint.
+#define PSS_PRAGMA(x) _Pragma(#x)
+#if defined(_OPENMP) && !defined(__CUDA_ARCH__)
+#define PSS_SIMD_SUM(...) PSS_PRAGMA(omp simd reduction(+ : __VA_ARGS__))
+#else
+#define PSS_SIMD_SUM(...)
+#endif
+
 namespace pss {
 
 PSS_INLINE float sqrt(float x) { return ::sqrtf(x); }
@@ -27,6 +37,32 @@ PSS_INLINE int max(int a, int b) { return a > b ? a : b; }
 PSS_INLINE float clamp(float x, float lo, float hi) { return min(max(x, lo), hi); }
 PSS_INLINE int clamp(int x, int lo, int hi) { return min(max(x, lo), hi); }
 PSS_INLINE bool is_finite(float x) { return isfinite(x); }
+
+// e^x for finite x ≤ 0, as Cephes' expf computes it: x = k·ln 2 + r, |r| ≤ ln 2 / 2, a
+// degree-5 polynomial for e^r, and 2^k put in the exponent bits. Within 1 ulp of e^x down
+// to x = −87 (tested); below, where e^x leaves the normal floats, a value under 2⁻¹²⁵.
+// Unlike libm's expf it has no branch and no call, so loops of Gaussian weights run in
+// SIMD lanes (a clamp of x, rather than of k, stops GCC vectorising). CUDA's expf is
+// already inline.
+PSS_INLINE float exp_nonpositive(float x) {
+#if defined(__CUDA_ARCH__)
+  return ::expf(x);
+#else
+  // k = round(x / ln 2) by the 1.5·2²³ trick (exact for |k| < 2²²; vectorises, unlike rintf).
+  const float k = (x * 1.44269504f + 12582912.0f) - 12582912.0f;
+  const float r = (x - k * 0.693359375f) + k * 2.12194440e-4f;  // ln 2 in two parts
+  float p = 1.9875691500e-4f;
+  p = p * r + 1.3981999507e-3f;
+  p = p * r + 8.3334519073e-3f;
+  p = p * r + 4.1665795894e-2f;
+  p = p * r + 1.6666665459e-1f;
+  p = p * r + 5.0000001201e-1f;
+  const float er = p * r * r + r + 1.0f;
+  int exponent = int(k);
+  exponent = exponent > -126 ? exponent : -126;
+  return er * __builtin_bit_cast(float, (exponent + 127) << 23);
+#endif
+}
 
 template <class T>
 PSS_INLINE void swap(T& a, T& b) {

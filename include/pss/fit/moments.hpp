@@ -42,6 +42,35 @@ struct WeightedMoments {
     second.add_outer(d, w);
     ++count;
   }
+  // add(origin + offset(i), weight(i)) for i < n, summed in SIMD lanes on the CPU.
+  template <class Offset, class Weight>
+  PSS_HOST_DEVICE void add_all(int n, Offset&& offset, Weight&& weight) {
+    float sw = 0, fx = 0, fy = 0, fz = 0, xx = 0, xy = 0, xz = 0, yy = 0, yz = 0, zz = 0;
+    PSS_SIMD_SUM(sw, fx, fy, fz, xx, xy, xz, yy, yz, zz)
+    for (int i = 0; i < n; ++i) {
+      const vec3 d = offset(i);
+      const float w = weight(i);
+      sw += w;
+      fx += w * d.x;
+      fy += w * d.y;
+      fz += w * d.z;
+      xx += w * d.x * d.x;
+      xy += w * d.x * d.y;
+      xz += w * d.x * d.z;
+      yy += w * d.y * d.y;
+      yz += w * d.y * d.z;
+      zz += w * d.z * d.z;
+    }
+    weight_sum += sw;
+    first += vec3(fx, fy, fz);
+    second.xx += xx;
+    second.xy += xy;
+    second.xz += xz;
+    second.yy += yy;
+    second.yz += yz;
+    second.zz += zz;
+    count += n;
+  }
   PSS_HOST_DEVICE vec3 mean() const { return origin + first / weight_sum; }
 
   // Σw(p - m)(p - m)ᵀ / Σw: the matrix whose smallest eigenvector is the normal of the

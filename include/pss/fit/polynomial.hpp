@@ -41,6 +41,43 @@ struct PolynomialFit {
     ++count;
   }
 
+  // add(local(i), weight(i)) for i < n, summed in SIMD lanes on the CPU.
+  template <class Local, class Weight>
+  PSS_HOST_DEVICE void add_all(int n, Local&& local, Weight&& weight) {
+    // The distinct entries of Σw·aaᵀ (x²y² appears twice) and of Σw·a·z.
+    float x4 = 0, x2y2 = 0, x3y = 0, x2 = 0, y4 = 0, xy3 = 0, y2 = 0, xy = 0, w1 = 0;
+    float zx2 = 0, zy2 = 0, zxy = 0, z1 = 0;
+    PSS_SIMD_SUM(x4, x2y2, x3y, x2, y4, xy3, y2, xy, w1, zx2, zy2, zxy, z1)
+    for (int i = 0; i < n; ++i) {
+      const vec3 l = local(i);
+      const float w = weight(i);
+      const float x = l.x * inv_scale, y = l.y * inv_scale;
+      const float wxx = w * x * x, wyy = w * y * y, wxy = w * x * y;
+      x4 += wxx * x * x;
+      x2y2 += wxx * y * y;
+      x3y += wxx * x * y;
+      x2 += wxx;
+      y4 += wyy * y * y;
+      xy3 += wyy * x * y;
+      y2 += wyy;
+      xy += wxy;
+      w1 += w;
+      zx2 += wxx * l.z;
+      zy2 += wyy * l.z;
+      zxy += wxy * l.z;
+      z1 += w * l.z;
+    }
+    // Columns of the symmetric matrix for rows (x², y², xy, 1).
+    normal_matrix[0] += vec4(x4, x2y2, x3y, x2);
+    normal_matrix[1] += vec4(x2y2, y4, xy3, y2);
+    normal_matrix[2] += vec4(x3y, xy3, x2y2, xy);
+    normal_matrix[3] += vec4(x2, y2, xy, w1);
+    rhs += vec4(zx2, zy2, zxy, z1);
+    weight_sum += w1;
+    weighted_height += z1;
+    count += n;
+  }
+
   // With fewer than six neighbours the three curvature terms are not determined: fall back
   // to the plane through the weighted mean height (A = B = C = 0).
   PSS_HOST_DEVICE Polynomial solve() const {

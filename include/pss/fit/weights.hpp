@@ -7,6 +7,6 @@
 namespace pss {
 
 // θ3(d) = exp(-d²/h²), taking d² so callers never need the square root.
-PSS_INLINE float gaussian_weight(float distance2, float h) { return exp(-distance2 / (h * h)); }
+PSS_INLINE float gaussian_weight(float distance2, float h) { return exp_nonpositive(-distance2 / (h * h)); }
 
 }  // namespace pss

@@ -48,8 +48,8 @@ struct LocalFit {
 PSS_INLINE LocalFit fit_local_polynomial(const GridView& grid, vec3 p, vec3 hint, float h, float rho) {
   // t = 0: the plane passes through p itself, so the covariance is taken about p (the
   // paper's C(q) with q = p), not about the weighted mean.
-  WeightedMoments moments(p);
-  const Neighbourhood near(grid, p, rho, h, [&](vec3 q, float w) { moments.add(q, w); });
+  const Neighbourhood near(grid, p, rho, h);
+  const WeightedMoments moments = near.moments();
   LocalFit out;
   out.local.origin = p;
   out.local.normal = vec3(0, 0, 1);
@@ -59,10 +59,8 @@ PSS_INLINE LocalFit fit_local_polynomial(const GridView& grid, vec3 p, vec3 hint
   }
   const EigenResult eig = smallest_eigenvector(moments.covariance_about_origin(), hint);
   const Frame frame = Frame::from_normal(p, eig.vector);
-  PolynomialFit fit(h);
-  near.for_each([&](vec3 q, float w) { fit.add(frame.to_local(q), w); });
   out.local.normal = frame.n;
-  out.local.g = fit.solve();
+  out.local.g = near.polynomial_fit(frame, false).solve();
   out.status = eig.status == EigenStatus::degenerate ? LocalFitStatus::degenerate_normal : LocalFitStatus::ok;
   return out;
 }

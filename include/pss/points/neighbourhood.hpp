@@ -2,9 +2,16 @@
 // once: every sum of one projection runs over the same samples (Eq. 1, 2 and the
 // polynomial), so later passes need no grid walk, and those weighted from r no exp().
 // A fixed-size buffer (no allocation, usable in kernels); a neighbourhood larger than it
-// is read from the grid again, with the same result.
+// is read from the grid again, with the same samples and weights.
+//
+// The samples are kept as offsets from r, one array per coordinate, so that the weights
+// and the sums over them run in SIMD lanes on the CPU; the gather stores every candidate
+// of the grid cells and keeps it only when within ρ, with no branch to mispredict.
 #pragma once
 
+#include "pss/core/frame.hpp"
+#include "pss/fit/moments.hpp"
+#include "pss/fit/polynomial.hpp"
 #include "pss/fit/weights.hpp"
 #include "pss/spatial/uniform_grid.hpp"
 
@@ -18,32 +25,67 @@ struct NeighbourhoodOf {
   vec3 center;
   float rho, h;
   int count = 0;
-  vec3 point[Capacity > 0 ? Capacity : 1];
-  float weight[Capacity > 0 ? Capacity : 1];
+  // Slot Capacity takes the candidates the gather rejects once the buffer is full.
+  float dx[Capacity + 1], dy[Capacity + 1], dz[Capacity + 1], weight[Capacity + 1];
 
-  // Gathers N(center) and calls first(p, w) for each sample as it goes.
-  template <class F>
-  PSS_HOST_DEVICE NeighbourhoodOf(const GridView& g, vec3 c, float radius, float width, F&& first)
+  PSS_HOST_DEVICE NeighbourhoodOf(const GridView& g, vec3 c, float radius, float width)
       : grid(&g), center(c), rho(radius), h(width) {
-    grid->for_each_in_radius(center, rho, [&](vec3 p, float d2, int) {
-      const float w = gaussian_weight(d2, h);
-      if (count < Capacity) {
-        point[count] = p;
-        weight[count] = w;
-      }
-      ++count;
-      first(p, w);
+    const float r2 = rho * rho;
+    grid->for_each_near(center, rho, [&](vec3 p, int) {
+      const vec3 d = p - center;
+      const float d2 = length2(d);
+      const int slot = count < Capacity ? count : Capacity;
+      dx[slot] = d.x;
+      dy[slot] = d.y;
+      dz[slot] = d.z;
+      weight[slot] = d2;
+      count += d2 <= r2 ? 1 : 0;
     });
+    const int n = stored();
+    for (int i = 0; i < n; ++i) weight[i] = gaussian_weight(weight[i], h);
   }
+
+  PSS_HOST_DEVICE bool overflowed() const { return count > Capacity; }
+  PSS_HOST_DEVICE int stored() const { return count < Capacity ? count : Capacity; }
 
   // f(p, w) for every sample again, in the same order.
   template <class F>
   PSS_HOST_DEVICE void for_each(F&& f) const {
-    if (count <= Capacity) {
-      for (int i = 0; i < count; ++i) f(point[i], weight[i]);
+    if (!overflowed()) {
+      for (int i = 0; i < count; ++i) f(center + vec3(dx[i], dy[i], dz[i]), weight[i]);
     } else {
       grid->for_each_in_radius(center, rho, [&](vec3 p, float d2, int) { f(p, gaussian_weight(d2, h)); });
     }
+  }
+
+  // Σw, Σw·(p − r), Σw·(p − r)(p − r)ᵀ with the weights from r (Eq. 1 at r).
+  PSS_HOST_DEVICE WeightedMoments moments() const {
+    WeightedMoments m(center);
+    if (!overflowed())
+      m.add_all(count, [&](int i) { return vec3(dx[i], dy[i], dz[i]); }, [&](int i) { return weight[i]; });
+    else
+      for_each([&](vec3 p, float w) { m.add(p, w); });
+    return m;
+  }
+
+  // The polynomial's normal equations in `frame`, weighted from r or, with
+  // weights_at_origin, from the frame's origin q (the MLS polynomial).
+  PSS_HOST_DEVICE PolynomialFit polynomial_fit(const Frame& frame, bool weights_at_origin) const {
+    PolynomialFit fit(h);
+    if (!overflowed()) {
+      const vec3 o = frame.to_local(center);
+      auto local = [&](int i) { return o + frame.direction_to_local(vec3(dx[i], dy[i], dz[i])); };
+      if (weights_at_origin)
+        fit.add_all(count, local, [&](int i) { return gaussian_weight(length2(local(i)), h); });
+      else
+        fit.add_all(count, local, [&](int i) { return weight[i]; });
+    } else {
+      for_each([&](vec3 p, float w_r) {
+        const vec3 l = frame.to_local(p);
+        fit.add(l, weights_at_origin ? gaussian_weight(length2(l), h) : w_r);
+      });
+    }
+    return fit;
   }
 };
 

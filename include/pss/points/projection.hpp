@@ -92,8 +92,8 @@ PSS_HOST_DEVICE Projection project_to_pss(const GridView& grid, vec3 r, const Pr
   // Eq. 1 with the weighter at r: for fixed weights the best plane passes through the
   // weighted mean m, its normal is the smallest eigenvector of the covariance about m.
   // N(r) is gathered once, with its weights θ3(‖pᵢ − r‖); every later pass reads it again.
-  WeightedMoments moments(r);
-  const Nb neighbours(grid, r, params.rho, params.h, [&](vec3 p, float w) { moments.add(p, w); });
+  const Nb neighbours(grid, r, params.rho, params.h);
+  const WeightedMoments moments = neighbours.moments();
   out.neighbours = moments.count;
   if (moments.count < 3 || !(moments.weight_sum > 0)) return out;
 
@@ -128,12 +128,7 @@ PSS_HOST_DEVICE Projection project_to_pss(const GridView& grid, vec3 r, const Pr
   // H(n, q).
   const vec3 q = r + t * n;
   const Frame frame = Frame::from_normal(q, n);
-  const bool mls = params.plane == PlaneFitMethod::mls;
-  PolynomialFit fit(params.h);
-  neighbours.for_each([&](vec3 p, float w_r) {
-    fit.add(frame.to_local(p), mls ? gaussian_weight(length2(p - q), params.h) : w_r);
-  });
-  out.polynomial = fit.solve();
+  out.polynomial = neighbours.polynomial_fit(frame, params.plane == PlaneFitMethod::mls).solve();
   out.frame = frame;
   out.t = t;
   out.point = q + out.polynomial.d * n;

@@ -24,23 +24,29 @@ struct GridView {
                  clamp(int(floor(c.z)), 0, dims.z - 1));
   }
 
-  // Calls f(point, squared distance, sorted index) for every point within `radius` of c.
+  // Calls f(point, sorted index) for every point of the cells that the box c ± radius
+  // touches: those within `radius` and some more, for callers that test without branching.
   // Cells of one row are contiguous in the sorted order, so each row is one loop.
   template <class F>
-  PSS_HOST_DEVICE void for_each_in_radius(vec3 c, float radius, F&& f) const {
-    const float r2 = radius * radius;
+  PSS_HOST_DEVICE void for_each_near(vec3 c, float radius, F&& f) const {
     const ivec3 lo = cell_of(c - vec3(radius)), hi = cell_of(c + vec3(radius));
     for (int z = lo.z; z <= hi.z; ++z) {
       for (int y = lo.y; y <= hi.y; ++y) {
         const int row = (z * dims.y + y) * dims.x;
         const int end = cell_start[row + hi.x + 1];
-        for (int i = cell_start[row + lo.x]; i < end; ++i) {
-          const vec3 p = points[i];
-          const float d2 = length2(p - c);
-          if (d2 <= r2) f(p, d2, i);
-        }
+        for (int i = cell_start[row + lo.x]; i < end; ++i) f(points[i], i);
       }
     }
+  }
+
+  // Calls f(point, squared distance, sorted index) for every point within `radius` of c.
+  template <class F>
+  PSS_HOST_DEVICE void for_each_in_radius(vec3 c, float radius, F&& f) const {
+    const float r2 = radius * radius;
+    for_each_near(c, radius, [&](vec3 p, int i) {
+      const float d2 = length2(p - c);
+      if (d2 <= r2) f(p, d2, i);
+    });
   }
 };
 
