@@ -1,6 +1,6 @@
 // The ray/PSS intersection's parts against brute force and analytic truth: nearest_local_hit
 // (BVH, ball and slab clipping) against a loop over every local polynomial in its ball, and
-// intersect_pss's hits against a sphere's first crossing.
+// intersect_pss's hits against a sphere's first crossing and an open patch's extent.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -71,7 +71,7 @@ TEST(RayPss, NearestLocalHitIsTheNearestOfAllLocalPolynomials) {
 // clean sphere, and is the ray's first crossing, also for the grazing rays near the
 // silhouette, where the polynomials' intersections jump farthest. (Dropping the paper's
 // "left the ball B(p_i, b)" rejection does not fail this test: on a smooth sphere the nearest
-// root never leaves the ball. A case where it matters is still to be found: issue 9.)
+// root never leaves the ball. It matters at a patch's open edge: the next test, issue 9.)
 TEST(RayPss, HitsAreTheFirstCrossingNearTheSilhouette) {
   test::SampleOptions o;
   o.count = 4000;
@@ -107,6 +107,54 @@ TEST(RayPss, HitsAreTheFirstCrossingNearTheSilhouette) {
   EXPECT_GT(capped, 50);
   EXPECT_LT(off_surface, params.ball_radius);
   EXPECT_EQ(far, 0) << "of " << hits;
+}
+
+// A noisy open patch, grazed by rays across its edges. The PSS ends within ρ of the samples
+// (the projection needs neighbours within ρ), and the samples lie inside the square in x and
+// y, so no hit may lie farther than ρ beyond the square's edge. Near the edge the
+// projection's neighbourhood is one-sided and its polynomial tilts; a ray nearly parallel to
+// it meets it far out, where there are no samples. Paper §5.2, "Intersection": if that point
+// leaves the ball B(p_i, b) the candidate is rejected; without the rejection, with 1 to 3
+// iterations, the step becomes a capped hit in empty space, 4 to 180 b beyond the edge.
+// (With kAutoIterations the walk stops out there by itself: no neighbours.)
+TEST(RayPss, GrazingRaysFindNoHitBeyondAnOpenPatch) {
+  test::SampleOptions o;
+  o.count = 4000;
+  o.noise = 0.005f;  // ~h/14: enough for the fits at the edge to tilt
+  const PointCloud cloud = test::sample_plane(1.0f, o);
+  Stats stats;
+  const RayPssParams params = RayPssParams::from_h(test::suggested_h(cloud));
+  const PreparedCloud prepared(cloud, params, Backend::cpu, stats);
+  const PointSurfaceView view = prepared.view();
+  const float rho = params.projection.rho, b = params.ball_radius;
+  for (const int cap : {1, 2, 3, kAutoIterations}) {
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f), elevation(0.02f, 0.22f), across(0.9f, 1.1f);
+    int hits = 0, capped = 0, beyond = 0;
+    float farthest = 0;
+    for (int i = 0; i < 5000; ++i) {
+      // Aim, from 1° to 13° above the plane and from any side, at a point within 0.1 of an edge.
+      const float x = u(rng), y = u(rng);
+      vec3 target(x, y, 0.0f);
+      const float side = u(rng) < 0 ? -1.0f : 1.0f;
+      (u(rng) < 0 ? target.x : target.y) = side * across(rng);
+      const float e = elevation(rng), azimuth = 3.14159265f * u(rng);
+      const vec3 dir(std::cos(e) * std::cos(azimuth), std::cos(e) * std::sin(azimuth), -std::sin(e));
+      const Ray ray{target - 3.0f * dir, dir};
+      const Hit hit = intersect_pss(view, ray, 0.0f, kInfinity, cap);
+      if (!hit.found()) continue;
+      ++hits;
+      capped += (hit.flags & kHitCapped) != 0;
+      const float dx = std::max(std::abs(hit.point.x) - 1.0f, 0.0f), dy = std::max(std::abs(hit.point.y) - 1.0f, 0.0f);
+      const float out = std::sqrt(dx * dx + dy * dy);
+      farthest = std::max(farthest, out);
+      beyond += out > rho;
+    }
+    EXPECT_GT(hits, 2500) << "cap " << cap;
+    if (cap <= 3) EXPECT_GT(capped, 200) << "cap " << cap;
+    EXPECT_EQ(beyond, 0) << "cap " << cap << ": of " << hits << " hits, the farthest " << farthest / b
+                         << " b beyond the edge (rho = " << rho / b << " b)";
+  }
 }
 
 }  // namespace
