@@ -159,6 +159,9 @@ TEST(PolynomialFit, RecoversExactQuadraticAtAnyScale) {
         points.push_back(vec3(x, y, truth(x, y)));
         weights.push_back(0.5f + 0.01f * i);
       }
+      // add_all reads up to the next multiple of the lanes, where the weights must be 0.
+      points.resize(50 + PSS_SUM_LANES, vec3(0.0f));
+      weights.resize(points.size(), 0.0f);
       if (batched)
         fit.add_all(50, [&](int i) { return points[i]; }, [&](int i) { return weights[i]; });
       else
@@ -191,7 +194,11 @@ TEST(WeightedMoments, AddAllSumsLikeDoublePrecision) {
     }
   }
   WeightedMoments m(origin);
-  m.add_all(int(d.size()), [&](int i) { return d[i]; }, [&](int i) { return weight[i]; });
+  const int n = int(d.size());
+  // add_all reads up to the next multiple of the lanes, where the weights must be 0.
+  d.resize(d.size() + PSS_SUM_LANES, vec3(0.0f));
+  weight.resize(d.size(), 0.0f);
+  m.add_all(n, [&](int i) { return d[i]; }, [&](int i) { return weight[i]; });
   EXPECT_EQ(m.count, 101);
   const double tol = 1e-5 * sw;
   EXPECT_NEAR(m.weight_sum, sw, tol);

@@ -13,9 +13,11 @@ TEST(UniformGrid, RangeQueriesEqualBruteForce) {
   for (int trial = 0; trial < 8; ++trial) {
     std::uniform_real_distribution<float> u(-1.0f, 1.0f + trial);
     std::vector<vec3> pts(2000 + 500 * trial);
-    for (vec3& p : pts) p = vec3(u(rng), u(rng), 0.1f * u(rng));
+    for (vec3& p : pts) p = vec3(u(rng), u(rng), (trial % 2 ? 1.0f : 0.1f) * u(rng));
     const float radius = 0.05f + 0.05f * trial;
-    const UniformGrid grid(pts, radius);
+    // Cells of the radius and smaller: queries then span several cells, rows of which the
+    // query skips or cuts to the ball's chord.
+    const UniformGrid grid(pts, radius / float(1 + trial % 3));
     const GridView view = grid.view();
     for (int q = 0; q < 200; ++q) {
       const vec3 c(u(rng) * 1.2f, u(rng) * 1.2f, u(rng));  // some queries outside the box

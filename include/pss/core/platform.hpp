@@ -12,14 +12,13 @@
 #endif
 #define PSS_INLINE PSS_HOST_DEVICE inline
 
-// A loop whose body only adds into the named floats: the CPU compiler may reorder those sums
-// to run the loop in SIMD lanes (the results then differ from a sequential sum by rounding).
-// Device code runs one thread a point and needs no hint.
-#define PSS_PRAGMA(x) _Pragma(#x)
-#if defined(_OPENMP) && !defined(__CUDA_ARCH__)
-#define PSS_SIMD_SUM(...) PSS_PRAGMA(omp simd reduction(+ : __VA_ARGS__))
+// Sums over a neighbourhood run in this many independent lanes on the CPU, lane l taking
+// the terms l, l + lanes, …: each lane is its own sum, so compilers put the lanes in SIMD
+// registers without reassociating anything. One on the GPU, where a thread is a lane.
+#if defined(__CUDA_ARCH__)
+#define PSS_SUM_LANES 1
 #else
-#define PSS_SIMD_SUM(...)
+#define PSS_SUM_LANES 8
 #endif
 
 namespace pss {

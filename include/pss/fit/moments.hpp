@@ -42,33 +42,40 @@ struct WeightedMoments {
     second.add_outer(d, w);
     ++count;
   }
-  // add(origin + offset(i), weight(i)) for i < n, summed in SIMD lanes on the CPU.
+  // add(origin + offset(i), weight(i)) for i < n, summed in PSS_SUM_LANES lanes. Both are
+  // read up to n rounded up to a multiple of the lanes, where offset must be finite and
+  // weight 0.
   template <class Offset, class Weight>
   PSS_HOST_DEVICE void add_all(int n, Offset&& offset, Weight&& weight) {
-    float sw = 0, fx = 0, fy = 0, fz = 0, xx = 0, xy = 0, xz = 0, yy = 0, yz = 0, zz = 0;
-    PSS_SIMD_SUM(sw, fx, fy, fz, xx, xy, xz, yy, yz, zz)
-    for (int i = 0; i < n; ++i) {
-      const vec3 d = offset(i);
-      const float w = weight(i);
-      sw += w;
-      fx += w * d.x;
-      fy += w * d.y;
-      fz += w * d.z;
-      xx += w * d.x * d.x;
-      xy += w * d.x * d.y;
-      xz += w * d.x * d.z;
-      yy += w * d.y * d.y;
-      yz += w * d.y * d.z;
-      zz += w * d.z * d.z;
+    constexpr int L = PSS_SUM_LANES;
+    float sw[L] = {}, fx[L] = {}, fy[L] = {}, fz[L] = {};
+    float xx[L] = {}, xy[L] = {}, xz[L] = {}, yy[L] = {}, yz[L] = {}, zz[L] = {};
+    for (int i0 = 0; i0 < n; i0 += L) {
+      for (int l = 0; l < L; ++l) {
+        const vec3 d = offset(i0 + l);
+        const float w = weight(i0 + l);
+        sw[l] += w;
+        fx[l] += w * d.x;
+        fy[l] += w * d.y;
+        fz[l] += w * d.z;
+        xx[l] += w * d.x * d.x;
+        xy[l] += w * d.x * d.y;
+        xz[l] += w * d.x * d.z;
+        yy[l] += w * d.y * d.y;
+        yz[l] += w * d.y * d.z;
+        zz[l] += w * d.z * d.z;
+      }
     }
-    weight_sum += sw;
-    first += vec3(fx, fy, fz);
-    second.xx += xx;
-    second.xy += xy;
-    second.xz += xz;
-    second.yy += yy;
-    second.yz += yz;
-    second.zz += zz;
+    for (int l = 0; l < L; ++l) {
+      weight_sum += sw[l];
+      first += vec3(fx[l], fy[l], fz[l]);
+      second.xx += xx[l];
+      second.xy += xy[l];
+      second.xz += xz[l];
+      second.yy += yy[l];
+      second.yz += yz[l];
+      second.zz += zz[l];
+    }
     count += n;
   }
   PSS_HOST_DEVICE vec3 mean() const { return origin + first / weight_sum; }

@@ -41,40 +41,46 @@ struct PolynomialFit {
     ++count;
   }
 
-  // add(local(i), weight(i)) for i < n, summed in SIMD lanes on the CPU.
+  // add(local(i), weight(i)) for i < n, summed in PSS_SUM_LANES lanes. Both are read up to
+  // n rounded up to a multiple of the lanes, where local must be finite and weight 0.
   template <class Local, class Weight>
   PSS_HOST_DEVICE void add_all(int n, Local&& local, Weight&& weight) {
+    constexpr int L = PSS_SUM_LANES;
     // The distinct entries of Σw·aaᵀ (x²y² appears twice) and of Σw·a·z.
-    float x4 = 0, x2y2 = 0, x3y = 0, x2 = 0, y4 = 0, xy3 = 0, y2 = 0, xy = 0, w1 = 0;
-    float zx2 = 0, zy2 = 0, zxy = 0, z1 = 0;
-    PSS_SIMD_SUM(x4, x2y2, x3y, x2, y4, xy3, y2, xy, w1, zx2, zy2, zxy, z1)
-    for (int i = 0; i < n; ++i) {
-      const vec3 l = local(i);
-      const float w = weight(i);
-      const float x = l.x * inv_scale, y = l.y * inv_scale;
-      const float wxx = w * x * x, wyy = w * y * y, wxy = w * x * y;
-      x4 += wxx * x * x;
-      x2y2 += wxx * y * y;
-      x3y += wxx * x * y;
-      x2 += wxx;
-      y4 += wyy * y * y;
-      xy3 += wyy * x * y;
-      y2 += wyy;
-      xy += wxy;
-      w1 += w;
-      zx2 += wxx * l.z;
-      zy2 += wyy * l.z;
-      zxy += wxy * l.z;
-      z1 += w * l.z;
+    float x4[L] = {}, x2y2[L] = {}, x3y[L] = {}, x2[L] = {}, y4[L] = {}, xy3[L] = {}, y2[L] = {}, xy[L] = {};
+    float w1[L] = {}, zx2[L] = {}, zy2[L] = {}, zxy[L] = {}, z1[L] = {};
+    const float s = inv_scale;
+    for (int i0 = 0; i0 < n; i0 += L) {
+      for (int l = 0; l < L; ++l) {
+        const vec3 p = local(i0 + l);
+        const float w = weight(i0 + l);
+        const float x = p.x * s, y = p.y * s;
+        const float wxx = w * x * x, wyy = w * y * y, wxy = w * x * y;
+        x4[l] += wxx * x * x;
+        x2y2[l] += wxx * y * y;
+        x3y[l] += wxx * x * y;
+        x2[l] += wxx;
+        y4[l] += wyy * y * y;
+        xy3[l] += wyy * x * y;
+        y2[l] += wyy;
+        xy[l] += wxy;
+        w1[l] += w;
+        zx2[l] += wxx * p.z;
+        zy2[l] += wyy * p.z;
+        zxy[l] += wxy * p.z;
+        z1[l] += w * p.z;
+      }
     }
-    // Columns of the symmetric matrix for rows (x², y², xy, 1).
-    normal_matrix[0] += vec4(x4, x2y2, x3y, x2);
-    normal_matrix[1] += vec4(x2y2, y4, xy3, y2);
-    normal_matrix[2] += vec4(x3y, xy3, x2y2, xy);
-    normal_matrix[3] += vec4(x2, y2, xy, w1);
-    rhs += vec4(zx2, zy2, zxy, z1);
-    weight_sum += w1;
-    weighted_height += z1;
+    for (int l = 0; l < L; ++l) {
+      // Columns of the symmetric matrix for rows (x², y², xy, 1).
+      normal_matrix[0] += vec4(x4[l], x2y2[l], x3y[l], x2[l]);
+      normal_matrix[1] += vec4(x2y2[l], y4[l], xy3[l], y2[l]);
+      normal_matrix[2] += vec4(x3y[l], xy3[l], x2y2[l], xy[l]);
+      normal_matrix[3] += vec4(x2[l], y2[l], xy[l], w1[l]);
+      rhs += vec4(zx2[l], zy2[l], zxy[l], z1[l]);
+      weight_sum += w1[l];
+      weighted_height += z1[l];
+    }
     count += n;
   }
 

@@ -25,8 +25,10 @@ struct NeighbourhoodOf {
   vec3 center;
   float rho, h;
   int count = 0;
-  // Slot Capacity takes the candidates the gather rejects once the buffer is full.
-  float dx[Capacity + 1], dy[Capacity + 1], dz[Capacity + 1], weight[Capacity + 1];
+  // Slot Capacity takes the candidates the gather rejects once the buffer is full; the
+  // slots after the last sample, up to a multiple of the sum lanes, hold zeros (add_all).
+  static constexpr int kSlots = Capacity + PSS_SUM_LANES;
+  float dx[kSlots], dy[kSlots], dz[kSlots], weight[kSlots];
 
   PSS_HOST_DEVICE NeighbourhoodOf(const GridView& g, vec3 c, float radius, float width)
       : grid(&g), center(c), rho(radius), h(width) {
@@ -43,6 +45,7 @@ struct NeighbourhoodOf {
     });
     const int n = stored();
     for (int i = 0; i < n; ++i) weight[i] = gaussian_weight(weight[i], h);
+    for (int i = n; i % PSS_SUM_LANES != 0; ++i) dx[i] = dy[i] = dz[i] = weight[i] = 0;
   }
 
   PSS_HOST_DEVICE bool overflowed() const { return count > Capacity; }
@@ -76,7 +79,8 @@ struct NeighbourhoodOf {
       const vec3 o = frame.to_local(center);
       auto local = [&](int i) { return o + frame.direction_to_local(vec3(dx[i], dy[i], dz[i])); };
       if (weights_at_origin)
-        fit.add_all(count, local, [&](int i) { return gaussian_weight(length2(local(i)), h); });
+        // The padding's weight must be 0 (add_all): a factor, not a branch, so it vectorises.
+        fit.add_all(count, local, [&](int i) { return gaussian_weight(length2(local(i)), h) * (i < count ? 1.0f : 0.0f); });
       else
         fit.add_all(count, local, [&](int i) { return weight[i]; });
     } else {

@@ -14,25 +14,17 @@
 
 namespace pss {
 
-// Internal nodes have count == 0 and their children at first and first + 1 (allocated in
-// pairs); leaves hold primitives [first, first + count) of the BVH order.
+// A node of the 4-wide tree: its children's boxes side by side, one array per coordinate,
+// so that one visit tests the four together (SIMD lanes on the CPU, one load on the GPU).
+// Slot c holds an inner node (count[c] == 0, child[c] its index), a leaf (count[c] > 0,
+// primitives [child[c], child[c] + count[c]) of the BVH order) or nothing (count[c] < 0).
 struct BvhNode {
-  vec3 lo;
-  int first;
-  vec3 hi;
-  int count;
+  static constexpr int kWidth = 4;
+  float lo_x[kWidth], lo_y[kWidth], lo_z[kWidth];
+  float hi_x[kWidth], hi_y[kWidth], hi_z[kWidth];
+  int child[kWidth];
+  int count[kWidth];
 };
-
-// Entry and exit distances of a ray through a box; empty when t_enter > t_exit. inv_dir
-// may hold infinities (axis-parallel rays): the slab test stays correct for origins off
-// the slab planes.
-PSS_INLINE vec2 ray_box(vec3 origin, vec3 inv_dir, vec3 lo, vec3 hi) {
-  const vec3 a = (lo - origin) * inv_dir, b = (hi - origin) * inv_dir;
-  const vec3 near = glm::min(a, b), far = glm::max(a, b);
-  // Plain comparisons: pss::min/max are fminf/fmaxf, library calls on the CPU.
-  const float enter = near.x > near.y ? near.x : near.y, exit = far.x < far.y ? far.x : far.y;
-  return vec2(enter > near.z ? enter : near.z, exit < far.z ? exit : far.z);
-}
 
 // Entry and exit of a ray (unit direction) through the ball B(center, radius); false when
 // it misses.
@@ -51,64 +43,76 @@ PSS_INLINE bool ray_ball(const Ray& ray, vec3 center, float radius, float& t_ent
 }
 
 struct BvhView {
-  const BvhNode* nodes = nullptr;
+  const BvhNode* nodes = nullptr;  // nodes[0] is the root
   const int* primitives = nullptr;  // BVH order → input index
   int node_count = 0;
   int primitive_count = 0;
 
-  static constexpr int kStackSize = 64;
+  // A visit pushes at most 3 entries more than it pops, and the tree is at most 24 levels
+  // deep (Bvh's build): 3·24 + 1 entries.
+  static constexpr int kStackSize = 73;
 
   // Closest-hit traversal over [t_min, t_max]: calls leaf(k, t_max) for the primitive in
   // BVH order k of every leaf the ray reaches before the current t_max; leaf lowers t_max
   // (its reference) when it finds a nearer hit, which prunes the rest. Children are visited
-  // near first.
+  // near first. Boxes are slab-tested with inv_dir, which may hold infinities (axis-parallel
+  // rays): the test stays correct for origins off the slab planes.
   template <class Leaf>
   PSS_HOST_DEVICE void closest(const Ray& ray, float t_min, float& t_max, Leaf&& leaf) const {
     if (node_count == 0) return;
     const vec3 inv_dir = 1.0f / ray.dir;
-    int stack[kStackSize];
-    float stack_t[kStackSize];
+    const vec3 o = ray.origin;
+    struct Entry {
+      int child, count;
+      float t;
+    };
+    Entry stack[kStackSize];
     int top = 0;
-    const vec2 root = ray_box(ray.origin, inv_dir, nodes[0].lo, nodes[0].hi);
-    if (root.x > root.y || root.y < t_min || root.x > t_max) return;
-    stack[top] = 0;
-    stack_t[top++] = root.x;
+    stack[top++] = {0, 0, t_min};
     while (top > 0) {
-      --top;
-      if (stack_t[top] > t_max) continue;
-      const BvhNode node = nodes[stack[top]];
-      if (node.count > 0) {
-        for (int k = node.first; k < node.first + node.count; ++k) leaf(k, t_max);
+      const Entry e = stack[--top];
+      if (e.t > t_max) continue;
+      if (e.count > 0) {
+        for (int k = e.child; k < e.child + e.count; ++k) leaf(k, t_max);
         continue;
       }
-      const vec2 a = ray_box(ray.origin, inv_dir, nodes[node.first].lo, nodes[node.first].hi);
-      const vec2 b = ray_box(ray.origin, inv_dir, nodes[node.first + 1].lo, nodes[node.first + 1].hi);
-      const bool hit_a = a.x <= a.y && a.y >= t_min && a.x <= t_max;
-      const bool hit_b = b.x <= b.y && b.y >= t_min && b.x <= t_max;
-      // Depth ≤ log2(n) + 1 for a median split, far below the stack size; the guard only
-      // keeps a malformed tree from writing past it.
-      if (top + 2 > kStackSize) break;
-      if (hit_a && hit_b) {
-        const bool a_first = a.x <= b.x;
-        stack[top] = a_first ? node.first + 1 : node.first;
-        stack_t[top++] = a_first ? b.x : a.x;
-        stack[top] = a_first ? node.first : node.first + 1;
-        stack_t[top++] = a_first ? a.x : b.x;
-      } else if (hit_a) {
-        stack[top] = node.first;
-        stack_t[top++] = a.x;
-      } else if (hit_b) {
-        stack[top] = node.first + 1;
-        stack_t[top++] = b.x;
+      const BvhNode& node = nodes[e.child];
+      float enter[BvhNode::kWidth], exit[BvhNode::kWidth];
+      // Plain comparisons: pss::min/max are fminf/fmaxf, library calls on the CPU.
+      for (int c = 0; c < BvhNode::kWidth; ++c) {
+        const float ax = (node.lo_x[c] - o.x) * inv_dir.x, bx = (node.hi_x[c] - o.x) * inv_dir.x;
+        const float ay = (node.lo_y[c] - o.y) * inv_dir.y, by = (node.hi_y[c] - o.y) * inv_dir.y;
+        const float az = (node.lo_z[c] - o.z) * inv_dir.z, bz = (node.hi_z[c] - o.z) * inv_dir.z;
+        const float nx = ax < bx ? ax : bx, ny = ay < by ? ay : by, nz = az < bz ? az : bz;
+        const float fx = ax < bx ? bx : ax, fy = ay < by ? by : ay, fz = az < bz ? bz : az;
+        const float nxy = nx > ny ? nx : ny, fxy = fx < fy ? fx : fy;
+        enter[c] = nxy > nz ? nxy : nz;
+        exit[c] = fxy < fz ? fxy : fz;
       }
+      // The children the ray meets in [t_min, t_max], pushed far to near so that the
+      // nearest is visited next (insertion into a list sorted by falling entry).
+      Entry hit[BvhNode::kWidth];
+      int n = 0;
+      for (int c = 0; c < BvhNode::kWidth; ++c) {
+        if (node.count[c] < 0 || !(enter[c] <= exit[c] && exit[c] >= t_min && enter[c] <= t_max)) continue;
+        int i = n++;
+        for (; i > 0 && hit[i - 1].t < enter[c]; --i) hit[i] = hit[i - 1];
+        hit[i] = {node.child[c], node.count[c], enter[c]};
+      }
+      // The build bounds the depth so that this never fails; the guard only keeps a
+      // malformed tree from writing past the stack.
+      if (top + n > kStackSize) break;
+      for (int i = 0; i < n; ++i) stack[top++] = hit[i];
     }
   }
 };
 
 class Bvh {
  public:
-  // Over arbitrary primitive boxes: median split of the box centres along the longest axis
-  // of their bounds, O(n log n); nodes bound their primitives' boxes.
+  // Over arbitrary primitive boxes: a binary tree by binned surface-area-heuristic splits of
+  // the box centres (median splits along the longest axis where no bin boundary separates
+  // them, and below depth 20), O(n log n), then collapsed into the 4-wide tree (each node
+  // takes its children's children); boxes bound their primitives' boxes.
   explicit Bvh(std::span<const Aabb> boxes, int leaf_size = 4);
   // Over the equal balls B(centers[i], radius).
   Bvh(std::span<const vec3> centers, float radius, int leaf_size = 4);
@@ -116,7 +120,7 @@ class Bvh {
   BvhView view() const;
   std::span<const BvhNode> nodes() const { return nodes_; }
   std::span<const int> primitives() const { return primitives_; }
-  int depth() const { return depth_; }
+  int depth() const { return depth_; }  // levels of the 4-wide tree
 
  private:
   std::vector<BvhNode> nodes_;
