@@ -117,24 +117,32 @@ struct VoxelWeights {
   // so that the fit changes smoothly as n turns.
   PSS_HOST_DEVICE static float facing(vec3 gradient, vec3 n) {
     const float g = glm::length(gradient);
-    return g > 0 ? clamp(2.0f * glm::dot(gradient, n) / g, 0.0f, 1.0f) : 0.0f;
+    if (!(g > 0)) return 0.0f;
+    // Plain comparisons: clamp's fminf/fmaxf are library calls here, and NaN cannot occur.
+    const float f = 2.0f * glm::dot(gradient, n) / g;
+    return f < 0.0f ? 0.0f : (f > 1.0f ? 1.0f : f);
   }
   PSS_HOST_DEVICE bool operator()(const FieldView& fields, vec3 d, std::int64_t index, float& window, float& theta) const {
     const float u = 1.0f - length2(d) * inv_r2;
     window = u * u;
-    theta = window * fields.weights[index] * facing(fields.gradients[index], n);
+    const float weighted = window * fields.weights[index];
+    // facing ≤ 1: a voxel the weight alone leaves out needs no gradient read.
+    if (weighted_only && weighted < 1e-5f) return false;
+    theta = weighted * facing(fields.gradients[index], n);
     return !(weighted_only && theta < 1e-5f);
   }
 };
 
-// N(x) gathered once into a flat array: the iterations of Eq. 3 and 4 and Brent's
-// evaluations then run over contiguous memory.
+// N(x) gathered once into flat arrays, one per coordinate: the iterations of Eq. 3 and 4
+// and Brent's evaluations then sum over contiguous memory, in PSS_SUM_LANES lanes (SIMD on
+// the CPU). The slots after the last voxel, up to a multiple of the lanes, hold zeros.
 struct VoxelNeighbourhood {
+  static constexpr int kSlots = kMaxNeighbours + PSS_SUM_LANES;
   vec3 center;
   int count = 0;
-  vec3 offset[kMaxNeighbours];   // pᵢ − center
-  float window[kMaxNeighbours];  // (1 − dᵢ²/ρ²)²
-  float theta[kMaxNeighbours];   // θ1 or θ2 of pᵢ, times the window and the facing
+  float dx[kSlots], dy[kSlots], dz[kSlots];  // pᵢ − center
+  float window[kSlots];                      // (1 − dᵢ²/ρ²)²
+  float theta[kSlots];                       // θ1 or θ2 of pᵢ, times the window and the facing
 
   PSS_HOST_DEVICE void gather(const FieldView& fields, vec3 c, float radius, vec3 n, bool weighted_only) {
     center = c;
@@ -144,21 +152,59 @@ struct VoxelNeighbourhood {
       if (count == kMaxNeighbours) return;
       float w, t;
       if (!weights(fields, d, index, w, t)) return;
-      offset[count] = d;
+      dx[count] = d.x;
+      dy[count] = d.y;
+      dz[count] = d.z;
       window[count] = w;
       theta[count] = t;
       ++count;
     });
+    for (int i = count; i % PSS_SUM_LANES != 0; ++i) dx[i] = dy[i] = dz[i] = window[i] = theta[i] = 0;
   }
+  PSS_HOST_DEVICE vec3 offset(int i) const { return vec3(dx[i], dy[i], dz[i]); }
+
   // f(pᵢ − center, window, θ) for each voxel of N, in the lattice's order.
   template <class F>
   PSS_HOST_DEVICE void for_each(F&& f) const {
-    for (int i = 0; i < count; ++i) f(offset[i], window[i], theta[i]);
+    for (int i = 0; i < count; ++i) f(offset(i), window[i], theta[i]);
+  }
+  // out[k] = Σᵢ term(pᵢ − center, window, θ)[k]; term must give 0 where window and θ are 0.
+  template <int K, class Term>
+  PSS_HOST_DEVICE void sum(float (&out)[K], Term&& term) const {
+    constexpr int L = PSS_SUM_LANES;
+    float lanes[K][L] = {};
+    for (int i0 = 0; i0 < count; i0 += L) {
+      for (int l = 0; l < L; ++l) {
+        float terms[K];
+        term(offset(i0 + l), window[i0 + l], theta[i0 + l], terms);
+        for (int k = 0; k < K; ++k) lanes[k][l] += terms[k];
+      }
+    }
+    for (int k = 0; k < K; ++k) {
+      out[k] = 0;
+      for (int l = 0; l < L; ++l) out[k] += lanes[k][l];
+    }
+  }
+  // Σw, Σw·d, Σw·d·dᵀ with w = weight(d, window, θ) (0 where window and θ are 0).
+  template <class W>
+  PSS_HOST_DEVICE WeightedMoments moments(W&& weight) const {
+    WeightedMoments m(center);
+    m.add_all(count, [&](int i) { return offset(i); }, [&](int i) { return weight(offset(i), window[i], theta[i]); });
+    return m;
+  }
+  // The polynomial's normal equations in `frame` with those weights.
+  template <class W>
+  PSS_HOST_DEVICE PolynomialFit polynomial_fit(const Frame& frame, float h, W&& weight) const {
+    PolynomialFit fit(h);
+    const vec3 shift = frame.direction_to_local(center - frame.origin);
+    fit.add_all(count, [&](int i) { return shift + frame.direction_to_local(offset(i)); },
+                [&](int i) { return weight(offset(i), window[i], theta[i]); });
+    return fit;
   }
 };
 
 // The same N(x) walked on the lattice again at each pass instead of stored: a few registers
-// instead of 10 KB of stack per GPU thread. The same voxels in the same order, so the same sums.
+// instead of 10 KB of stack per GPU thread. The same voxels in the same order.
 struct WalkedVoxelNeighbourhood {
   const FieldView* fields = nullptr;
   vec3 center;
@@ -177,6 +223,29 @@ struct WalkedVoxelNeighbourhood {
       float w, t;
       if (weights(*fields, d, index, w, t)) f(d, w, t);
     });
+  }
+  template <int K, class Term>
+  PSS_HOST_DEVICE void sum(float (&out)[K], Term&& term) const {
+    for (int k = 0; k < K; ++k) out[k] = 0;
+    for_each([&](vec3 d, float window, float theta) {
+      float terms[K];
+      term(d, window, theta, terms);
+      for (int k = 0; k < K; ++k) out[k] += terms[k];
+    });
+  }
+  template <class W>
+  PSS_HOST_DEVICE WeightedMoments moments(W&& weight) const {
+    WeightedMoments m(center);
+    for_each([&](vec3 d, float window, float theta) { m.add(center + d, weight(d, window, theta)); });
+    return m;
+  }
+  template <class W>
+  PSS_HOST_DEVICE PolynomialFit polynomial_fit(const Frame& frame, float h, W&& weight) const {
+    PolynomialFit fit(h);
+    for_each([&](vec3 d, float window, float theta) {
+      fit.add(frame.to_local(center + d), weight(d, window, theta));
+    });
+    return fit;
   }
 };
 
@@ -214,18 +283,18 @@ struct CorrectorEnergy {
   float h, alpha;
 
   PSS_HOST_DEVICE float operator()(float t, float& derivative) const {
-    float e = 0, de = 0;
     const float inv_h2 = 1.0f / (h * h);
-    nb.for_each([&](vec3 d, float window, float theta) {
+    float sums[2];
+    nb.sum(sums, [&](vec3 d, float window, float theta, float (&terms)[2]) {
       const float z = glm::dot(d, n);
       const float s = z - t;
-      const float theta3 = window * exp(-(length2(d) - 2 * t * z + t * t) * inv_h2);
+      const float theta3 = window * exp_nonpositive(-(length2(d) - 2 * t * z + t * t) * inv_h2);
       const float w = alpha * theta + (1 - alpha) * theta3;
-      e += w * s * s;
-      de += (1 - alpha) * 2 * s * theta3 * inv_h2 * s * s - 2 * w * s;
+      terms[0] = w * s * s;
+      terms[1] = (1 - alpha) * 2 * s * theta3 * inv_h2 * s * s - 2 * w * s;
     });
-    derivative = de;
-    return e;
+    derivative = sums[1];
+    return sums[0];
   }
 };
 
@@ -236,12 +305,7 @@ template <class Nb, class W>
 PSS_HOST_DEVICE VolumeProjection fit_and_project(const Nb& nb, vec3 origin, vec3 n, float h, W&& weight) {
   VolumeProjection out;
   out.frame = Frame::from_normal(origin, n);
-  PolynomialFit fit(h);
-  const vec3 shift = nb.center - origin;
-  nb.for_each([&](vec3 d, float window, float theta) {
-    fit.add(out.frame.direction_to_local(d + shift), weight(d, window, theta));
-  });
-  out.polynomial = fit.solve();
+  out.polynomial = nb.polynomial_fit(out.frame, h, weight).solve();
   vec3 local;
   const bool projected = project_origin_onto_graph(out.polynomial, local);
   out.point = out.frame.to_world(local);
@@ -271,17 +335,14 @@ PSS_HOST_DEVICE VolumeProjection predict(const FieldView& fields, const VolumePa
   }
   vec3 n = g / glm::length(g);
   fail.status = VolumeProjectionStatus::no_weight;
+  const auto theta_of = [](vec3, float, float theta) { return theta; };
   float t = 0;
   for (int it = 0; it < params.max_predictor_iterations; ++it) {
     nb.gather(fields, r + t * n, params.radius, n, true);
-    float w = 0;
-    vec3 m(0.0f);  // Σθ(pᵢ − q)
-    Sym3 c;        // Σθ(pᵢ − q)(pᵢ − q)ᵀ
-    nb.for_each([&](vec3 d, float, float theta) {
-      w += theta;
-      m += theta * d;
-      c.add_outer(d, theta);
-    });
+    const WeightedMoments moments = nb.moments(theta_of);
+    const float w = moments.weight_sum;
+    const vec3 m = moments.first;  // Σθ(pᵢ − q)
+    Sym3 c = moments.second;       // Σθ(pᵢ − q)(pᵢ − q)ᵀ
     if (!(w > 0)) return fail;
     // Eq. 3 for fixed n: t = Σθ⟨n, pᵢ − r⟩ / Σθ.
     const float dt = glm::dot(m, n) / w;
@@ -299,7 +360,7 @@ PSS_HOST_DEVICE VolumeProjection predict(const FieldView& fields, const VolumePa
     if (eig.status != EigenStatus::invalid) n = eig.vector;
     if (abs(dt) < params.t_tolerance) break;
   }
-  VolumeProjection out = detail::fit_and_project(nb, r + t * n, n, params.h, [](vec3, float, float theta) { return theta; });
+  VolumeProjection out = detail::fit_and_project(nb, r + t * n, n, params.h, theta_of);
   out.predicted = out.point;
   return out;
 }
@@ -321,21 +382,20 @@ PSS_HOST_DEVICE VolumeProjection correct(const FieldView& fields, const VolumePa
     const detail::CorrectorEnergy<Nb> energy{nb, n, h, alpha};
     // Brent searches t ± h from the minimiser of the α1 part alone (a θ-weighted mean of
     // the heights, closed form), which is where the α2 part only nudges it.
-    float w = 0, wz = 0;
-    nb.for_each([&](vec3 d, float, float theta) {
-      w += theta;
-      wz += theta * glm::dot(d, n);
+    float sums[2];
+    nb.sum(sums, [&](vec3 d, float, float theta, float (&terms)[2]) {
+      terms[0] = theta;
+      terms[1] = theta * glm::dot(d, n);
     });
+    const float w = sums[0], wz = sums[1];
     const float start = w > 0 ? clamp(wz / w, t - h, t + h) : t;
     const float t_next = brent_minimize(energy, t - h, t + h, start, params.t_tolerance).x;
     const vec3 center = t_next * n;  // relative to x0
-    Sym3 c;
-    float weight_sum = 0;
-    nb.for_each([&](vec3 d, float window, float theta) {
-      const float w = alpha * theta + (1 - alpha) * window * exp(-length2(d - center) * inv_h2);
-      c.add_outer(d, w);
-      weight_sum += w;
+    const WeightedMoments moments = nb.moments([&](vec3 d, float window, float theta) {
+      return alpha * theta + (1 - alpha) * window * exp_nonpositive(-length2(d - center) * inv_h2);
     });
+    const Sym3 c = moments.second;
+    const float weight_sum = moments.weight_sum;
     if (weight_sum > 0) {
       const EigenResult eig = smallest_eigenvector(c.scaled(1.0f / weight_sum), n, kEigenIterations);
       if (eig.status != EigenStatus::invalid) n = eig.vector;
@@ -346,7 +406,7 @@ PSS_HOST_DEVICE VolumeProjection correct(const FieldView& fields, const VolumePa
   }
   const vec3 center = t * n;
   VolumeProjection out = detail::fit_and_project(nb, x0, n, h, [&](vec3 d, float window, float theta) {
-    return alpha * theta + (1 - alpha) * window * exp(-length2(d - center) * inv_h2);
+    return alpha * theta + (1 - alpha) * window * exp_nonpositive(-length2(d - center) * inv_h2);
   });
   out.predicted = predicted.point;
   return out;
