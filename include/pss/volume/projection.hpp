@@ -84,6 +84,8 @@ PSS_HOST_DEVICE void for_each_voxel_near(const VolumeView& v, vec3 x, float radi
       const float dy = v.origin.y + float(j) * v.spacing.y - x.y;
       const float dyz = dy * dy + dz * dz;
       if (dyz > r2) continue;
+      // (Cutting the row to the ball's chord made engine frames 20 % slower: the row's
+      // sqrt and divisions cost more than the few voxel tests they spare.)
       std::int64_t index = v.index(i0, j, k);
       for (int i = i0; i <= i1; ++i, ++index) {
         const float dx = v.origin.x + float(i) * v.spacing.x - x.x;
