@@ -61,7 +61,7 @@ TEST_F(VolumeCliTest, AnIsoValueOutsideTheDataIsRefusedWithItsRange) {
   const test::CliResult r = test::run_pss("volume " + input() + " --iso 300 -o " + png.string());
   EXPECT_NE(r.exit_code, 0);
   EXPECT_EQ(test::line_count(r.err), 1) << r.err;
-  EXPECT_NE(r.err.find("--iso 300"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find((dir_ / "ball.raw").string() + ": the iso-value 300"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("[0, 255]"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(png));
 }

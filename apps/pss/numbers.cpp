@@ -11,12 +11,6 @@
 
 namespace pss::app {
 
-std::string format_number(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", x);
-  return text;
-}
-
 CLI::Validator finite_range(double lo, double hi, bool lo_open) {
   const bool unbounded = hi == double(FLT_MAX);
   const std::string range = unbounded && lo == -double(FLT_MAX) ? "a finite number"

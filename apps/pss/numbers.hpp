@@ -10,9 +10,6 @@
 
 namespace pss::app {
 
-// x as messages print it (%g).
-std::string format_number(double x);
-
 // A finite number x with lo <= x <= hi (lo < x when lo_open, also once x is a float: a
 // tiny positive value that would become 0 is refused).
 CLI::Validator finite_range(double lo, double hi, bool lo_open = false);

@@ -41,9 +41,11 @@ void run_render(const RenderCloudOptions& o) {
   float h = o.h;
   if (h == 0) {
     ScopedPhase phase(stats, "estimate h");
-    // A single sample has no spacing, and no surface whatever h is (it has fewer than three
-    // neighbours): it renders as background with h = 1.
-    h = cloud.size() < 2 ? 1.0f : float(estimate_spacing_of(cloud, o.input).suggested_h);
+    try {
+      h = default_h(cloud.positions);
+    } catch (const Error& e) {
+      throw file_error(o.input, e.what());
+    }
   }
   RayPssParams params = RayPssParams::from_h(h);
   if (o.rho != 0) params.projection.rho = o.rho;

@@ -16,13 +16,9 @@ namespace pss::app {
 struct VolumeOptions {
   std::string input;
   RawVolumeOptions raw;  // raw volumes only
-  float iso = 0;
   const CLI::Option* iso_option = nullptr;  // counts whether --iso was given
-  bool gradient = false;
   std::string method = "predictor-corrector";
-  float h = 2, k = 0.75f, alpha = 0.9f, error = 0.1f, radius = 1.5f;  // voxel units / ratios
-  float smoothing = kIsoSmoothingVoxels;  // θ1's k, voxels
-  float threshold = 0;  // gradient surfaces; 0: the paper's 0.5
+  VolumeSettings settings;  // the library's defaults; method set from `method`
 };
 
 void add_volume_options(CLI::App& command, VolumeOptions& options, bool method_flag);

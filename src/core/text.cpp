@@ -1,5 +1,7 @@
 #include "pss/core/text.hpp"
 
+#include <cstdio>
+
 namespace pss {
 
 std::string printable(std::string_view text, std::size_t max_bytes) {
@@ -21,6 +23,12 @@ std::string printable(std::string_view text, std::size_t max_bytes) {
   }
   if (text.size() > n) out += "…";
   return out;
+}
+
+std::string format_number(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", x);
+  return text;
 }
 
 std::string quote(std::string_view text, std::size_t max_bytes) {

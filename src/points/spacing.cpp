@@ -60,4 +60,8 @@ SpacingEstimate estimate_spacing(std::span<const vec3> input, int k, std::size_t
   return e;
 }
 
+float default_h(std::span<const vec3> points) {
+  return points.size() < 2 ? 1.0f : float(estimate_spacing(points).suggested_h);
+}
+
 }  // namespace pss

@@ -1,8 +1,12 @@
 #include "pss/volume/prepared.hpp"
 
+#include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "pss/core/error.hpp"
+#include "pss/core/text.hpp"
+#include "pss/volume/histogram.hpp"
 
 namespace pss {
 
@@ -35,6 +39,42 @@ PreparedVolume prepare_volume(VolumeFields fields, const FeatureParams& feature,
     out.bricks = build_bricks(out.cells);
   }
   return out;
+}
+
+void validate(const VolumeSettings& s) {
+  const auto check = [](float value, float lo, float hi, const char* name) {
+    if (!(std::isfinite(value) && value >= lo && value <= hi))
+      throw Error(std::string(name) + " must be a number in [" + format_number(lo) + ", " + format_number(hi) +
+                  "] (got " + format_number(value) + ")");
+  };
+  if (!s.gradient && !std::isfinite(s.iso)) throw Error("the iso-value must be a finite number");
+  check(s.h, kMinVolumeH, 1e30f, "h (voxels)");
+  check(s.k, 0.05f, 1, "k");
+  check(s.radius, 0.5f, 4, "radius (units of h)");
+  check(s.alpha, 0, 1, "alpha");
+  check(s.error, 1e-30f, 1e30f, "error (voxels)");
+  check(s.smoothing, 1e-30f, 1e30f, "smoothing (voxels)");
+  check(s.threshold, 0, 1, "threshold");
+}
+
+PreparedVolume prepare_volume(Volume volume, const VolumeSettings& s, Stats& stats) {
+  validate(s);
+  if (!s.gradient) {
+    // An iso-value the data never reaches has no surface: say so, with the range.
+    const ValueStats range = value_stats(volume.values);
+    if (!(s.iso >= range.min && s.iso <= range.max))
+      throw Error("the iso-value " + format_number(s.iso) + " lies outside the volume's values [" +
+                  format_number(range.min) + ", " + format_number(range.max) + "]");
+  }
+  VolumeFields fields;
+  {
+    ScopedPhase phase(stats, "gradients");
+    fields = compute_fields(std::move(volume));
+  }
+  const float voxel = fields.volume.view().voxel_size();
+  const VolumeParams params = VolumeParams::from_voxels(voxel, s.method, s.h, s.k, s.alpha, s.error, s.radius * s.h);
+  const FeatureParams feature = s.gradient ? gradient_feature(s.threshold) : iso_feature(s.iso, s.smoothing * voxel);
+  return prepare_volume(std::move(fields), feature, params, stats);
 }
 
 SceneMirror::SceneMirror(Backend backend, const PreparedVolume& volume)

@@ -17,6 +17,9 @@ inline constexpr std::size_t kQuotedBytes = 80;
 // the first `max_bytes` bytes of it only, then "…" when there were more.
 std::string printable(std::string_view text, std::size_t max_bytes = kQuotedBytes);
 
+// x as messages print it (%g).
+std::string format_number(double x);
+
 // printable(text) between single quotes: 'text'.
 std::string quote(std::string_view text, std::size_t max_bytes = kQuotedBytes);
 

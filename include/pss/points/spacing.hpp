@@ -21,4 +21,9 @@ struct SpacingEstimate {
 // Throws Error for fewer than two points.
 SpacingEstimate estimate_spacing(std::span<const vec3> points, int k = 15, std::size_t max_samples = 20000);
 
+// The h a renderer uses when none is given: the suggested h, or 1 for fewer than two samples
+// (a single sample has no spacing, and no surface whatever h is: fewer than three neighbours).
+// Throws Error where estimate_spacing does for two or more (all samples coincide).
+float default_h(std::span<const vec3> points);
+
 }  // namespace pss

@@ -7,6 +7,7 @@
 #include "pss/backend/mirror.hpp"
 #include "pss/core/stats.hpp"
 #include "pss/volume/marcher.hpp"
+#include "pss/volume/settings.hpp"
 
 namespace pss {
 
@@ -27,6 +28,11 @@ struct PreparedVolume {
 // Weights, surface cells and bricks for `feature` (fields must hold the gradients).
 PreparedVolume prepare_volume(VolumeFields fields, const FeatureParams& feature, const VolumeParams& params,
                               Stats& stats);
+
+// validate(settings), then the gradients, weights, surface cells and bricks of `volume` with
+// every parameter resolved in its voxel size. Throws a one-line Error when the iso-value lies
+// outside the volume's values (no surface) or a neighbourhood would overflow the kernels' buffer.
+PreparedVolume prepare_volume(Volume volume, const VolumeSettings& settings, Stats& stats);
 
 // A VolumeScene whose arrays are on `backend` (on the CPU, the prepared volume's own).
 class SceneMirror {
