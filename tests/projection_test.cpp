@@ -154,7 +154,8 @@ TEST(Projection, NeighbourhoodsBeyondTheBufferProjectAsIfStored) {
     ASSERT_LE(stored.neighbours, 4096);
     beyond += walked.neighbours > Neighbourhood::kCapacity;
     EXPECT_LT(glm::length(walked.point - stored.point), 1e-4f * params.h) << i;
-    EXPECT_LT(glm::length(walked.normal - stored.normal), 1e-5f) << i;
+    // Normals: rounding moves an eigenvector by about δC over the eigenvalue gap.
+    EXPECT_LT(glm::length(walked.normal - stored.normal), 1e-3f) << i;
     EXPECT_EQ(walked.status, stored.status) << i;
   }
   EXPECT_GT(beyond, int(cloud.size() / 10) * 9 / 10);

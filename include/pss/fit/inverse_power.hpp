@@ -32,28 +32,33 @@ namespace detail {
 // Cholesky factor of a symmetric positive definite 3×3 matrix; false if not SPD.
 struct Cholesky3 {
   float l00, l10, l11, l20, l21, l22;
+  float r00, r11, r22;  // 1/l00, 1/l11, 1/l22: solve() multiplies, each step of the power
+                        // iteration then waits on no division
 
   PSS_HOST_DEVICE bool factor(const Sym3& a) {
     if (!(a.xx > 0)) return false;
     l00 = sqrt(a.xx);
-    l10 = a.xy / l00;
-    l20 = a.xz / l00;
+    r00 = 1.0f / l00;
+    l10 = a.xy * r00;
+    l20 = a.xz * r00;
     const float d1 = a.yy - l10 * l10;
     if (!(d1 > 0)) return false;
     l11 = sqrt(d1);
-    l21 = (a.yz - l20 * l10) / l11;
+    r11 = 1.0f / l11;
+    l21 = (a.yz - l20 * l10) * r11;
     const float d2 = a.zz - l20 * l20 - l21 * l21;
     if (!(d2 > 0)) return false;
     l22 = sqrt(d2);
+    r22 = 1.0f / l22;
     return true;
   }
   PSS_HOST_DEVICE vec3 solve(vec3 b) const {
-    const float y0 = b.x / l00;
-    const float y1 = (b.y - l10 * y0) / l11;
-    const float y2 = (b.z - l20 * y0 - l21 * y1) / l22;
-    const float x2 = y2 / l22;
-    const float x1 = (y1 - l21 * x2) / l11;
-    const float x0 = (y0 - l10 * x1 - l20 * x2) / l00;
+    const float y0 = b.x * r00;
+    const float y1 = (b.y - l10 * y0) * r11;
+    const float y2 = (b.z - l20 * y0 - l21 * y1) * r22;
+    const float x2 = y2 * r22;
+    const float x1 = (y1 - l21 * x2) * r11;
+    const float x0 = (y0 - l10 * x1 - l20 * x2) * r00;
     return vec3(x0, x1, x2);
   }
 };
@@ -103,7 +108,7 @@ PSS_INLINE EigenResult smallest_eigenvector(const Sym3& c, vec3 start, int max_i
     vec3 y = chol.solve(x);
     const float len = glm::length(y);
     if (!(len > 0) || !is_finite(len)) break;
-    y /= len;
+    y *= 1.0f / len;
     if (glm::dot(y, x) < 0) y = -y;  // the sign is free; keep it steady to measure the change
     const float change = length2(y - x);
     x = y;
