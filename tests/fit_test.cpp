@@ -295,6 +295,39 @@ TEST(IntersectGraph, RootsSolveTheEquation) {
   EXPECT_NEAR(t[1], 1.93f / 0.994f, 0.03f);
 }
 
+// graph_crossed against the roots themselves: the same answer wherever no root lies within
+// rounding of the interval's ends, on random quadratics, planes and rays, two-root cases included.
+TEST(IntersectGraph, CrossedExactlyWhenARootLiesInTheInterval) {
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f), span_of(0.01f, 2.0f);
+  int crossed = 0, missed = 0, two_inside = 0;
+  for (int i = 0; i < 200000; ++i) {
+    const Polynomial g{u(rng), u(rng), u(rng), 0.2f * u(rng)};
+    const Polynomial plane{0, 0, 0, 0.2f * u(rng)};
+    const Polynomial& p = i % 10 == 0 ? plane : g;
+    const vec3 o(u(rng), u(rng), 0.3f * u(rng));
+    const vec3 d = glm::normalize(vec3(u(rng), u(rng), u(rng)));
+    const float span = span_of(rng);
+    float roots[2];
+    const int n = intersect_graph(p, o, d, roots);
+    bool inside = false, near_end = false;
+    int count = 0;
+    for (int k = 0; k < n; ++k) {
+      inside |= roots[k] >= 0 && roots[k] <= span;
+      count += roots[k] >= 0 && roots[k] <= span;
+      near_end |= std::abs(roots[k]) < 1e-4f || std::abs(roots[k] - span) < 1e-4f;
+    }
+    if (near_end) continue;
+    ASSERT_EQ(graph_crossed(p, o, d, span), inside) << i;
+    crossed += inside;
+    missed += !inside;
+    two_inside += count == 2;
+  }
+  EXPECT_GT(crossed, 10000);
+  EXPECT_GT(missed, 10000);
+  EXPECT_GT(two_inside, 500);
+}
+
 TEST(IntersectGraph, PlaneAndMiss) {
   float t[2];
   EXPECT_EQ(intersect_graph(Polynomial{0, 0, 0, 1}, vec3(0, 0, 3), vec3(0, 0, -1), t), 1);

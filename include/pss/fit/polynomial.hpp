@@ -116,6 +116,21 @@ PSS_INLINE bool project_origin_onto_graph(const Polynomial& g, vec3& foot) {
   return hxx > 0 && hxx * hyy - hxy * hxy > 0;
 }
 
+// Whether g(o + t·d) = (o + t·d).z has a root t in [0, span], without solving for it (no
+// square root, no division where the answer is no): a sign change between the ends, or the
+// same sign at both ends with the parabola's vertex between them and across zero.
+PSS_INLINE bool graph_crossed(const Polynomial& g, vec3 o, vec3 d, float span) {
+  const float a2 = g.a * d.x * d.x + g.b * d.y * d.y + g.c * d.x * d.y;
+  const float a1 = 2 * g.a * o.x * d.x + 2 * g.b * o.y * d.y + g.c * (o.x * d.y + o.y * d.x) - d.z;
+  const float a0 = g(o.x, o.y) - o.z;
+  const float end = (a2 * span + a1) * span + a0;
+  if (!(a0 * end > 0)) return true;            // a sign change, a root at an end, or NaN
+  if (!(a2 * a0 > 0)) return false;            // opening away from zero: the vertex keeps the sign
+  if (a1 * a1 - 4 * a2 * a0 < 0) return false; // the vertex does not reach zero
+  const float vertex = -a1 / (2 * a2);
+  return vertex > 0 && vertex < span;
+}
+
 // Roots t of g(o + t·d) = (o + t·d).z in increasing order (local coordinates); returns how
 // many (0, 1 or 2). Uses the cancellation-free form of the quadratic formula.
 PSS_INLINE int intersect_graph(const Polynomial& g, vec3 o, vec3 d, float roots[2]) {

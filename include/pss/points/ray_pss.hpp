@@ -95,6 +95,9 @@ PSS_INLINE LocalHit nearest_local_hit(const PointSurfaceView& s, const Ray& ray,
     const Frame frame = lp.frame();
     const vec3 o = frame.to_local(ray.at(lo));
     const vec3 d = frame.direction_to_local(ray.dir);
+    // Most of the balls a ray meets after its first hit cross it farther on: refuse them
+    // before solving (graph_crossed is exact up to rounding at the interval's ends).
+    if (!graph_crossed(lp.g, o, d, hi - lo)) return;
     float roots[2];
     const int n = intersect_graph(lp.g, o, d, roots);
     for (int i = 0; i < n; ++i) {
