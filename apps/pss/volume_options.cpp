@@ -25,10 +25,10 @@ void add_volume_options(CLI::App& command, VolumeOptions& o, bool method_flag) {
       ->check(finite_range(kMinVolumeH, FLT_MAX))
       ->capture_default_str();
   command.add_option("--k", o.settings.k, "step b = k*h, 0.5 < k < 1 (paper 5.1)")
-      ->check(finite_range(0.05, 1))
+      ->check(finite_range(kMinStepK, kMaxStepK))
       ->capture_default_str();
   command.add_option("--radius", o.settings.radius, "neighbourhood radius in units of h: the voxels within it are N(.)")
-      ->check(finite_range(0.5, 4))
+      ->check(finite_range(kMinRadius, kMaxRadius))
       ->capture_default_str();
   command.add_option("--alpha", o.settings.alpha, "alpha1 of the corrector's Theta = alpha1*theta + (1-alpha1)*theta3")
       ->check(finite_range(0, 1))

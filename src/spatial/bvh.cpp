@@ -116,12 +116,10 @@ std::vector<BinaryNode> build_binary(std::span<const Aabb> boxes, std::vector<in
     const Split split = task.depth < kSahDepth
                             ? sah_split(boxes, centers, std::span<const int>(&*first, std::size_t(count)), center_bounds)
                             : Split{};
-    int mid = task.begin + count / 2;
-    if (split.axis >= 0) {
-      mid = int(std::partition(first, last, [&](int i) { return centers[i][split.axis] < split.position; }) -
-                primitives.begin());
-    }
-    if (split.axis < 0 || mid == task.begin || mid == task.end) {  // no bin boundary separates them
+    int mid = split.axis < 0 ? task.begin
+                             : int(std::partition(first, last, [&](int i) { return centers[i][split.axis] < split.position; }) -
+                                   primitives.begin());
+    if (mid == task.begin || mid == task.end) {  // no bin boundary separates them
       const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
       mid = task.begin + count / 2;
       std::nth_element(first, primitives.begin() + mid, last,

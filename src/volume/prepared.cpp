@@ -49,8 +49,8 @@ void validate(const VolumeSettings& s) {
   };
   if (!s.gradient && !std::isfinite(s.iso)) throw Error("the iso-value must be a finite number");
   check(s.h, kMinVolumeH, 1e30f, "h (voxels)");
-  check(s.k, 0.05f, 1, "k");
-  check(s.radius, 0.5f, 4, "radius (units of h)");
+  check(s.k, float(kMinStepK), float(kMaxStepK), "k");
+  check(s.radius, float(kMinRadius), float(kMaxRadius), "radius (units of h)");
   check(s.alpha, 0, 1, "alpha");
   check(s.error, 1e-30f, 1e30f, "error (voxels)");
   check(s.smoothing, 1e-30f, 1e30f, "smoothing (voxels)");

@@ -198,8 +198,8 @@ struct VoxelNeighbourhood {
   template <class W>
   PSS_HOST_DEVICE PolynomialFit polynomial_fit(const Frame& frame, float h, W&& weight) const {
     PolynomialFit fit(h);
-    const vec3 shift = frame.direction_to_local(center - frame.origin);
-    fit.add_all(count, [&](int i) { return shift + frame.direction_to_local(offset(i)); },
+    const vec3 o = frame.to_local(center);
+    fit.add_all(count, [&](int i) { return o + frame.direction_to_local(offset(i)); },
                 [&](int i) { return weight(offset(i), window[i], theta[i]); });
     return fit;
   }
@@ -300,6 +300,17 @@ struct CorrectorEnergy {
   }
 };
 
+// Eq. 4's weight Θᵢ = α1·θᵢ + α2·θ3(‖pᵢ − c‖) with c = `center` (relative to the
+// neighbourhood's centre), the window carried by both parts: the corrector's covariance and
+// polynomial weight their voxels so.
+struct CorrectorWeight {
+  float alpha, inv_h2;
+  vec3 center;
+  PSS_HOST_DEVICE float operator()(vec3 d, float window, float theta) const {
+    return alpha * theta + (1 - alpha) * window * exp_nonpositive(-length2(d - center) * inv_h2);
+  }
+};
+
 // The polynomial in the frame (origin, n) fitted with weights weight(d, window, θ) over the
 // neighbourhood, and the orthogonal projection of the origin onto its graph
 // (project_origin_onto_graph).
@@ -392,10 +403,7 @@ PSS_HOST_DEVICE VolumeProjection correct(const FieldView& fields, const VolumePa
     const float w = sums[0], wz = sums[1];
     const float start = w > 0 ? clamp(wz / w, t - h, t + h) : t;
     const float t_next = brent_minimize(energy, t - h, t + h, start, params.t_tolerance).x;
-    const vec3 center = t_next * n;  // relative to x0
-    const WeightedMoments moments = nb.moments([&](vec3 d, float window, float theta) {
-      return alpha * theta + (1 - alpha) * window * exp_nonpositive(-length2(d - center) * inv_h2);
-    });
+    const WeightedMoments moments = nb.moments(detail::CorrectorWeight{alpha, inv_h2, t_next * n});
     const Sym3 c = moments.second;
     const float weight_sum = moments.weight_sum;
     if (weight_sum > 0) {
@@ -406,10 +414,7 @@ PSS_HOST_DEVICE VolumeProjection correct(const FieldView& fields, const VolumePa
     t = t_next;
     if (settled) break;
   }
-  const vec3 center = t * n;
-  VolumeProjection out = detail::fit_and_project(nb, x0, n, h, [&](vec3 d, float window, float theta) {
-    return alpha * theta + (1 - alpha) * window * exp_nonpositive(-length2(d - center) * inv_h2);
-  });
+  VolumeProjection out = detail::fit_and_project(nb, x0, n, h, detail::CorrectorWeight{alpha, inv_h2, t * n});
   out.predicted = predicted.point;
   return out;
 }
