@@ -1,6 +1,7 @@
 // pss render FILE -o OUT.png: ray tracing the point set surface of a point cloud (§5.2).
 #include <chrono>
 #include <cstdio>
+#include <cfloat>
 
 #include "commands.hpp"
 #include "numbers.hpp"
@@ -19,6 +20,7 @@ namespace {
 struct RenderCloudOptions {
   std::string input;
   float h = 0, rho = 0, b = 0, epsilon = 0;
+  float ball_spacing = -1;  // -1: b/2
   std::string iterations = "2";
   std::string secondary = "full";
   RenderOptions render;
@@ -50,6 +52,7 @@ void run_render(const RenderCloudOptions& o) {
   RayPssParams params = RayPssParams::from_h(h);
   if (o.rho != 0) params.projection.rho = o.rho;
   if (o.b != 0) params.ball_radius = o.b;
+  params.ball_spacing = o.ball_spacing >= 0 ? o.ball_spacing : 0.5f * params.ball_radius;
   if (o.epsilon != 0) params.epsilon = o.epsilon;
   params.max_iterations = iterations_of(o.iterations);
   params.secondary = o.secondary == "paper" ? SecondaryMode::paper : SecondaryMode::full;
@@ -79,7 +82,9 @@ void run_render(const RenderCloudOptions& o) {
     auto& v = stats.values();
     v["points"] = cloud.size();
     v["samples_left_out"] = prepared.left_out();
+    v["local_polynomials"] = prepared.locals().size();
     v["params"] = {{"h", params.projection.h}, {"rho", params.projection.rho}, {"b", params.ball_radius},
+                   {"ball_spacing", params.ball_spacing},
                    {"epsilon", params.epsilon}, {"iterations", o.iterations},
                    {"max_candidates", params.max_candidates}, {"secondary", o.secondary},
                    {"secondary_offset", params.secondary_offset}};
@@ -114,6 +119,10 @@ void add_render_command(CLI::App& app, Action action) {
   command->add_option("--rho", o->rho, "range-query radius of the projection (default 2h)")->check(finite_positive());
   command->add_option("--b", o->b, "ball radius b around each sample's local polynomial (default h)")
       ->check(finite_positive());
+  command->add_option("--ball-spacing", o->ball_spacing,
+                      "keep a local polynomial only where none kept within this distance passes within 0.05 h of its "
+                      "sample (default b/2; 0 keeps one per sample, as the paper)")
+      ->check(finite_range(0, double(FLT_MAX)));
   command->add_option("--epsilon", o->epsilon, "a candidate is a hit when its projection moves it less (default 1e-3 h)")
       ->check(finite_positive());
   command->add_option("--iterations", o->iterations, "projections per candidate: N, or auto (until |projection - r| < eps)")

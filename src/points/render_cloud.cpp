@@ -8,6 +8,7 @@
 #include "pss/backend/parallel_for.hpp"
 #include "pss/core/error.hpp"
 #include "pss/points/project_cloud.hpp"
+#include "pss/points/thinning.hpp"
 #include "pss/render/render_frame.hpp"
 #include "pss/spatial/grid_mirror.hpp"
 #include "unit_frame.hpp"
@@ -19,6 +20,8 @@ void validate(const RayPssParams& p) {
   auto positive = [](float v) { return v > 0 && std::isfinite(v); };
   if (!positive(p.ball_radius)) throw Error("ball radius b must be a positive number (got " + std::to_string(p.ball_radius) + ")");
   if (!positive(p.epsilon)) throw Error("epsilon must be a positive number (got " + std::to_string(p.epsilon) + ")");
+  if (!(p.ball_spacing >= 0) || !(p.ball_spacing <= p.ball_radius))
+    throw Error("ball spacing must be a number from 0 to b (got " + std::to_string(p.ball_spacing) + ")");
   if (!(p.secondary_offset >= 0) || !std::isfinite(p.secondary_offset))
     throw Error("secondary ray offset must be a non-negative number");
   if (p.max_iterations < 1) throw Error("iterations must be at least 1");
@@ -110,6 +113,7 @@ PreparedCloud::PreparedCloud(const PointCloud& cloud, const RayPssParams& params
     }
   }
   ScopedPhase phase(stats, "acceleration structure");
+  locals_ = thin_local_polynomials(locals_, params.ball_spacing, kThinningTolerance * params.projection.h);
   for (LocalPolynomial& l : locals_) l.height = height_bound(l.g, params.ball_radius);
   bvh_ = Bvh(disc_boxes(locals_, params.ball_radius));
   std::vector<LocalPolynomial> ordered(locals_.size());

@@ -21,6 +21,9 @@ enum class SecondaryMode : unsigned char {
 struct RayPssParams {
   ProjectionParams projection;  // WLS plane (paper §5.2 uses WLS for r), ρ = 2h
   float ball_radius = 0;        // b
+  // δ: a sample's polynomial is left out where one kept within δ passes within
+  // kThinningTolerance·h of it (points/thinning.hpp); 0 keeps one per sample, as the paper.
+  float ball_spacing = 0;
   float epsilon = 0;            // accept r when |γ − r| < ε
   int max_iterations = 2;       // projections per candidate (paper Table 2: 2 and 3)
   int max_candidates = 0;       // ball intersections tried per ray before giving up
@@ -33,18 +36,27 @@ struct RayPssParams {
   //   for the default h), so the surface has no gaps between them.
   // - ε = 1e-3·h: well below a pixel at any scale at which h is resolved, and above the
   //   float rounding of a projection (~1e-6 of the coordinates).
+  // - δ = b/2: every surface point within b/2 of a sample then lies within b of a kept
+  //   polynomial's sample, inside its ball; δ = 0.6b lets grazing rays through a sphere's
+  //   silhouette (tests/ray_pss_test.cpp).
   // - offset = b/2: a secondary ray leaves from above the neighbours' polynomials, which
   //   follow the surface to within noise, and so does not re-hit its own surface.
   static RayPssParams from_h(float h) {
     RayPssParams p;
     p.projection = ProjectionParams::from_h(h, PlaneFitMethod::wls);
     p.ball_radius = h;
+    p.ball_spacing = 0.5f * p.ball_radius;
     p.epsilon = 1e-3f * h;
     p.max_candidates = 32;
     p.secondary_offset = 0.5f * h;
     return p;
   }
 };
+
+// How far (in h) a dropped sample may lie off the kept polynomial that stands for it: well
+// inside the sheet a ray's candidate comes from, and below the offset between the two faces
+// of the thin parts of a scan, whose polynomials must both stay (docs/paper-notes.md).
+inline constexpr float kThinningTolerance = 0.05f;
 
 // `--iterations auto`: projections repeat until |γ − r| < ε, up to this many.
 inline constexpr int kAutoIterations = 32;
@@ -63,51 +75,57 @@ struct LocalHit {
   int local = -1;  // index into PointSurfaceView::locals; -1 when none
 };
 
+// The ray's first crossing of the local polynomial g of `lp` inside its ball B(p_i, b), in
+// (t_min, t_best): lowers t_best to it and returns true, or returns false (paper §5.2,
+// "Intersection"). Every search for the nearest local hit runs this one test.
+PSS_INLINE bool local_hit_before(const LocalPolynomial& lp, float b, const Ray& ray, float t_min, float& t_best) {
+  float t0, t1;
+  if (!ray_ball(ray, lp.origin, b, t0, t1)) return false;
+  // Plain comparisons: fminf/fmaxf are library calls here, and NaN cannot occur.
+  float lo = t0 > t_min ? t0 : t_min;
+  float hi = t1 < t_best ? t1 : t_best;
+  if (!(lo < hi)) return false;
+  // Clip to the slab |z| ≤ height that holds the graph inside the ball.
+  const float z0 = glm::dot(ray.origin - lp.origin, lp.normal);
+  const float dz = glm::dot(ray.dir, lp.normal);
+  if (dz != 0) {
+    const float inv_dz = 1.0f / dz;
+    const float ta = (-lp.height - z0) * inv_dz, tb = (lp.height - z0) * inv_dz;
+    const float enter = ta < tb ? ta : tb, exit = ta < tb ? tb : ta;
+    lo = enter > lo ? enter : lo;
+    hi = exit < hi ? exit : hi;
+    if (!(lo <= hi)) return false;
+  } else if (abs(z0) > lp.height) {
+    return false;
+  }
+  // Intersect from the ball's entry point, in the sample's frame: coordinates of order b
+  // keep the quadratic's coefficients well scaled however far the camera is.
+  const Frame frame = lp.frame();
+  const vec3 o = frame.to_local(ray.at(lo));
+  const vec3 d = frame.direction_to_local(ray.dir);
+  // Most of the balls a ray meets after its first hit cross it farther on: refuse them
+  // before solving (graph_crossed is exact up to rounding at the interval's ends).
+  if (!graph_crossed(lp.g, o, d, hi - lo)) return false;
+  float roots[2];
+  const int n = intersect_graph(lp.g, o, d, roots);
+  for (int i = 0; i < n; ++i) {
+    const float t = lo + roots[i];
+    if (t > t_min && t >= lo && t <= hi && t < t_best) {
+      t_best = t;
+      return true;
+    }
+  }
+  return false;
+}
+
 // The nearest intersection with t in (t_min, t_max) of the ray and a local polynomial g_i,
-// restricted to its ball (paper §5.2, "Intersection").
+// restricted to its ball, found through the BVH.
 PSS_INLINE LocalHit nearest_local_hit(const PointSurfaceView& s, const Ray& ray, float t_min, float t_max) {
   LocalHit best;
   best.t = t_max;
   const float b = s.params.ball_radius;
   s.bvh.closest(ray, t_min, best.t, [&](int k, float& t_best) {
-    const LocalPolynomial& lp = s.locals[k];
-    float t0, t1;
-    if (!ray_ball(ray, lp.origin, b, t0, t1)) return;
-    // Plain comparisons: fminf/fmaxf are library calls here, and NaN cannot occur.
-    float lo = t0 > t_min ? t0 : t_min;
-    float hi = t1 < t_best ? t1 : t_best;
-    if (!(lo < hi)) return;
-    // Clip to the slab |z| ≤ height that holds the graph inside the ball.
-    const float z0 = glm::dot(ray.origin - lp.origin, lp.normal);
-    const float dz = glm::dot(ray.dir, lp.normal);
-    if (dz != 0) {
-      const float inv_dz = 1.0f / dz;
-      const float ta = (-lp.height - z0) * inv_dz, tb = (lp.height - z0) * inv_dz;
-      const float enter = ta < tb ? ta : tb, exit = ta < tb ? tb : ta;
-      lo = enter > lo ? enter : lo;
-      hi = exit < hi ? exit : hi;
-      if (!(lo <= hi)) return;
-    } else if (abs(z0) > lp.height) {
-      return;
-    }
-    // Intersect from the ball's entry point, in the sample's frame: coordinates of order b
-    // keep the quadratic's coefficients well scaled however far the camera is.
-    const Frame frame = lp.frame();
-    const vec3 o = frame.to_local(ray.at(lo));
-    const vec3 d = frame.direction_to_local(ray.dir);
-    // Most of the balls a ray meets after its first hit cross it farther on: refuse them
-    // before solving (graph_crossed is exact up to rounding at the interval's ends).
-    if (!graph_crossed(lp.g, o, d, hi - lo)) return;
-    float roots[2];
-    const int n = intersect_graph(lp.g, o, d, roots);
-    for (int i = 0; i < n; ++i) {
-      const float t = lo + roots[i];
-      if (t > t_min && t >= lo && t <= hi && t < t_best) {
-        t_best = t;
-        best.local = k;
-        break;
-      }
-    }
+    if (local_hit_before(s.locals[k], b, ray, t_min, t_best)) best.local = k;
   });
   if (best.local < 0) best.t = kInfinity;
   return best;

@@ -31,8 +31,9 @@ struct PointFinder {
 // The host owner of everything a PointSurfaceView points to.
 class PreparedCloud {
  public:
-  // Runs the "Initial approximation" on `backend` and builds the BVH (on the host); the
-  // phases "preprocess" and "acceleration structure" go to stats.
+  // Runs the "Initial approximation" on `backend`, thins the polynomials (points/thinning.hpp)
+  // and builds the BVH over those kept (on the host); the phases "preprocess" and
+  // "acceleration structure" go to stats.
   PreparedCloud(const PointCloud& cloud, const RayPssParams& params, Backend backend, Stats& stats);
   PreparedCloud(const PreparedCloud&) = delete;
   PreparedCloud& operator=(const PreparedCloud&) = delete;
@@ -41,7 +42,7 @@ class PreparedCloud {
   PointSurfaceView view() const;  // on the host
   // The view the kernels of `backend` read; the GPU's copy is uploaded once, on first use.
   PointSurfaceView view_on(Backend backend) const;
-  std::span<const LocalPolynomial> locals() const { return locals_; }  // BVH order
+  std::span<const LocalPolynomial> locals() const { return locals_; }  // those kept, in BVH order
   std::int64_t left_out() const { return left_out_; }  // samples with < 3 neighbours
   const Bvh& bvh() const { return bvh_; }
 
