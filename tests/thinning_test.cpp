@@ -46,7 +46,7 @@ TEST(Thinning, EveryDroppedSampleLiesOnAKeptNeighboursGraphAndNoKeptOneOnAnother
     bool is_kept = false, represented = false;
     for (const LocalPolynomial& k : kept) {
       if (same_sample(j, k)) is_kept = true;
-      else if (glm::length(j.origin - k.origin) < spacing && off_graph(k, j.origin) <= tolerance) represented = true;
+      else if (glm::length(j.origin - k.origin) <= spacing && off_graph(k, j.origin) <= tolerance) represented = true;
     }
     if (is_kept) continue;
     ++dropped;
@@ -58,7 +58,7 @@ TEST(Thinning, EveryDroppedSampleLiesOnAKeptNeighboursGraphAndNoKeptOneOnAnother
   int close_pairs = 0;
   for (std::size_t a = 0; a < kept.size(); ++a)
     for (std::size_t b = a + 1; b < kept.size(); ++b) {
-      if (!(glm::length(kept[a].origin - kept[b].origin) < spacing)) continue;
+      if (!(glm::length(kept[a].origin - kept[b].origin) <= spacing)) continue;
       ++close_pairs;
       EXPECT_TRUE(off_graph(kept[a], kept[b].origin) > tolerance || off_graph(kept[b], kept[a].origin) > tolerance);
     }

@@ -28,9 +28,9 @@ std::vector<LocalPolynomial> thin_local_polynomials(std::span<const LocalPolynom
   // In input order, so that the result does not depend on the grid's.
   for (std::size_t j = 0; j < locals.size(); ++j) {
     bool represented = false;
-    view.for_each_in_radius(locals[j].origin, spacing, [&](vec3, float d2, int s) {
+    view.for_each_in_radius(locals[j].origin, spacing, [&](vec3, float, int s) {
       const int k = input_index[std::size_t(s)];
-      if (represented || !kept[std::size_t(k)] || !(d2 < spacing * spacing)) return;
+      if (represented || !kept[std::size_t(k)]) return;
       represented = off_graph(locals[std::size_t(k)], locals[j].origin) <= tolerance;
     });
     if (represented) continue;
