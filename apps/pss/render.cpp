@@ -30,7 +30,7 @@ int iterations_of(const std::string& text) { return text == "auto" ? kAutoIterat
 
 void run_render(const RenderCloudOptions& o) {
   const auto start = std::chrono::steady_clock::now();
-  OutputSet outputs({o.input}, {o.render.output, o.render.hits_path, o.render.compute.stats_path});
+  OutputSet outputs({o.input, o.render.camera_file}, {o.render.output, o.render.hits_path, o.render.compute.stats_path});
   set_cpu_threads(o.render.compute.threads);
   const Backend backend = select_backend(o.render.compute.backend);
   Stats stats;
@@ -58,7 +58,7 @@ void run_render(const RenderCloudOptions& o) {
   params.secondary = o.secondary == "paper" ? SecondaryMode::paper : SecondaryMode::full;
   validate(params);
 
-  const Camera camera = Camera::framing(cloud.bounds(), o.render.camera);
+  const Camera camera = make_camera(o.render, cloud.bounds());
   const TraceSettings settings = trace_settings(o.render, camera);
   const PreparedCloud prepared(cloud, params, backend, stats);
   const RenderedFrame frame =

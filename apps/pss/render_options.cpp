@@ -7,6 +7,7 @@
 
 #include "numbers.hpp"
 #include "pss/core/text.hpp"
+#include "pss/render/camera_file.hpp"
 #include "pss/render/frame_outputs.hpp"
 #include "pss/render/image.hpp"
 
@@ -76,9 +77,15 @@ void add_render_options(CLI::App& command, RenderOptions& o) {
           },
           "orbit the default camera: AZIMUTH,ELEVATION in degrees (default 0,0: from +z, looking along -z, y up)")
       ->check(CLI::Validator(check_view, "AZ,EL", "view"));
-  command.add_option("--fov", o.camera.fov_deg, "vertical field of view in degrees")
-      ->check(finite_range(1, 170))
-      ->capture_default_str();
+  auto* view = command.get_option("--view");
+  auto* fov = command.add_option("--fov", o.camera.fov_deg, "vertical field of view in degrees")
+                  ->check(finite_range(1, 170))
+                  ->capture_default_str();
+  command.add_option("--camera", o.camera_file,
+                     "the camera of a JSON file: the \"camera\" that --stats writes (a --stats file loads as it is), "
+                     "instead of --view and --fov")
+      ->excludes(view)
+      ->excludes(fov);
   command.add_option("--hits", o.hits_path,
                      "write the primary hits as binary PLY: x y z nx ny nz and the pixel's px py");
   command.add_option("--frames", o.frames,
@@ -91,6 +98,11 @@ void add_render_options(CLI::App& command, RenderOptions& o) {
       ->check(finite_range(0, 1))
       ->capture_default_str();
   add_compute_options(command, o.compute);
+}
+
+Camera make_camera(const RenderOptions& o, const Aabb& bounds) {
+  if (o.camera_file.empty()) return Camera::framing(bounds, o.camera);
+  return read_camera_file(o.camera_file, o.camera.width, o.camera.height);
 }
 
 TraceSettings trace_settings(const RenderOptions& o, const Camera& camera) {
@@ -130,8 +142,11 @@ void record_render_stats(Stats& stats, const RenderOptions& options, const Rende
   v["frame_seconds"] = frame_s;
   v["fps"] = 1.0 / frame_s;
   // record_frame wrote the camera itself and the image size; these are the flags behind it.
-  v["view"] = {{"fov_deg", options.camera.fov_deg}, {"azimuth_deg", options.camera.azimuth_deg},
-               {"elevation_deg", options.camera.elevation_deg}};
+  if (options.camera_file.empty())
+    v["view"] = {{"fov_deg", options.camera.fov_deg}, {"azimuth_deg", options.camera.azimuth_deg},
+                 {"elevation_deg", options.camera.elevation_deg}};
+  else
+    v["camera_file"] = options.camera_file;
   v["shading"] = {{"shadows", settings.shadows}, {"reflections", settings.reflections},
                   {"reflectivity", settings.shading.reflectivity}};
 }

@@ -20,6 +20,7 @@ struct RenderOptions {
   std::string output;     // -o, the PNG
   std::string hits_path;  // --hits FILE.ply
   CameraSettings camera;  // --size, --view, --fov
+  std::string camera_file;  // --camera FILE.json, instead of --view and --fov
   bool shadows = false;
   bool reflections = false;
   float reflectivity = ShadingParams{}.reflectivity;
@@ -28,6 +29,9 @@ struct RenderOptions {
 };
 
 void add_render_options(CLI::App& command, RenderOptions& options);
+
+// The camera of --camera, or the default view of `bounds` turned by --view and --fov.
+Camera make_camera(const RenderOptions& options, const Aabb& bounds);
 
 // The shading and secondary-ray settings of the options for this camera.
 TraceSettings trace_settings(const RenderOptions& options, const Camera& camera);

@@ -21,13 +21,13 @@ struct VolumeCommandOptions {
 
 void run_volume(const VolumeCommandOptions& o) {
   const auto start = std::chrono::steady_clock::now();
-  OutputSet outputs({o.volume.input}, {o.render.output, o.render.hits_path, o.render.compute.stats_path});
+  OutputSet outputs({o.volume.input, o.render.camera_file}, {o.render.output, o.render.hits_path, o.render.compute.stats_path});
   set_cpu_threads(o.render.compute.threads);
   const Backend backend = select_backend(o.render.compute.backend);
   Stats stats;
   PreparedVolume volume = load_volume(o.volume, stats);
   volume.params.debug_projection = o.debug_projection;
-  const Camera camera = Camera::framing(volume.surface_bounds(), o.render.camera);
+  const Camera camera = make_camera(o.render, volume.surface_bounds());
   const TraceSettings settings = trace_settings(o.render, camera);
   const SceneMirror scene(backend, volume);  // uploaded once for all --frames
   RenderedFrame frame =

@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "pss/io/ply.hpp"
+#include "pss/render/camera_file.hpp"
 
 namespace pss {
 
@@ -53,10 +54,7 @@ void record_frame(Stats& stats, const RenderedFrame& frame) {
   v["hits_capped"] = s.capped;
   v["width"] = c.width;
   v["height"] = c.height;
-  v["camera"] = {{"eye", {c.eye.x, c.eye.y, c.eye.z}},
-                 {"forward", {c.forward.x, c.forward.y, c.forward.z}},
-                 {"up", {c.up.x, c.up.y, c.up.z}},
-                 {"tan_half_fov", c.tan_half_fov}};
+  v["camera"] = camera_to_json(c);
 }
 
 }  // namespace pss

@@ -1,0 +1,23 @@
+// A camera as JSON, so that a view found in one run (or in `pss view`) renders again
+// exactly: {"eye": [x, y, z], "forward": [...], "right": [...], "up": [...],
+// "tan_half_fov": t}, the object `--stats` writes under "camera".
+#pragma once
+
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+
+#include "pss/render/camera.hpp"
+
+namespace pss {
+
+nlohmann::json camera_to_json(const Camera& camera);
+
+// The camera of a JSON file: a camera object, or an object holding one under "camera" (a
+// --stats file loads as it is). "right" may be left out (it is forward × up). A camera
+// pss wrote loads bit for bit; another is made orthonormal (forward kept, up in the plane
+// of forward and up). The image size is the caller's. Throws Error naming the file for
+// what is not such a camera (bounded: a camera file over 1 MiB is refused unread).
+Camera read_camera_file(const std::filesystem::path& path, int width, int height);
+
+}  // namespace pss
