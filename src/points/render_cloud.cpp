@@ -121,6 +121,15 @@ PreparedCloud::PreparedCloud(const PointCloud& cloud, const RayPssParams& params
   locals_ = std::move(ordered);
 }
 
+void PreparedCloud::set_search(const RayPssParams& p) {
+  validate(p);
+  params_.epsilon = p.epsilon;
+  params_.max_iterations = p.max_iterations;
+  params_.max_candidates = p.max_candidates;
+  params_.secondary = p.secondary;
+  params_.secondary_offset = p.secondary_offset;
+}
+
 PointSurfaceView PreparedCloud::view() const {
   PointSurfaceView v;
   v.grid = grid_.view();
@@ -135,7 +144,9 @@ PreparedCloud::~PreparedCloud() = default;
 PointSurfaceView PreparedCloud::view_on(Backend backend) const {
   if (backend == Backend::cpu) return view();
   if (!device_) device_ = std::make_unique<DeviceCopy>(*this);
-  return device_->view;
+  PointSurfaceView v = device_->view;
+  v.params = params_;  // set_search may have changed them since the upload
+  return v;
 }
 
 RenderedFrame render_cloud(const PreparedCloud& cloud, const Camera& camera, const TraceSettings& settings, Backend backend,

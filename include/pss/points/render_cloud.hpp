@@ -39,6 +39,11 @@ class PreparedCloud {
   PreparedCloud& operator=(const PreparedCloud&) = delete;
   ~PreparedCloud();
 
+  // Takes the parameters of `params` that the preparation does not depend on: ε, the
+  // iterations and candidates per ray, the secondary rays' mode and offset (a viewer changes
+  // them without preparing again). validate(params) first.
+  void set_search(const RayPssParams& params);
+
   PointSurfaceView view() const;  // on the host
   // The view the kernels of `backend` read; the GPU's copy is uploaded once, on first use.
   PointSurfaceView view_on(Backend backend) const;

@@ -33,6 +33,15 @@ struct Camera {
     return {eye, glm::normalize(forward + x * right + y * up)};
   }
 
+  // The same view `factor` times smaller each way (rounded, at least one pixel): a viewer's
+  // reduced-resolution frames while the camera moves.
+  Camera reduced(int factor) const {
+    Camera c = *this;
+    c.width = (width + factor / 2) / factor > 1 ? (width + factor / 2) / factor : 1;
+    c.height = (height + factor / 2) / factor > 1 ? (height + factor / 2) / factor : 1;
+    return c;
+  }
+
   // A degenerate box (one point, or all points equal) is framed as a unit sphere.
   static Camera framing(const Aabb& box, const CameraSettings& s);
 };

@@ -29,6 +29,8 @@ struct VolumeSettings {
   float error = 0.1f;     // ε, voxels
   float smoothing = kIsoSmoothingVoxels;  // θ1's k, voxels
   float threshold = 0;    // gradient surfaces: (|∇f|/max)² above it is projected; 0: the paper's 0.5
+
+  bool operator==(const VolumeSettings&) const = default;
 };
 
 // Throws a one-line Error naming the setting that is not a finite number in its range.

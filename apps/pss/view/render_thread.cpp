@@ -1,0 +1,99 @@
+#include "render_thread.hpp"
+
+#include <algorithm>
+
+#include "pss/core/error.hpp"
+#include "render_options.hpp"
+
+namespace pss::app::view {
+
+int reduction_for(double full_seconds) {
+  if (!(full_seconds > 0)) return 4;
+  int f = 1;
+  while (f < 16 && full_seconds / double(f * f) > kInteractiveSeconds) f *= 2;
+  return f;
+}
+
+RenderThread::RenderThread(std::unique_ptr<Scene> scene)
+    : scene_(std::move(scene)), scene_info_(scene_->info()), bounds_(scene_->bounds()), thread_([this] { run(); }) {}
+
+RenderThread::~RenderThread() {
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  thread_.join();
+}
+
+std::uint64_t RenderThread::request(const Camera& camera, const ViewSettings& settings) {
+  std::uint64_t id;
+  {
+    std::lock_guard lock(mutex_);
+    id = ++next_id_;
+    camera_ = camera;
+    settings_ = settings;
+  }
+  wake_.notify_all();
+  return id;
+}
+
+bool RenderThread::poll(Published& out) const {
+  std::lock_guard lock(mutex_);
+  if (published_.request == out.request && published_.factor == out.factor && published_.error == out.error)
+    return false;
+  if (publications_ == 0) return false;
+  out = published_;
+  return true;
+}
+
+bool RenderThread::finished(std::uint64_t id) const {
+  std::lock_guard lock(mutex_);
+  return published_.request == id && (published_.factor == 1 || !published_.error.empty());
+}
+
+void RenderThread::run() {
+  std::uint64_t done = 0;
+  for (;;) {
+    Camera camera;
+    ViewSettings settings;
+    std::uint64_t id;
+    double full_seconds;
+    {
+      std::unique_lock lock(mutex_);
+      wake_.wait(lock, [&] { return stop_ || next_id_ != done; });
+      if (stop_) return;
+      id = done = next_id_;
+      camera = camera_;
+      settings = settings_;
+      full_seconds = full_seconds_;
+    }
+    for (int factor = reduction_for(full_seconds); factor >= 1; factor /= 2) {
+      Published p;
+      p.request = id;
+      p.factor = factor;
+      try {
+        Stats stats;
+        p.frame = scene_->render(settings, camera.reduced(factor), stats);
+        p.seconds = frame_seconds(stats);
+      } catch (const Error& e) {
+        p.error = one_line(e.what());
+      } catch (const std::bad_alloc&) {
+        p.error = "out of memory";
+      }
+      std::lock_guard lock(mutex_);
+      if (factor == 1 && p.error.empty()) full_seconds_ = p.seconds;
+      const bool refused = !p.error.empty();
+      if (refused) {  // keep showing the last image, with its figures
+        p.frame = std::move(published_.frame);
+        p.factor = published_.factor;
+        p.seconds = published_.seconds;
+      }
+      published_ = std::move(p);
+      ++publications_;
+      if (refused || next_id_ != id) break;  // a newer request: its levels instead
+    }
+  }
+}
+
+}  // namespace pss::app::view

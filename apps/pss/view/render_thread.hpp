@@ -1,0 +1,70 @@
+// The viewer's render thread: renders the latest request at reduced resolution first (so
+// that a frame takes at most ~50 ms while the camera moves), then at twice the resolution,
+// and so on up to the full size; a newer request abandons the levels still to come. The
+// UI thread never waits on it.
+#pragma once
+
+#include <condition_variable>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "pss/render/rendered_frame.hpp"
+#include "scene.hpp"
+
+namespace pss::app::view {
+
+// The frame time the reduced levels aim at.
+inline constexpr double kInteractiveSeconds = 0.05;
+
+// The smallest power of two f ≤ 16 such that a frame that took `full_seconds` at full size
+// takes at most kInteractiveSeconds at 1/f of the size each way; 4 before any (0).
+int reduction_for(double full_seconds);
+
+struct Published {
+  std::uint64_t request = 0;  // the request it answers
+  int factor = 0;             // 1: full size
+  RenderedFrame frame;
+  double seconds = 0;  // the frame's per-frame phases, as pss render counts them
+  std::string error;   // what refused the request (a value out of range), frame untouched
+};
+
+class RenderThread {
+ public:
+  explicit RenderThread(std::unique_ptr<Scene> scene);
+  ~RenderThread();
+  RenderThread(const RenderThread&) = delete;
+  RenderThread& operator=(const RenderThread&) = delete;
+
+  const SceneInfo& info() const { return scene_info_; }
+  Aabb bounds() const { return bounds_; }
+
+  // Returns the request's number; the levels of earlier requests still to come are dropped.
+  std::uint64_t request(const Camera& camera, const ViewSettings& settings);
+  // Copies the newest publication into `out` when it is newer than `out` (by request and
+  // level); returns whether it did.
+  bool poll(Published& out) const;
+  // Whether the full-size frame of request `id` (or a refusal of it) is published.
+  bool finished(std::uint64_t id) const;
+
+ private:
+  void run();
+
+  std::unique_ptr<Scene> scene_;
+  SceneInfo scene_info_;
+  Aabb bounds_;
+  mutable std::mutex mutex_;
+  std::condition_variable wake_;
+  bool stop_ = false;
+  std::uint64_t next_id_ = 0;
+  Camera camera_;
+  ViewSettings settings_;
+  Published published_;
+  std::uint64_t publications_ = 0;
+  double full_seconds_ = 0;
+  std::thread thread_;  // last: starts when everything above is ready
+};
+
+}  // namespace pss::app::view

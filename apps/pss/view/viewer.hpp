@@ -1,0 +1,28 @@
+// `pss view`: a window (GLFW, OpenGL 3.3 core) showing the PSS of a point cloud or a volume,
+// drawn by the render thread (render_thread.hpp) and put on screen as a texture, with a
+// Dear ImGui panel for the paper's parameters. No rendering code of its own.
+#pragma once
+
+#include <string>
+
+#include "orbit.hpp"
+#include "scene.hpp"
+
+namespace pss::app::view {
+
+struct ViewerOptions {
+  VolumeOptions file;  // the input, its raw-volume flags and the volume settings
+  ViewSettings settings;
+  Orbit orbit;
+  int width = 960, height = 720;  // the window's, which is the full-size frame's
+  std::string camera_file;        // --camera: the first view
+  std::string script;             // --script: run these steps, then quit
+  std::string screenshot_dir = ".";
+};
+
+// Opens the window and runs until it is closed or the script ends. A file that cannot be
+// read or prepared is shown as a message in the window (and on stderr). Returns the exit
+// status: 0, or 1 when the window cannot be opened or a script step cannot be carried out.
+int run_viewer(const ViewerOptions& options);
+
+}  // namespace pss::app::view

@@ -1,0 +1,171 @@
+// `pss view` (issue 11) run headless under Xvfb with Mesa: its full-size screenshots are the
+// batch commands' images at the same camera, byte for byte; the camera file round-trips; a
+// value out of range or an unreadable file shows a message and does not end the viewer. The
+// reduced frames it shows while the camera moves are the full frame at a lower resolution.
+// The window tests skip in builds without the viewer or on machines without xvfb-run.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include "pss/points/render_cloud.hpp"
+#include "pss/render/image.hpp"
+#include "support/cli.hpp"
+#include "support/shapes.hpp"
+#include "support/volumes.hpp"
+
+namespace pss {
+namespace {
+
+namespace fs = std::filesystem;
+
+class Viewer : public test::CliTest {
+ protected:
+  void SetUp() override {
+    test::CliTest::SetUp();
+    if (!PSS_HAVE_VIEWER) GTEST_SKIP() << "this build has no viewer (GLFW or Dear ImGui missing)";
+    if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed";
+    test::SampleOptions o;
+    o.count = 3000;
+    std::ofstream xyz(path("sphere.xyz"));
+    for (const vec3& p : test::sample(test::Sphere{}, o).positions) xyz << p.x << ' ' << p.y << ' ' << p.z << '\n';
+  }
+
+  // `pss view ARGS --script (steps) --screenshot-dir (the test's folder)` in a virtual X
+  // display. Mesa's and X11's own allocations outlive the process, so leak reports are off
+  // for it alone (the sanitized suite exports ASAN_OPTIONS).
+  test::CliResult view(const std::string& args, const std::string& steps) {
+    write("steps.txt", steps);
+    const std::string asan = std::getenv("ASAN_OPTIONS") ? std::getenv("ASAN_OPTIONS") : "";
+    const std::string command = "env ASAN_OPTIONS=" + asan + (asan.empty() ? "" : ":") +
+                                "detect_leaks=0 xvfb-run -a -s '-screen 0 1024x768x24' " + PSS_CLI + " view " + args +
+                                " --script " + path("steps.txt") + " --screenshot-dir " + dir_.string();
+    return run_shell(command);
+  }
+  test::CliResult run_shell(const std::string& command) {
+    const std::string out = path("out.txt"), err = path("err.txt");
+    const int status = std::system((command + " >" + out + " 2>" + err).c_str());
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, bytes(out), bytes(err)};
+  }
+  std::string bytes(const std::string& file) const {
+    std::ifstream in(file, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  }
+};
+
+TEST_F(Viewer, ScreenshotsAreTheRenderedImagesAtTheSameCamera) {
+  const test::CliResult r = view(path("sphere.xyz") + " --size 200x150",
+                                 "view 40 -25\nscreenshot a\n"
+                                 "set reflections on\nset iterations 3\nzoom 1.7\npan 0.05 0.02\nscreenshot b\n"
+                                 "camera " + path("a.json") + "\nscreenshot c\n");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string render = "render " + path("sphere.xyz") + " --size 200x150";
+  ASSERT_EQ(test::run_pss(render + " --view 40,-25 -o " + path("ra.png")).exit_code, 0);
+  EXPECT_EQ(bytes(path("a.png")), bytes(path("ra.png")));  // the viewer's orbit is --view's
+  ASSERT_EQ(test::run_pss(render + " --camera " + path("b.json") + " --reflections --iterations 3 -o " + path("rb.png"))
+                .exit_code, 0);
+  EXPECT_EQ(bytes(path("b.png")), bytes(path("rb.png")));
+  EXPECT_NE(bytes(path("a.png")), bytes(path("b.png")));
+  // The camera file round-trips: loaded back, the view of a, with b's settings.
+  ASSERT_EQ(test::run_pss(render + " --camera " + path("a.json") + " --reflections --iterations 3 -o " + path("rc.png"))
+                .exit_code, 0);
+  EXPECT_EQ(bytes(path("c.png")), bytes(path("rc.png")));
+  const auto camera_of = [&](const char* f) { return nlohmann::json::parse(bytes(path(f)))["camera"]; };
+  EXPECT_EQ(camera_of("a.json"), camera_of("c.json"));
+}
+
+TEST_F(Viewer, VolumeScreenshotsAreThoseOfPssVolume) {
+  test::SampleVolumeOptions o;
+  o.dims = ivec3(32);
+  o.quantize = true;
+  o.scale = -40;
+  o.offset = 100;
+  const Volume v = test::sample_volume(test::sphere_distance(vec3(15.0f, 16.0f, 14.0f), 8.0f), o);
+  std::ofstream raw(path("ball.raw"), std::ios::binary);
+  for (float x : v.values) raw.put(char(std::uint8_t(x)));
+  raw.close();
+  const std::string volume = path("ball.raw") + " --dims 32x32x32 --type uint8";
+  const test::CliResult r = view(volume + " --iso 100 --size 160x120", "view 30 20\nset iso 90\nscreenshot a\n");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_EQ(test::run_pss("volume " + volume + " --iso 90 --size 160x120 --camera " + path("a.json") + " -o " +
+                          path("ra.png")).exit_code, 0);
+  EXPECT_EQ(bytes(path("a.png")), bytes(path("ra.png")));
+  // An iso-value outside the data: its message, and the last surface stays on screen.
+  const test::CliResult bad = view(volume + " --iso 100 --size 160x120", "screenshot b\nset iso 1e9\nscreenshot c\n");
+  EXPECT_EQ(bad.exit_code, 0) << bad.err;
+  EXPECT_NE(bad.err.find("lies outside the volume's values"), std::string::npos) << bad.err;
+  EXPECT_EQ(bytes(path("b.png")), bytes(path("c.png")));
+}
+
+TEST_F(Viewer, AValueOutOfRangeShowsItsMessageAndTheViewerGoesOn) {
+  const test::CliResult r = view(path("sphere.xyz") + " --size 120x90",
+                                 "screenshot a\nset iterations 0\nscreenshot b\nset iterations 2\nview 90 0\nscreenshot c\n");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("iterations must be at least 1"), std::string::npos) << r.err;
+  EXPECT_EQ(bytes(path("a.png")), bytes(path("b.png")));  // the last image stays
+  EXPECT_TRUE(fs::exists(path("c.png")));
+  EXPECT_NE(bytes(path("a.png")), bytes(path("c.png")));  // and later views still render
+}
+
+TEST_F(Viewer, AnUnreadableFileOpensTheWindowWithItsMessage) {
+  const test::CliResult r = view(path("missing.ply") + " --size 320x200", "window w\n");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("missing.ply"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::exists(path("w.png")));
+  // A script that cannot be run is refused before any window, naming its line.
+  const test::CliResult s = view(path("sphere.xyz"), "view 10 10\nspin 3\n");
+  EXPECT_NE(s.exit_code, 0);
+  EXPECT_EQ(test::line_count(s.err), 1) << s.err;
+  EXPECT_NE(s.err.find("steps.txt:2"), std::string::npos) << s.err;
+}
+
+// What the viewer shows while the camera moves (Camera::reduced): every pixel of the
+// quarter-size frame is the full frame's 4×4 block around the same point of the image, up to
+// the shading's change across the block; hit and miss agree but at the silhouette.
+TEST(ReducedFrame, IsTheFullFrameAtALowerResolution) {
+  test::SampleOptions o;
+  o.count = 3000;
+  const PointCloud cloud = test::sample(test::Sphere{}, o);
+  Stats stats;
+  const PreparedCloud prepared(cloud, RayPssParams::from_h(test::suggested_h(cloud)), Backend::cpu, stats);
+  CameraSettings s;
+  s.width = s.height = 128;
+  const Camera full = Camera::framing(cloud.bounds(), s);
+  const Camera quarter = full.reduced(4);
+  ASSERT_EQ(quarter.width, 32);
+  ASSERT_EQ(quarter.height, 32);
+  EXPECT_EQ(full.reduced(1).width, 128);
+  EXPECT_EQ(Camera(full).reduced(1000).width, 1);
+  const RenderedFrame big = render_cloud(prepared, full, TraceSettings{}, Backend::cpu, stats);
+  const RenderedFrame small = render_cloud(prepared, quarter, TraceSettings{}, Backend::cpu, stats);
+  int agree = 0, interior = 0;
+  double difference = 0;
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 32; ++x) {
+      int hits = 0;
+      vec3 mean(0.0f);
+      for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) {
+          hits += big.hits[std::size_t((4 * y + j) * 128 + 4 * x + i)].found();
+          mean += big.image.at(4 * x + i, 4 * y + j) / 16.0f;
+        }
+      const bool hit = small.hits[std::size_t(y * 32 + x)].found();
+      agree += hit == (hits >= 8);
+      if (hits == 16 && hit) {
+        ++interior;
+        difference += glm::length(small.image.at(x, y) - mean);
+      }
+    }
+  EXPECT_GE(agree, 32 * 32 - 16);  // the silhouette's 4-pixel band decides a few
+  ASSERT_GT(interior, 150);
+  EXPECT_LT(difference / interior, 0.02) << agree;  // linear RGB in [0, 1]
+}
+
+}  // namespace
+}  // namespace pss
