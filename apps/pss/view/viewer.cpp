@@ -105,10 +105,13 @@ class Viewer {
       if (!run_script()) break;
       if (dirty_ && renderer_) {
         request_ = renderer_->request(camera(), settings_);
+        requested_at_ = std::chrono::steady_clock::now();
+        first_shown_ = 0;
         dirty_ = false;
       }
       if (renderer_ && renderer_->poll(shown_)) {
         texture_.upload(shown_.frame.image);
+        report_timing();
         if (!shown_.error.empty() && shown_.error != last_error_) std::fprintf(stderr, "pss view: %s\n", shown_.error.c_str());
         last_error_ = shown_.error;
       }
@@ -224,6 +227,21 @@ class Viewer {
       settings_ = s;
       dirty_ = true;
     }
+  }
+
+  // With --script, how long the current request took to show its first (reduced) frame and
+  // its full-size one, on stdout (bench/ reads it).
+  void report_timing() {
+    if (o_.script.empty() || shown_.request != request_ || !shown_.error.empty()) return;
+    const double since = std::chrono::duration<double>(std::chrono::steady_clock::now() - requested_at_).count();
+    if (first_shown_ == 0) {
+      first_shown_ = shown_.factor;
+      first_seconds_ = since;
+      first_frame_seconds_ = shown_.seconds;
+    }
+    if (shown_.factor == 1)
+      std::printf("view timing: first frame at 1/%d in %.4f s (its render %.4f s), full size in %.4f s (its render %.4f s)\n",
+                  first_shown_, first_seconds_, first_frame_seconds_, since, shown_.seconds);
   }
 
   static void error_text(const std::string& message) {
@@ -434,6 +452,9 @@ class Viewer {
   std::vector<Step> steps_;
   std::size_t next_step_ = 0;
   int status_ = 0;
+  std::chrono::steady_clock::time_point requested_at_;
+  int first_shown_ = 0;
+  double first_seconds_ = 0, first_frame_seconds_ = 0;
   int frames_ = 0;
   bool key_down_[7] = {};
   char path_[1024] = {};
