@@ -31,6 +31,7 @@ std::uint64_t RenderThread::request(const Camera& camera, const ViewSettings& se
   {
     std::lock_guard lock(mutex_);
     id = ++next_id_;
+    cancel_ = true;
     camera_ = camera;
     settings_ = settings;
   }
@@ -64,6 +65,7 @@ void RenderThread::run() {
       wake_.wait(lock, [&] { return stop_ || next_id_ != done; });
       if (stop_) return;
       id = done = next_id_;
+      cancel_ = false;
       camera = camera_;
       settings = settings_;
       full_seconds = full_seconds_;
@@ -74,7 +76,7 @@ void RenderThread::run() {
       p.factor = factor;
       try {
         Stats stats;
-        p.frame = scene_->render(settings, camera.reduced(factor), stats);
+        p.frame = scene_->render(settings, camera.reduced(factor), cancel_, stats);
         p.seconds = frame_seconds(stats);
       } catch (const Error& e) {
         p.error = one_line(e.what());
@@ -82,6 +84,7 @@ void RenderThread::run() {
         p.error = "out of memory";
       }
       std::lock_guard lock(mutex_);
+      if (next_id_ != id && p.error.empty()) break;  // cancelled: its pixels are not all drawn
       if (factor == 1 && p.error.empty()) full_seconds_ = p.seconds;
       const bool refused = !p.error.empty();
       if (refused) {  // keep showing the last image, with its figures
@@ -91,7 +94,7 @@ void RenderThread::run() {
       }
       published_ = std::move(p);
       ++publications_;
-      if (refused || next_id_ != id) break;  // a newer request: its levels instead
+      if (refused) break;
     }
   }
 }

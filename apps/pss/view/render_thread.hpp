@@ -1,9 +1,11 @@
 // The viewer's render thread: renders the latest request at reduced resolution first (so
 // that a frame takes at most ~50 ms while the camera moves), then at twice the resolution,
-// and so on up to the full size; a newer request abandons the levels still to come. The
-// UI thread never waits on it.
+// and so on up to the full size; a newer request cancels the frame in progress (its CPU
+// chunks not yet begun are skipped, core/cancel.hpp) and the levels still to come. The UI
+// thread never waits on it.
 #pragma once
 
+#include <atomic>
 #include <condition_variable>
 #include <cstdint>
 #include <memory>
@@ -58,6 +60,7 @@ class RenderThread {
   mutable std::mutex mutex_;
   std::condition_variable wake_;
   bool stop_ = false;
+  std::atomic<bool> cancel_{false};  // set by a newer request, cleared when it is taken
   std::uint64_t next_id_ = 0;
   Camera camera_;
   ViewSettings settings_;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "pss/core/cancel.hpp"
 #include "pss/core/error.hpp"
 #include "pss/io/point_cloud_file.hpp"
 #include "pss/io/volume_file.hpp"
@@ -33,7 +34,8 @@ class CloudScene : public Scene {
   const SceneInfo& info() const override { return info_; }
   Aabb bounds() const override { return cloud_.bounds(); }
 
-  RenderedFrame render(const ViewSettings& s, const Camera& camera, Stats& stats) override {
+  RenderedFrame render(const ViewSettings& s, const Camera& camera, const std::atomic<bool>& cancel,
+                       Stats& stats) override {
     RayPssParams params = RayPssParams::from_h(s.h);
     params.epsilon = s.epsilon;
     params.max_iterations = s.iterations;
@@ -50,6 +52,7 @@ class CloudScene : public Scene {
     trace.shading = ShadingParams::for_camera(camera);
     trace.shadows = s.shadows;
     trace.reflections = s.reflections;
+    const CancelScope scope(&cancel);
     return render_cloud(*prepared_, camera, trace, s.backend, stats);
   }
 
@@ -81,7 +84,8 @@ class VolumeScene : public Scene {
   const SceneInfo& info() const override { return info_; }
   Aabb bounds() const override { return prepared_->surface_bounds(); }
 
-  RenderedFrame render(const ViewSettings& s, const Camera& camera, Stats& stats) override {
+  RenderedFrame render(const ViewSettings& s, const Camera& camera, const std::atomic<bool>& cancel,
+                       Stats& stats) override {
     if (!(s.volume == prepared_settings_.volume) || s.backend != prepared_settings_.backend) prepare(s, stats);
     prepared_->params.debug_projection = s.debug_projection;
     TraceSettings trace;
@@ -89,6 +93,7 @@ class VolumeScene : public Scene {
     trace.shadows = s.shadows;
     trace.reflections = s.reflections;
     const SceneMirror scene(s.backend, *prepared_);
+    const CancelScope scope(&cancel);
     RenderedFrame frame = render_volume(scene, camera, trace, s.backend, stats);
     if (s.debug_projection) paint_debug_projection(frame);
     return frame;

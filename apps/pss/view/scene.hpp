@@ -4,6 +4,7 @@
 // `pss volume`. Scenes live on the viewer's render thread only.
 #pragma once
 
+#include <atomic>
 #include <memory>
 #include <string>
 #include <vector>
@@ -51,9 +52,11 @@ class Scene {
   virtual const SceneInfo& info() const = 0;
   // The box the default camera frames (its surface, for volumes).
   virtual Aabb bounds() const = 0;
-  // Re-prepares what `settings` changed since the last call, then renders. Throws Error
-  // for a setting out of range, with the scene left as it was.
-  virtual RenderedFrame render(const ViewSettings& settings, const Camera& camera, Stats& stats) = 0;
+  // Re-prepares what `settings` changed since the last call, then renders; once `cancel` is
+  // set the frame is abandoned (its pixels are not all drawn), the preparation never is.
+  // Throws Error for a setting out of range, with the scene left as it was.
+  virtual RenderedFrame render(const ViewSettings& settings, const Camera& camera, const std::atomic<bool>& cancel,
+                               Stats& stats) = 0;
 };
 
 // Reads the file (a volume when it has a volume header or raw flags are given) and prepares
