@@ -66,8 +66,9 @@ TEST_F(Viewer, ScreenshotsAreTheRenderedImagesAtTheSameCamera) {
                                  "camera " + path("a.json") + "\nscreenshot c\n");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string render = "render " + path("sphere.xyz") + " --size 200x150";
-  ASSERT_EQ(test::run_pss(render + " --view 40,-25 -o " + path("ra.png")).exit_code, 0);
+  ASSERT_EQ(test::run_pss(render + " --view 40,-25 -o " + path("ra.png") + " --hits " + path("ra.ply")).exit_code, 0);
   EXPECT_EQ(bytes(path("a.png")), bytes(path("ra.png")));  // the viewer's orbit is --view's
+  EXPECT_EQ(bytes(path("a.ply")), bytes(path("ra.ply")));  // and its hits, --hits
   ASSERT_EQ(test::run_pss(render + " --camera " + path("b.json") + " --reflections --iterations 3 -o " + path("rb.png"))
                 .exit_code, 0);
   EXPECT_EQ(bytes(path("b.png")), bytes(path("rb.png")));

@@ -8,7 +8,8 @@
 //                        shadows, reflections, debug (on|off), iso, threshold, gradient
 //                        (on|off), method (predictor|predictor-corrector)
 //   wait                 until the full-size frame of the current view is drawn
-//   screenshot NAME      wait, then write DIR/NAME.png and DIR/NAME.json (camera, counts)
+//   screenshot NAME      wait, then write DIR/NAME.png, DIR/NAME.json (camera, counts: as
+//                        --stats) and DIR/NAME.ply (the primary hits: as --hits)
 //   window NAME          wait, then write the whole window, panel included, to DIR/NAME.png
 //   quit                 (implied after the last step)
 #pragma once

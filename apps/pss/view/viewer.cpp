@@ -328,11 +328,14 @@ class Viewer {
     }
   }
 
-  // The full-size frame of the current view as PNG and its camera and counts as JSON.
+  // The full-size frame of the current view as PNG, its camera and counts as JSON (what
+  // --stats writes) and its primary hits as PLY (what --hits writes), beside each other.
   void write_screenshot(const std::string& png) {
     const std::filesystem::path json = std::filesystem::path(png).replace_extension(".json");
-    OutputSet outputs({}, {png, json});
+    const std::filesystem::path hits = std::filesystem::path(png).replace_extension(".ply");
+    OutputSet outputs({}, {png, json, hits});
     write_png(png, shown_.frame.image);
+    write_hits_ply(hits, shown_.frame);
     Stats stats;
     record_frame(stats, shown_.frame);
     stats.values()["frame_seconds"] = shown_.seconds;
