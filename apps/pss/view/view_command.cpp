@@ -17,8 +17,13 @@ void add_view_command(CLI::App& app) {
   command->get_option("file")->description(
       "point cloud (.ply, .xyz, .txt, .pts) or volume (.nrrd/.nhdr, .mhd/.mha, .nii/.nii.gz, or raw with --dims and "
       "--type)");
-  command->get_option("--h")->description(
-      "h: for a volume in voxels (default 2); for a point cloud in its units (default: from the spacing)");
+  // --h means a cloud's own units too: the volume bound (at least 0.5 voxels) is checked
+  // when a volume opens (VolumeSettings), here only that it is a positive number.
+  CLI::Option* h = command->get_option("--h");
+  h->get_validator(0)->active(false);
+  h->check(finite_positive());
+  h->description("h: for a volume in voxels (default 2, at least 0.5); for a point cloud in its units (default: from "
+                 "the spacing)");
   auto* size = command->add_option_function<std::string>(
       "--size",
       [o](const std::string& text) {
