@@ -37,14 +37,16 @@ class CloudScene : public Scene {
   RenderedFrame render(const ViewSettings& s, const Camera& camera, const std::atomic<bool>& cancel,
                        Stats& stats) override {
     RayPssParams params = RayPssParams::from_h(s.h);
+    if (s.rho != 0) params.projection.rho = s.rho;
     params.epsilon = s.epsilon;
     params.max_iterations = s.iterations;
     params.secondary = s.secondary_full ? SecondaryMode::full : SecondaryMode::paper;
     validate(params);
-    if (!prepared_ || s.h != prepared_h_ || s.backend != prepared_backend_) {
+    if (!prepared_ || s.h != prepared_h_ || s.rho != prepared_rho_ || s.backend != prepared_backend_) {
       prepared_.reset();
       prepared_ = std::make_unique<PreparedCloud>(cloud_, params, s.backend, stats);
       prepared_h_ = s.h;
+      prepared_rho_ = s.rho;
       prepared_backend_ = s.backend;
     }
     prepared_->set_search(params);
@@ -61,7 +63,7 @@ class CloudScene : public Scene {
   PointCloud cloud_;
   SceneInfo info_;
   std::unique_ptr<PreparedCloud> prepared_;
-  float prepared_h_ = 0;
+  float prepared_h_ = 0, prepared_rho_ = 0;
   Backend prepared_backend_ = Backend::cpu;
 };
 

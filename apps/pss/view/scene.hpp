@@ -27,6 +27,7 @@ struct ViewSettings {
   Backend backend = Backend::cpu;
   // Point clouds (0: the defaults of `pss render`).
   float h = 0;
+  float rho = 0;  // the projection's range-query radius (0: 2h)
   float epsilon = 0;
   int iterations = 2;
   bool secondary_full = true;

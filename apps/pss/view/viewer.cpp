@@ -54,6 +54,7 @@ void set_value(ViewSettings& v, const Step& s, const std::string& script) {
   const std::string& name = s.args[0];
   const std::string& value = s.args[1];
   if (name == "h") v.h = number_of(s, 1, script);
+  else if (name == "rho") v.rho = number_of(s, 1, script);
   else if (name == "epsilon") v.epsilon = number_of(s, 1, script);
   else if (name == "iterations") v.iterations = int(number_of(s, 1, script));
   else if (name == "secondary") v.secondary_full = value != "paper";
@@ -263,6 +264,7 @@ class Viewer {
 
   void cloud_panel(ViewSettings& s) {
     ImGui::InputFloat("h", &s.h, 0, 0, "%.6g", ImGuiInputTextFlags_EnterReturnsTrue);
+    ImGui::InputFloat("rho (0: 2h)", &s.rho, 0, 0, "%.6g", ImGuiInputTextFlags_EnterReturnsTrue);
     ImGui::InputFloat("epsilon", &s.epsilon, 0, 0, "%.3g", ImGuiInputTextFlags_EnterReturnsTrue);
     ImGui::SliderInt("iterations", &s.iterations, 1, 8);
     int secondary = s.secondary_full ? 0 : 1;
