@@ -133,6 +133,14 @@ TEST_F(CameraFile, BadCameraFlagsFailCleanly) {
   expect_clean_failure(render + " --camera " + path("camera.json") + " --view 10,10", "--view", path("out.png"));
   expect_clean_failure(render + " --camera " + path("camera.json") + " --stats " + path("camera.json"), "camera.json",
                        path("out.png"));
+  expect_clean_failure(render + " --camera " + path("camera.json") + " --zoom 2", "--zoom", path("out.png"));
+  expect_clean_failure(render + " --look-at 1,2", "--look-at", path("out.png"));
+  expect_clean_failure(render + " --look-at 1,2,nan", "--look-at", path("out.png"));
+  expect_clean_failure(render + " --up 0,0,0", "--up", path("out.png"));
+  expect_clean_failure(render + " --up 0,0,1 --view 0,90", "--up", path("out.png"));
+  expect_clean_failure(render + " --distance -1", "--distance", path("out.png"));
+  expect_clean_failure(render + " --zoom 0", "--zoom", path("out.png"));
+  expect_clean_failure(render + " --roll inf", "--roll", path("out.png"));
 }
 
 }  // namespace

@@ -94,5 +94,63 @@ TEST(Camera, DegenerateBoxIsFramedAsAUnitSphere) {
   EXPECT_GT(glm::length(c.eye - vec3(1, 2, 3)), 1.0f);
 }
 
+// --look-at, --distance and --zoom: the eye at the distance over the zoom from the point,
+// looking at it; with a distance given, --fov changes the view's width, not the eye.
+TEST(Camera, LooksAtAPointFromADistance) {
+  CameraSettings s;
+  s.has_look_at = true;
+  s.look_at = vec3(5, -2, 1);
+  s.distance = 8;
+  s.zoom = 2;
+  s.azimuth_deg = 30;
+  s.elevation_deg = 20;
+  const Camera c = Camera::framing(box(), s);
+  EXPECT_NEAR(glm::length(c.eye - s.look_at), 4.0f, 1e-5f);
+  EXPECT_NEAR(glm::dot(glm::normalize(s.look_at - c.eye), c.forward), 1.0f, 1e-6f);
+  const vec2 centre = project(c, s.look_at);
+  EXPECT_NEAR(centre.x, 256.0f, 1e-2f);
+  EXPECT_NEAR(centre.y, 256.0f, 1e-2f);
+  s.fov_deg = 10;
+  const Camera narrow = Camera::framing(box(), s);
+  EXPECT_EQ(narrow.eye, c.eye);
+  EXPECT_LT(narrow.tan_half_fov, c.tan_half_fov);
+}
+
+// --up z (scans often stand on z): elevation rises along z, azimuth 0 looks from −y, and the
+// image's up is z's part across the view.
+TEST(Camera, OrbitsAboutAnotherUp) {
+  CameraSettings s;
+  s.up = vec3(0, 0, 2);  // any length
+  const vec3 center = box().center();
+  const Camera front = Camera::framing(box(), s);
+  const vec3 toward_eye = glm::normalize(front.eye - center);
+  EXPECT_NEAR(glm::dot(toward_eye, vec3(0, -1, 0)), 1.0f, 1e-6f);
+  EXPECT_NEAR(glm::dot(front.up, vec3(0, 0, 1)), 1.0f, 1e-6f);
+  EXPECT_NEAR(glm::dot(glm::cross(front.right, front.up), -front.forward), 1.0f, 1e-6f);  // right-handed
+  s.elevation_deg = 60;
+  const Camera high = Camera::framing(box(), s);
+  EXPECT_NEAR(glm::dot(glm::normalize(high.eye - center), vec3(0, 0, 1)), std::sin(60.0f * 3.14159265f / 180), 1e-5f);
+  s.elevation_deg = 0;
+  s.azimuth_deg = 90;  // a quarter turn about z, toward +x as for y up
+  const Camera side = Camera::framing(box(), s);
+  EXPECT_NEAR(glm::dot(glm::normalize(side.eye - center), vec3(1, 0, 0)), 1.0f, 1e-6f);
+}
+
+// --roll 90: what lay to the right of the centre of the picture lies below it.
+TEST(Camera, RollTurnsThePictureClockwise) {
+  CameraSettings s;
+  const Camera plain = Camera::framing(box(), s);
+  s.roll_deg = 90;
+  const Camera rolled = Camera::framing(box(), s);
+  EXPECT_EQ(rolled.eye, plain.eye);
+  EXPECT_EQ(rolled.forward, plain.forward);
+  const vec3 right_of_centre = box().center() + 0.5f * plain.right;
+  const vec2 before = project(plain, right_of_centre), after = project(rolled, right_of_centre);
+  EXPECT_GT(before.x, 260.0f);
+  EXPECT_NEAR(before.y, 256.0f, 1e-2f);
+  EXPECT_NEAR(after.x, 256.0f, 1e-2f);
+  EXPECT_GT(after.y, 260.0f);  // rows grow downward
+}
+
 }  // namespace
 }  // namespace pss

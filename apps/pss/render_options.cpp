@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "numbers.hpp"
+#include "pss/core/error.hpp"
 #include "pss/core/text.hpp"
 #include "pss/render/camera_file.hpp"
 #include "pss/render/frame_outputs.hpp"
@@ -41,6 +42,29 @@ std::string check_size(const std::string& text) {
   if (static_cast<long long>(wh->first) * wh->second > kMaxPixels)
     return "at most " + std::to_string(kMaxPixels) + " pixels in all, e.g. 8192x8192 (got " + quote(text) + ")";
   return {};
+}
+
+// "X,Y,Z" as three finite numbers, the whole text consumed.
+std::optional<vec3> parse_triple(const std::string& text) {
+  const auto first = text.find(',');
+  if (first == std::string::npos) return std::nullopt;
+  const auto yz = parse_pair<float>(text.substr(first + 1), ',');
+  const auto x = parse_pair<float>(text.substr(0, first) + ",0", ',');
+  if (!x || !yz || !std::isfinite(x->first) || !std::isfinite(yz->first) || !std::isfinite(yz->second)) return std::nullopt;
+  const vec3 v(x->first, yz->first, yz->second);
+  if (!(glm::length(v) < 1e30f)) return std::nullopt;
+  return v;
+}
+
+CLI::Validator triple(bool nonzero) {
+  return CLI::Validator(
+      [nonzero](std::string& text) -> std::string {
+        const auto v = parse_triple(text);
+        if (!v) return "expected X,Y,Z, three finite numbers (got " + quote(text) + ")";
+        if (nonzero && !(glm::length(*v) > 0)) return "expected a non-zero direction X,Y,Z (got " + quote(text) + ")";
+        return {};
+      },
+      "X,Y,Z", "triple");
 }
 
 std::string check_view(const std::string& text) {
@@ -81,11 +105,34 @@ void add_render_options(CLI::App& command, RenderOptions& o) {
   auto* fov = command.add_option("--fov", o.camera.fov_deg, "vertical field of view in degrees")
                   ->check(finite_range(1, 170))
                   ->capture_default_str();
-  command.add_option("--camera", o.camera_file,
-                     "the camera of a JSON file: the \"camera\" that --stats writes (a --stats file loads as it is), "
-                     "instead of --view and --fov")
-      ->excludes(view)
-      ->excludes(fov);
+  auto* look_at = command
+                      .add_option_function<std::string>(
+                          "--look-at",
+                          [&o](const std::string& text) {
+                            o.camera.has_look_at = true;
+                            o.camera.look_at = *parse_triple(text);
+                          },
+                          "the point the camera orbits and looks at (default: the centre of the object's box)")
+                      ->check(triple(false));
+  auto* up = command
+                 .add_option_function<std::string>(
+                     "--up", [&o](const std::string& text) { o.camera.up = *parse_triple(text); },
+                     "the world's up direction, which --view's elevation is measured from (default 0,1,0)")
+                 ->check(triple(true));
+  auto* distance = command.add_option("--distance", o.camera.distance,
+                                      "the eye's distance from the look-at point (default: the object fills the view; "
+                                      "given, --fov zooms)")
+                       ->check(finite_positive());
+  auto* zoom = command.add_option("--zoom", o.camera.zoom, "divides the eye's distance: 2 comes twice as close")
+                   ->check(finite_range(1e-3, 1e3))
+                   ->capture_default_str();
+  auto* roll = command.add_option("--roll", o.camera.roll_deg, "turns the camera about the view direction, degrees counter-clockwise (the picture turns clockwise)")
+                   ->check(finite_range(-360, 360))
+                   ->capture_default_str();
+  auto* camera = command.add_option("--camera", o.camera_file,
+                                    "the camera of a JSON file: the \"camera\" that --stats writes (a --stats file "
+                                    "loads as it is), instead of the flags that place the camera");
+  for (CLI::Option* placing : {view, fov, look_at, up, distance, zoom, roll}) camera->excludes(placing);
   command.add_option("--hits", o.hits_path,
                      "write the primary hits as binary PLY: x y z nx ny nz and the pixel's px py");
   command.add_option("--frames", o.frames,
@@ -101,7 +148,15 @@ void add_render_options(CLI::App& command, RenderOptions& o) {
 }
 
 Camera make_camera(const RenderOptions& o, const Aabb& bounds) {
-  if (o.camera_file.empty()) return Camera::framing(bounds, o.camera);
+  if (o.camera_file.empty()) {
+    // The flags are each valid; together the view direction must not lie along --up.
+    const vec3 up = glm::normalize(o.camera.up);
+    const Camera c = Camera::framing(bounds, o.camera);
+    if (std::abs(glm::dot(c.forward, up)) > 0.9999f && o.camera.up != vec3(0, 1, 0))
+      throw pss::Error("--up " + format_number(o.camera.up.x) + "," + format_number(o.camera.up.y) + "," +
+                  format_number(o.camera.up.z) + " lies along the view direction: choose another --view or --up");
+    return c;
+  }
   return read_camera_file(o.camera_file, o.camera.width, o.camera.height);
 }
 
@@ -142,9 +197,11 @@ void record_render_stats(Stats& stats, const RenderOptions& options, const Rende
   v["frame_seconds"] = frame_s;
   v["fps"] = 1.0 / frame_s;
   // record_frame wrote the camera itself and the image size; these are the flags behind it.
+  const CameraSettings& c = options.camera;
   if (options.camera_file.empty())
-    v["view"] = {{"fov_deg", options.camera.fov_deg}, {"azimuth_deg", options.camera.azimuth_deg},
-                 {"elevation_deg", options.camera.elevation_deg}};
+    v["view"] = {{"fov_deg", c.fov_deg}, {"azimuth_deg", c.azimuth_deg}, {"elevation_deg", c.elevation_deg},
+                 {"up", {c.up.x, c.up.y, c.up.z}}, {"distance", c.distance}, {"zoom", c.zoom}, {"roll_deg", c.roll_deg}};
+  if (options.camera_file.empty() && c.has_look_at) v["view"]["look_at"] = {c.look_at.x, c.look_at.y, c.look_at.z};
   else
     v["camera_file"] = options.camera_file;
   v["shading"] = {{"shadows", settings.shadows}, {"reflections", settings.reflections},

@@ -5,6 +5,8 @@
 // - the eye orbits that centre: azimuth 0, elevation 0 puts it on +z looking along −z;
 //   positive azimuth turns it toward +x, positive elevation raises it toward +y; y is up;
 // - --fov is the vertical field of view in degrees.
+// --look-at, --up, --distance, --zoom and --roll move the eye from there (CameraSettings);
+// with another up u, azimuth 0 looks from +z's part across u (from −y's when u is near ±z).
 #pragma once
 
 #include "pss/core/types.hpp"
@@ -17,6 +19,14 @@ struct CameraSettings {
   float azimuth_deg = 0;
   float elevation_deg = 0;  // in [−90, 90]
   float fov_deg = 35;       // vertical, in (0, 180)
+  // Beyond the default view (each left at its default keeps it):
+  bool has_look_at = false;
+  vec3 look_at{0.0f};    // the point orbited and looked at, instead of the box's centre
+  vec3 up{0, 1, 0};      // the world's up: elevation is measured from the plane across it
+  float distance = 0;    // of the eye from look_at (0: what frames the box at fov_deg)
+  float zoom = 1;        // the distance divided by this
+  float roll_deg = 0;    // the camera turned about the view direction, counter-clockwise as
+                         // seen from behind it (the picture turns clockwise)
 };
 
 struct Camera {
