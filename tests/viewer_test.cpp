@@ -41,13 +41,16 @@ class Viewer : public test::CliTest {
   PointCloud cloud_;
 
   // `pss view ARGS --script (steps) --screenshot-dir (the test's folder)` in a virtual X
-  // display. Mesa's and X11's own allocations outlive the process, so leak reports are off
-  // for it alone (the sanitized suite exports ASAN_OPTIONS).
+  // display, looked for from a number of this process's own (tests run side by side, and
+  // xvfb-run -a's search for a free one races). Mesa's and X11's own allocations outlive
+  // the process, so leak reports are off for it alone (the sanitized suite exports
+  // ASAN_OPTIONS).
   test::CliResult view(const std::string& args, const std::string& steps) {
     write("steps.txt", steps);
     const std::string asan = std::getenv("ASAN_OPTIONS") ? std::getenv("ASAN_OPTIONS") : "";
     const std::string command = "env ASAN_OPTIONS=" + asan + (asan.empty() ? "" : ":") +
-                                "detect_leaks=0 xvfb-run -a -s '-screen 0 1024x768x24' " + PSS_CLI + " view " + args +
+                                "detect_leaks=0 xvfb-run -a -n " + std::to_string(100 + ::getpid() % 800) +
+                                " -s '-screen 0 1024x768x24' " + PSS_CLI + " view " + args +
                                 " --script " + path("steps.txt") + " --screenshot-dir " + dir_.string();
     return run_shell(command);
   }
@@ -132,8 +135,11 @@ TEST_F(Viewer, AnUnreadableFileOpensTheWindowWithItsMessage) {
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("missing.ply"), std::string::npos) << r.err;
   EXPECT_TRUE(fs::exists(path("w.png")));
-  // A script that cannot be run is refused before any window, naming its line.
-  const test::CliResult s = view(path("sphere.xyz"), "view 10 10\nspin 3\n");
+  // A script that cannot be run is refused before any window opens (here there is no
+  // display at all), naming its line.
+  write("steps.txt", "view 10 10\nspin 3\n");
+  const test::CliResult s = run_shell("env -u DISPLAY " + std::string(PSS_CLI) + " view " + path("sphere.xyz") +
+                                      " --script " + path("steps.txt"));
   EXPECT_NE(s.exit_code, 0);
   EXPECT_EQ(test::line_count(s.err), 1) << s.err;
   EXPECT_NE(s.err.find("steps.txt:2"), std::string::npos) << s.err;

@@ -89,9 +89,10 @@ struct FrameTexture {
 
 class Viewer {
  public:
-  Viewer(const ViewerOptions& o, GLFWwindow* window) : o_(o), window_(window), settings_(o.settings), orbit_(o.orbit) {
-    if (!o.camera_file.empty()) fixed_camera_ = read_camera_file(o.camera_file, o.width, o.height);
-    if (!o.script.empty()) steps_ = read_script(o.script);
+  // The script and the camera file are read first (run_viewer), so that a bad one is refused
+  // before any window opens.
+  Viewer(const ViewerOptions& o, GLFWwindow* window, std::vector<Step> steps, std::optional<Camera> camera)
+      : o_(o), window_(window), settings_(o.settings), orbit_(o.orbit), fixed_camera_(camera), steps_(std::move(steps)) {
     open(o.file.input);
   }
 
@@ -470,6 +471,15 @@ class Viewer {
 }  // namespace
 
 int run_viewer(const ViewerOptions& options) {
+  std::vector<Step> steps;
+  std::optional<Camera> camera;
+  try {
+    if (!options.script.empty()) steps = read_script(options.script);
+    if (!options.camera_file.empty()) camera = read_camera_file(options.camera_file, options.width, options.height);
+  } catch (const Error& e) {
+    std::fprintf(stderr, "pss view: error: %s\n", one_line(e.what()).c_str());
+    return 1;
+  }
   glfwSetErrorCallback([](int, const char* message) { std::fprintf(stderr, "pss view: GLFW: %s\n", message); });
   if (!glfwInit()) {
     std::fprintf(stderr, "pss view: error: cannot open a window (no display? set DISPLAY, or run under xvfb-run)\n");
@@ -495,7 +505,7 @@ int run_viewer(const ViewerOptions& options) {
   ImGui_ImplOpenGL3_Init("#version 330");
   int status = 1;
   try {
-    Viewer viewer(options, window);
+    Viewer viewer(options, window, std::move(steps), camera);
     status = viewer.loop();
   } catch (const Error& e) {
     std::fprintf(stderr, "pss view: error: %s\n", one_line(e.what()).c_str());
