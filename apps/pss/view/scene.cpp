@@ -19,7 +19,7 @@ constexpr int kHistogramBins = 64;
 
 class CloudScene : public Scene {
  public:
-  CloudScene(const std::string& path, ViewSettings& settings) : path_(path) {
+  CloudScene(const std::string& path, ViewSettings& settings) {
     cloud_ = read_point_cloud(path);
     if (cloud_.size() == 0) throw file_error(path, "has no points");
     try {
@@ -59,7 +59,6 @@ class CloudScene : public Scene {
   }
 
  private:
-  std::string path_;
   PointCloud cloud_;
   SceneInfo info_;
   std::unique_ptr<PreparedCloud> prepared_;
@@ -69,7 +68,7 @@ class CloudScene : public Scene {
 
 class VolumeScene : public Scene {
  public:
-  VolumeScene(const VolumeOptions& o, ViewSettings& settings) : path_(o.input) {
+  VolumeScene(const VolumeOptions& o, ViewSettings& settings) {
     volume_ = read_volume(o.input, raw_volume_format(o.raw));
     const ValueStats values = value_stats(volume_.values);
     info_.is_volume = true;
@@ -81,7 +80,8 @@ class VolumeScene : public Scene {
     for (std::int64_t c : h.counts) info_.histogram.push_back(std::log1p(float(c)));
     // Without --iso or --gradient, the middle of the data's range.
     if (o.iso_option->count() == 0 && !settings.volume.gradient) settings.volume.iso = 0.5f * (values.min + values.max);
-    prepare(settings, stats_);
+    Stats stats;
+    prepare(settings, stats);
   }
   const SceneInfo& info() const override { return info_; }
   Aabb bounds() const override { return prepared_->surface_bounds(); }
@@ -108,12 +108,10 @@ class VolumeScene : public Scene {
     prepared_settings_ = s;
   }
 
-  std::string path_;
   Volume volume_;
   SceneInfo info_;
   std::unique_ptr<PreparedVolume> prepared_;
   ViewSettings prepared_settings_;
-  Stats stats_;
 };
 
 }  // namespace

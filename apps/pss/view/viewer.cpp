@@ -103,6 +103,12 @@ class Viewer {
       ImGui_ImplGlfw_NewFrame();
       ImGui::NewFrame();
       handle_input();
+      int w = 0, h = 0;
+      glfwGetFramebufferSize(window_, &w, &h);
+      if (w != framebuffer_.x || h != framebuffer_.y) {  // a resized window: frames of its size
+        framebuffer_ = glm::ivec2(w, h);
+        dirty_ = true;
+      }
       panel();
       if (!run_script()) break;
       if (dirty_ && renderer_) {
@@ -458,6 +464,7 @@ class Viewer {
   std::vector<Step> steps_;
   std::size_t next_step_ = 0;
   int status_ = 0;
+  glm::ivec2 framebuffer_{0};
   std::chrono::steady_clock::time_point requested_at_;
   int first_shown_ = 0;
   double first_seconds_ = 0, first_frame_seconds_ = 0;
