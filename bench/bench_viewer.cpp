@@ -67,7 +67,7 @@ int main(int argc, char** argv) {
   json rows = json::array();
   for (const Case& c : cases) {
     const fs::path out = scratch / "out.txt";
-    const std::string command = "xvfb-run -a -s '-screen 0 2048x2048x24' " + std::string(PSS_CLI) + " view " + c.args +
+    const std::string command = "timeout 900 xvfb-run -a -s '-screen 0 2048x2048x24' " + std::string(PSS_CLI) + " view " + c.args +
                                 " --size " + size + " --backend " + backend + " --script " +
                                 (scratch / "turns.txt").string() + " --screenshot-dir " + scratch.string() + " >" +
                                 out.string() + " 2>&1";

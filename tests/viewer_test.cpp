@@ -1,8 +1,8 @@
-// `pss view` (issue 11) run headless under Xvfb with Mesa: its full-size screenshots are the
+// `pss view` (issue 11) run headless on Xvfb with Mesa: its full-size screenshots are the
 // batch commands' images at the same camera, byte for byte; the camera file round-trips; a
 // value out of range or an unreadable file shows a message and does not end the viewer. The
 // reduced frames it shows while the camera moves are the full frame at a lower resolution.
-// The window tests skip in builds without the viewer or on machines without xvfb-run.
+// The window tests skip in builds without the viewer or on machines without Xvfb.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -25,12 +25,48 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// A virtual X display (Xvfb with Mesa) for the window tests. Xvfb picks a free display and
+// writes its number once it accepts clients (-displayfd): xvfb-run instead waits for a
+// signal that can come before it waits, and then hangs.
+class VirtualDisplay {
+ public:
+  VirtualDisplay() {
+    dir_ = fs::temp_directory_path() / ("pss-xvfb-" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+    const std::string start = "Xvfb -displayfd 3 -screen 0 1024x768x24 -nolisten tcp 3>" + (dir_ / "display").string() +
+                              " 2>" + (dir_ / "log").string() + " & echo $! >" + (dir_ / "pid").string();
+    if (std::system("command -v Xvfb >/dev/null 2>&1") != 0 || std::system(start.c_str()) != 0) return;
+    for (int tries = 0; tries < 200 && number_.empty(); ++tries) {  // up to 20 s
+      std::ifstream in(dir_ / "display");
+      std::string n;
+      if (std::getline(in, n) && !n.empty()) number_ = n;
+      else ::usleep(100000);
+    }
+  }
+  ~VirtualDisplay() {
+    std::ifstream pid(dir_ / "pid");
+    std::string p;
+    if (std::getline(pid, p) && !p.empty()) std::system(("kill " + p + " 2>/dev/null").c_str());
+    fs::remove_all(dir_);
+  }
+  const std::string& number() const { return number_; }  // empty: none
+
+ private:
+  fs::path dir_;
+  std::string number_;
+};
+
 class Viewer : public test::CliTest {
  protected:
+  static void SetUpTestSuite() { display_ = new VirtualDisplay; }
+  static void TearDownTestSuite() {
+    delete display_;
+    display_ = nullptr;
+  }
   void SetUp() override {
     test::CliTest::SetUp();
     if (!PSS_HAVE_VIEWER) GTEST_SKIP() << "this build has no viewer (GLFW or Dear ImGui missing)";
-    if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed";
+    if (display_->number().empty()) GTEST_SKIP() << "no virtual display: Xvfb is not installed or did not start";
     test::SampleOptions o;
     o.count = 3000;
     cloud_ = test::sample(test::Sphere{}, o);
@@ -39,18 +75,17 @@ class Viewer : public test::CliTest {
     for (const vec3& p : cloud_.positions) xyz << p.x << ' ' << p.y << ' ' << p.z << '\n';
   }
   PointCloud cloud_;
+  static VirtualDisplay* display_;
 
-  // `pss view ARGS --script (steps) --screenshot-dir (the test's folder)` in a virtual X
-  // display, looked for from a number of this process's own (tests run side by side, and
-  // xvfb-run -a's search for a free one races). Mesa's and X11's own allocations outlive
+  // `pss view ARGS --script (steps) --screenshot-dir (the test's folder)` on the virtual
+  // display, stopped after two minutes if it hangs. Mesa's and X11's own allocations outlive
   // the process, so leak reports are off for it alone (the sanitized suite exports
   // ASAN_OPTIONS).
   test::CliResult view(const std::string& args, const std::string& steps) {
     write("steps.txt", steps);
     const std::string asan = std::getenv("ASAN_OPTIONS") ? std::getenv("ASAN_OPTIONS") : "";
-    const std::string command = "env ASAN_OPTIONS=" + asan + (asan.empty() ? "" : ":") +
-                                "detect_leaks=0 xvfb-run -a -n " + std::to_string(100 + ::getpid() % 800) +
-                                " -s '-screen 0 1024x768x24' " + PSS_CLI + " view " + args +
+    const std::string command = "env DISPLAY=:" + display_->number() + " ASAN_OPTIONS=" + asan +
+                                (asan.empty() ? "" : ":") + "detect_leaks=0 timeout 120 " + PSS_CLI + " view " + args +
                                 " --script " + path("steps.txt") + " --screenshot-dir " + dir_.string();
     return run_shell(command);
   }
@@ -64,6 +99,8 @@ class Viewer : public test::CliTest {
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
   }
 };
+
+VirtualDisplay* Viewer::display_ = nullptr;
 
 TEST_F(Viewer, ScreenshotsAreTheRenderedImagesAtTheSameCamera) {
   const test::CliResult r = view(path("sphere.xyz") + " --size 200x150",

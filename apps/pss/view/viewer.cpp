@@ -371,7 +371,7 @@ class Viewer {
       pending_shot_.clear();
     }
     if (o_.script.empty()) return true;
-    if (dirty_) return true;  // the last step's request goes out first
+    if (dirty_ && renderer_) return true;  // the last step's request goes out first
     if (frames_ < 3) return true;  // ImGui lays a window out over its first frames
     if (next_step_ == steps_.size()) return false;
     const Step& s = steps_[next_step_];
