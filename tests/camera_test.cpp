@@ -150,6 +150,11 @@ TEST(Camera, RollTurnsThePictureClockwise) {
   EXPECT_NEAR(before.y, 256.0f, 1e-2f);
   EXPECT_NEAR(after.x, 256.0f, 1e-2f);
   EXPECT_GT(after.y, 260.0f);  // rows grow downward
+  // ... and what lay above it lies to its right: a turn, not a mirror.
+  const vec2 above = project(rolled, box().center() + 0.5f * plain.up);
+  EXPECT_GT(above.x, 260.0f);
+  EXPECT_NEAR(above.y, 256.0f, 1e-2f);
+  EXPECT_NEAR(glm::dot(glm::cross(rolled.right, rolled.up), -rolled.forward), 1.0f, 1e-6f);
 }
 
 }  // namespace
