@@ -21,13 +21,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class CameraFile : public test::CliTest {
- protected:
-  std::string bytes_of(const std::string& file) const {
-    std::ifstream in(file, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  }
-};
+using CameraFile = test::CliTest;
 
 TEST_F(CameraFile, ACameraPssWroteLoadsBitForBit) {
   for (const auto& [az, el] : {std::pair{0.0f, 0.0f}, {30.0f, 20.0f}, {-123.4f, 89.0f}, {200.0f, -90.0f}}) {
@@ -101,27 +95,19 @@ TEST_F(CameraFile, RenderAcceptsItsOwnStatsAsTheCamera) {
   ASSERT_EQ(test::run_pss(common + " --view 40,-25 --fov 50 -o " + path("a.png") + " --stats " + path("a.json")).exit_code, 0);
   const test::CliResult r = test::run_pss(common + " --camera " + path("a.json") + " -o " + path("b.png"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(bytes_of(path("a.png")), bytes_of(path("b.png")));
+  EXPECT_EQ(read(path("a.png")), read(path("b.png")));
   // And not merely the default view: without the camera the image differs.
   ASSERT_EQ(test::run_pss(common + " -o " + path("c.png")).exit_code, 0);
-  EXPECT_NE(bytes_of(path("a.png")), bytes_of(path("c.png")));
+  EXPECT_NE(read(path("a.png")), read(path("c.png")));
 }
 
 TEST_F(CameraFile, VolumeAcceptsItsOwnStatsAsTheCamera) {
-  test::SampleVolumeOptions o;
-  o.dims = ivec3(32);
-  o.quantize = true;
-  o.scale = -40;
-  o.offset = 100;
-  const Volume v = test::sample_volume(test::sphere_distance(vec3(15.0f, 16.0f, 14.0f), 8.0f), o);
-  std::ofstream raw(path("ball.raw"), std::ios::binary);
-  for (float x : v.values) raw.put(char(std::uint8_t(x)));
-  raw.close();
+  write("ball.raw", test::uint8_raw_bytes(test::sphere_distance(vec3(15.0f, 16.0f, 14.0f), 8.0f), ivec3(32)));
   const std::string common = "volume " + path("ball.raw") + " --dims 32x32x32 --type uint8 --iso 100 --size 40x30";
   ASSERT_EQ(test::run_pss(common + " --view 30,20 -o " + path("a.png") + " --stats " + path("a.json")).exit_code, 0);
   const test::CliResult r = test::run_pss(common + " --camera " + path("a.json") + " -o " + path("b.png"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(bytes_of(path("a.png")), bytes_of(path("b.png")));
+  EXPECT_EQ(read(path("a.png")), read(path("b.png")));
 }
 
 TEST_F(CameraFile, BadCameraFlagsFailCleanly) {

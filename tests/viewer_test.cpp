@@ -92,11 +92,7 @@ class Viewer : public test::CliTest {
   test::CliResult run_shell(const std::string& command) {
     const std::string out = path("out.txt"), err = path("err.txt");
     const int status = std::system((command + " >" + out + " 2>" + err).c_str());
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, bytes(out), bytes(err)};
-  }
-  std::string bytes(const std::string& file) const {
-    std::ifstream in(file, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read(out), read(err)};
   }
 };
 
@@ -110,17 +106,17 @@ TEST_F(Viewer, ScreenshotsAreTheRenderedImagesAtTheSameCamera) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string render = "render " + path("sphere.xyz") + " --size 200x150";
   ASSERT_EQ(test::run_pss(render + " --view 40,-25 -o " + path("ra.png") + " --hits " + path("ra.ply")).exit_code, 0);
-  EXPECT_EQ(bytes(path("a.png")), bytes(path("ra.png")));  // the viewer's orbit is --view's
-  EXPECT_EQ(bytes(path("a.ply")), bytes(path("ra.ply")));  // and its hits, --hits
+  EXPECT_EQ(read(path("a.png")), read(path("ra.png")));  // the viewer's orbit is --view's
+  EXPECT_EQ(read(path("a.ply")), read(path("ra.ply")));  // and its hits, --hits
   ASSERT_EQ(test::run_pss(render + " --camera " + path("b.json") + " --reflections --iterations 3 -o " + path("rb.png"))
                 .exit_code, 0);
-  EXPECT_EQ(bytes(path("b.png")), bytes(path("rb.png")));
-  EXPECT_NE(bytes(path("a.png")), bytes(path("b.png")));
+  EXPECT_EQ(read(path("b.png")), read(path("rb.png")));
+  EXPECT_NE(read(path("a.png")), read(path("b.png")));
   // The camera file round-trips: loaded back, the view of a, with b's settings.
   ASSERT_EQ(test::run_pss(render + " --camera " + path("a.json") + " --reflections --iterations 3 -o " + path("rc.png"))
                 .exit_code, 0);
-  EXPECT_EQ(bytes(path("c.png")), bytes(path("rc.png")));
-  const auto camera_of = [&](const char* f) { return nlohmann::json::parse(bytes(path(f)))["camera"]; };
+  EXPECT_EQ(read(path("c.png")), read(path("rc.png")));
+  const auto camera_of = [&](const char* f) { return nlohmann::json::parse(read(path(f)))["camera"]; };
   EXPECT_EQ(camera_of("a.json"), camera_of("c.json"));
   // Zoom 1.7 brings the eye 1.7 times closer to the centre of the framed box, and the pan
   // moves it by (0.05, 0.02) of the framing distance along right and up.
@@ -135,26 +131,18 @@ TEST_F(Viewer, ScreenshotsAreTheRenderedImagesAtTheSameCamera) {
 }
 
 TEST_F(Viewer, VolumeScreenshotsAreThoseOfPssVolume) {
-  test::SampleVolumeOptions o;
-  o.dims = ivec3(32);
-  o.quantize = true;
-  o.scale = -40;
-  o.offset = 100;
-  const Volume v = test::sample_volume(test::sphere_distance(vec3(15.0f, 16.0f, 14.0f), 8.0f), o);
-  std::ofstream raw(path("ball.raw"), std::ios::binary);
-  for (float x : v.values) raw.put(char(std::uint8_t(x)));
-  raw.close();
+  write("ball.raw", test::uint8_raw_bytes(test::sphere_distance(vec3(15.0f, 16.0f, 14.0f), 8.0f), ivec3(32)));
   const std::string volume = path("ball.raw") + " --dims 32x32x32 --type uint8";
   const test::CliResult r = view(volume + " --iso 100 --size 160x120", "view 30 20\nset iso 90\nscreenshot a\n");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   ASSERT_EQ(test::run_pss("volume " + volume + " --iso 90 --size 160x120 --camera " + path("a.json") + " -o " +
                           path("ra.png")).exit_code, 0);
-  EXPECT_EQ(bytes(path("a.png")), bytes(path("ra.png")));
+  EXPECT_EQ(read(path("a.png")), read(path("ra.png")));
   // An iso-value outside the data: its message, and the last surface stays on screen.
   const test::CliResult bad = view(volume + " --iso 100 --size 160x120", "screenshot b\nset iso 1e9\nscreenshot c\n");
   EXPECT_EQ(bad.exit_code, 0) << bad.err;
   EXPECT_NE(bad.err.find("lies outside the volume's values"), std::string::npos) << bad.err;
-  EXPECT_EQ(bytes(path("b.png")), bytes(path("c.png")));
+  EXPECT_EQ(read(path("b.png")), read(path("c.png")));
 }
 
 TEST_F(Viewer, AValueOutOfRangeShowsItsMessageAndTheViewerGoesOn) {
@@ -162,9 +150,9 @@ TEST_F(Viewer, AValueOutOfRangeShowsItsMessageAndTheViewerGoesOn) {
                                  "screenshot a\nset iterations 0\nscreenshot b\nset iterations 2\nview 90 0\nscreenshot c\n");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("iterations must be at least 1"), std::string::npos) << r.err;
-  EXPECT_EQ(bytes(path("a.png")), bytes(path("b.png")));  // the last image stays
+  EXPECT_EQ(read(path("a.png")), read(path("b.png")));  // the last image stays
   EXPECT_TRUE(fs::exists(path("c.png")));
-  EXPECT_NE(bytes(path("a.png")), bytes(path("c.png")));  // and later views still render
+  EXPECT_NE(read(path("a.png")), read(path("c.png")));  // and later views still render
 }
 
 TEST_F(Viewer, AnUnreadableFileOpensTheWindowWithItsMessage) {

@@ -31,14 +31,7 @@ class VolumeCliTest : public ::testing::Test {
 
   // 100 − 40·f as uint8 over 64³ voxels: the surface f = 0 is the iso-value 100.
   void write(const std::string& name, const test::Field& f) const {
-    test::SampleVolumeOptions o;
-    o.dims = ivec3(64);
-    o.quantize = true;
-    o.scale = -40;
-    o.offset = 100;
-    const Volume v = test::sample_volume(f, o);
-    std::ofstream out(dir_ / name, std::ios::binary);
-    for (float x : v.values) out.put(char(std::uint8_t(x)));
+    std::ofstream(dir_ / name, std::ios::binary) << test::uint8_raw_bytes(f, ivec3(64));
   }
   std::string input(const std::string& name = "ball.raw") const {
     return (dir_ / name).string() + " --dims 64x64x64 --type uint8";

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 namespace pss::test {
@@ -46,6 +47,11 @@ void CliTest::TearDown() { std::filesystem::remove_all(dir_); }
 std::string CliTest::write(const std::string& name, const std::string& bytes) const {
   std::ofstream(path(name), std::ios::binary) << bytes;
   return path(name);
+}
+
+std::string CliTest::read(const std::string& file) const {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 void CliTest::expect_clean_failure(const std::string& args, const std::string& names, const std::string& output) {

@@ -29,6 +29,8 @@ class CliTest : public testing::Test {
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
   // Writes `bytes` to the folder's file `name`; returns its path.
   std::string write(const std::string& name, const std::string& bytes) const;
+  // The bytes of `file` ("" if it cannot be read).
+  std::string read(const std::string& file) const;
   // Exit non-zero, one line on stderr naming `names` and no internal error, no `output`
   // file and no temporary left in the folder.
   void expect_clean_failure(const std::string& args, const std::string& names, const std::string& output);

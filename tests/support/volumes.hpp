@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <functional>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "pss/core/stats.hpp"
@@ -112,6 +113,19 @@ inline Volume sample_volume(const Field& f, const SampleVolumeOptions& o) {
         v.values[std::size_t(view.index(i, j, k))] = x;
       }
   return v;
+}
+
+// A headerless uint8 raw file of f over `dims` unit voxels, as the CLI tests write them:
+// 100 − 40·f rounded, so that the surface f = 0 is the iso-value 100.
+inline std::string uint8_raw_bytes(const Field& f, ivec3 dims) {
+  SampleVolumeOptions o;
+  o.dims = dims;
+  o.quantize = true;
+  o.scale = -40;
+  o.offset = 100;
+  std::string bytes;
+  for (float x : sample_volume(f, o).values) bytes.push_back(char(std::uint8_t(x)));
+  return bytes;
 }
 
 // How the shipped raw scans are read: uint8, x fastest, unit spacing.
