@@ -15,7 +15,9 @@ struct ComputeOptions {
   int threads = 0;
   std::string stats_path;
 };
-void add_compute_options(CLI::App& command, ComputeOptions& options);
+void add_compute_options(CLI::App& command, ComputeOptions& options);  // with --progress
+// --progress auto|always|never: sets the process's ProgressMode when given.
+void add_progress_option(CLI::App& command);
 
 // estimate_spacing of a cloud read from `file`, its errors ("the points coincide") naming
 // the file.

@@ -2,6 +2,7 @@
 
 #include "numbers.hpp"
 #include "pss/core/error.hpp"
+#include "pss/core/progress.hpp"
 
 namespace pss::app {
 
@@ -15,6 +16,22 @@ void add_compute_options(CLI::App& command, ComputeOptions& options) {
   command.add_option("--threads", options.threads, "CPU threads (default: all cores)")
       ->check(finite_range(1, kMaxThreads));
   command.add_option("--stats", options.stats_path, "write timings per phase and run parameters as JSON");
+  add_progress_option(command);
+}
+
+void add_progress_option(CLI::App& command) {
+  command
+      .add_option_function<std::string>(
+          "--progress",
+          [](const std::string& when) {
+            set_progress_mode(when == "always"  ? ProgressMode::always
+                              : when == "never" ? ProgressMode::never
+                                                : ProgressMode::automatic);
+          },
+          "progress on stderr: auto (a bar while stderr is a terminal), always (a bar on a terminal, else a "
+          "line per phase and per 10 %, for logs) or never")
+      ->check(CLI::IsMember({"auto", "always", "never"}))
+      ->default_str("auto");
 }
 
 SpacingEstimate estimate_spacing_of(const PointCloud& cloud, const std::string& file) {

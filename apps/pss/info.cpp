@@ -96,6 +96,7 @@ void add_info_command(CLI::App& app, Action action) {
                       "with --dims)")
       ->required();
   add_raw_volume_options(*command, *raw);
+  add_progress_option(*command);
   command->callback([path, raw, action] {
     const std::optional<RawVolumeFormat> format = raw_volume_format(*raw);
     if (action == Action::check) return;

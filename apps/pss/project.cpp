@@ -65,8 +65,9 @@ void run_project(const ProjectOptions& o) {
 
   const double projection_s = stats.time("projection");
   const auto& c = result.counts;
-  std::printf("projected %zu points onto the PSS in %.3f s (%.0f points/s, %s backend, %d threads)\n", cloud.size(),
-              projection_s, double(cloud.size()) / projection_s, backend_name(backend), cpu_threads());
+  std::printf("projected %zu points onto the PSS in %.3f s (projection %.3f s, %.0f points/s, %s backend, %d threads)\n",
+              cloud.size(), total, projection_s, double(cloud.size()) / projection_s, backend_name(backend),
+              cpu_threads());
   std::printf("h = %g, rho = %g, plane fit %s; converged %lld, not converged %lld, too few neighbours %lld, "
               "degenerate normal %lld\n", params.h, params.rho, o.method.c_str(), (long long)c.converged,
               (long long)c.not_converged, (long long)c.too_few_neighbours, (long long)c.degenerate_normal);

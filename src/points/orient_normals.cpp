@@ -5,6 +5,7 @@
 #include <queue>
 #include <vector>
 
+#include "pss/core/progress.hpp"
 #include "pss/spatial/uniform_grid.hpp"
 
 namespace pss {
@@ -26,6 +27,9 @@ void orient_normals_consistently(std::span<const vec3> points, std::span<vec3> n
   };
   std::vector<char> done(points.size(), 0);
   std::priority_queue<Edge, std::vector<Edge>, std::greater<>> frontier;
+  // One thread: advancing once per 4096 points oriented keeps the atomic out of the inner loop.
+  Progress progress("orient normals", std::int64_t(points.size()));
+  std::size_t oriented = 0;
   for (int seed : by_height) {
     if (done[seed]) continue;
     if (normals[seed].z < 0) normals[seed] = -normals[seed];
@@ -36,6 +40,7 @@ void orient_normals_consistently(std::span<const vec3> points, std::span<vec3> n
       const int i = e.node;
       if (done[i]) continue;
       done[i] = 1;
+      if (++oriented % 4096 == 0) progress.advance(4096);
       // Prim's order: the edge that reaches i first is its tree edge to the parent.
       if (e.parent >= 0 && glm::dot(normals[e.parent], normals[i]) < 0) normals[i] = -normals[i];
       view.for_each_in_radius(points[i], radius, [&](vec3, float, int sorted) {

@@ -82,7 +82,7 @@ CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& p
     }
   }
   if (!input.has_normals()) {
-    ScopedPhase phase(stats, "orient normals");
+    ScopedPhase phase(stats, "orient normals", false);  // its Progress shows it
     orient_normals_consistently(out.cloud.positions, out.cloud.normals, unit_params.h);
   }
   for (vec3& p : out.cloud.positions) p = frame.from_unit(p);

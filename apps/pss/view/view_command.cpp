@@ -5,6 +5,7 @@
 #include <cstdlib>
 
 #include "numbers.hpp"
+#include "pss/core/progress.hpp"
 #include "pss/core/text.hpp"
 #include "viewer.hpp"
 
@@ -57,6 +58,8 @@ void add_view_command(CLI::App& app) {
         o->file.method == "predictor" ? VolumeMethod::predictor : VolumeMethod::predictor_corrector;
     // For a point cloud --h is in its own units (0: estimated); the volume default is 2 voxels.
     o->settings.h = h_option->count() ? o->file.settings.h : 0;
+    // The window shows each frame's progress; bars on the terminal behind it would only flicker.
+    set_progress_mode(ProgressMode::never);
     if (const int status = view::run_viewer(*o); status != 0) std::exit(status);
   });
 }

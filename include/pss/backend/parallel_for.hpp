@@ -31,13 +31,16 @@ void parallel_for(Backend backend, const char* phase, std::int64_t n, const Kern
                   Progress* progress = nullptr) {
   if (backend == Backend::cuda) {
 #if PSS_HAVE_CUDA
-    stats.add_time(phase, n > 0 ? cuda::launch(phase, n, kernel, progress) : 0.0);
+    if (!progress) Progress::phase_begun(phase);
+    const double seconds = n > 0 ? cuda::launch(phase, n, kernel, progress) : 0.0;
+    stats.add_time(phase, seconds);
+    if (!progress) Progress::phase_ended(phase, seconds);
 #else
     cuda_not_built(phase);
 #endif
     return;
   }
-  ScopedPhase timed(stats, phase);
+  ScopedPhase timed(stats, phase, progress == nullptr);  // a Progress shows it already
   cpu::parallel_for(n, kernel, progress);
 }
 

@@ -3,12 +3,15 @@
 #pragma once
 
 #include <chrono>
+#include <exception>
 #include <filesystem>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
+
+#include "pss/core/progress.hpp"
 
 namespace pss {
 
@@ -29,23 +32,36 @@ class Stats {
   nlohmann::json values_ = nlohmann::json::object();
 };
 
-// Adds the time from construction to destruction (or stop()) to a phase.
+// Adds the time from construction to destruction (or stop()) to a phase, and shows the
+// phase's progress (Progress::phase_begun); a phase whose steps a Progress counts passes
+// announce = false.
 class ScopedPhase {
  public:
-  ScopedPhase(Stats& stats, std::string phase)
-      : stats_(&stats), phase_(std::move(phase)), start_(std::chrono::steady_clock::now()) {}
+  ScopedPhase(Stats& stats, std::string phase, bool announce = true)
+      : stats_(&stats),
+        phase_(std::move(phase)),
+        announce_(announce),
+        exceptions_at_start_(std::uncaught_exceptions()),
+        start_(std::chrono::steady_clock::now()) {
+    if (announce_) Progress::phase_begun(phase_);
+  }
   ~ScopedPhase() { stop(); }
   ScopedPhase(const ScopedPhase&) = delete;
   ScopedPhase& operator=(const ScopedPhase&) = delete;
   void stop() {
     if (!stats_) return;
-    stats_->add_time(phase_, std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count());
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    stats_->add_time(phase_, seconds);
+    // While an error unwinds, the phase did not finish.
+    if (announce_) Progress::phase_ended(phase_, seconds, std::uncaught_exceptions() == exceptions_at_start_);
     stats_ = nullptr;
   }
 
  private:
   Stats* stats_;
   std::string phase_;
+  bool announce_;
+  int exceptions_at_start_;
   std::chrono::steady_clock::time_point start_;
 };
 
