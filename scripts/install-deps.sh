@@ -2,7 +2,7 @@
 # Installs what pss needs from Debian 12's archive (root or sudo). Quiet when all is there.
 set -euo pipefail
 packages=(g++ cmake ninja-build pkg-config libglm-dev libcli11-dev libstb-dev nlohmann-json3-dev
-          libnanoflann-dev zlib1g-dev libnifti2-dev libgtest-dev libgmock-dev
+          libnanoflann-dev zlib1g-dev libnifti2-dev libopenexr-dev libgtest-dev libgmock-dev
           libglfw3-dev libimgui-dev xvfb xauth libgl1-mesa-dri)
 missing=()
 for p in "${packages[@]}"; do

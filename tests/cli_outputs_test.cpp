@@ -74,9 +74,9 @@ TEST_F(CliOutputs, StatsInAMissingDirectoryWritesNoPly) {
 }
 
 TEST_F(CliOutputs, AFifoIsRefusedAndStaysAFifo) {
-  ASSERT_EQ(::mkfifo(path("fifo").c_str(), 0600), 0);
-  expect_refused("project " + path("sphere.ply") + " -o " + path("fifo"), path("fifo"));
-  EXPECT_TRUE(fs::is_fifo(fs::symlink_status(path("fifo"))));
+  ASSERT_EQ(::mkfifo(path("fifo.ply").c_str(), 0600), 0);
+  expect_refused("project " + path("sphere.ply") + " -o " + path("fifo.ply"), path("fifo.ply"));
+  EXPECT_TRUE(fs::is_fifo(fs::symlink_status(path("fifo.ply"))));
 }
 
 TEST_F(CliOutputs, ASymlinkIsRefusedAndItsTargetKept) {
@@ -88,9 +88,11 @@ TEST_F(CliOutputs, ASymlinkIsRefusedAndItsTargetKept) {
 }
 
 TEST_F(CliOutputs, TheSameOutputTwiceIsRefused) {
-  expect_refused("render " + path("sphere.ply") + " --size 32x32 -o " + path("x") + " --hits " + path("x"),
-                 path("x"));
-  EXPECT_FALSE(fs::exists(path("x")));
+  expect_refused("render " + path("sphere.ply") + " --size 32x32 -o " + path("o.png") + " --hits " + path("x.ply") +
+                     " --stats " + path("x.ply"),
+                 path("x.ply") + ": cannot write: named twice");
+  EXPECT_FALSE(fs::exists(path("x.ply")));
+  EXPECT_FALSE(fs::exists(path("o.png")));
   // Spelled differently, still the same file.
   expect_refused("project " + path("sphere.ply") + " -o " + path("p.ply") + " --stats " + dir_.string() +
                      "/../" + dir_.filename().string() + "/p.ply",

@@ -18,9 +18,9 @@
 #include <vector>
 
 #include "pss/core/error.hpp"
+#include "pss/io/image_8bit.hpp"
 #include "pss/io/output_file.hpp"
 #include "pss/io/ply.hpp"
-#include "pss/io/png.hpp"
 #include "pss/io/point_cloud_file.hpp"
 #include "pss/io/xyz.hpp"
 

@@ -1,11 +1,12 @@
-// pss extract FILE (--iso V | --gradient) -o OUT.ply: the PSS of a volume as an oriented
+// pss extract FILE (--iso V | --gradient) -o OUT.ply|.xyz: the PSS of a volume as an oriented
 // point set, about one point per b (predictor-corrector); `pss render` can ray trace it.
 #include <chrono>
 #include <cstdio>
 
 #include "commands.hpp"
+#include "output_options.hpp"
 #include "pss/io/output_file.hpp"
-#include "pss/io/ply.hpp"
+#include "pss/io/point_cloud_file.hpp"
 #include "pss/volume/extract.hpp"
 #include "volume_options.hpp"
 
@@ -30,7 +31,7 @@ void run_extract(const ExtractOptions& o) {
   const PointCloud cloud = extract_surface(volume, backend, stats, counts);
   {
     ScopedPhase phase(stats, "write");
-    write_ply(o.output, cloud);
+    write_point_cloud(o.output, cloud);
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   stats.add_time("total", seconds);
@@ -59,10 +60,12 @@ void run_extract(const ExtractOptions& o) {
 }  // namespace
 
 void add_extract_command(CLI::App& app, Action action) {
-  auto* command = app.add_subcommand("extract", "Extract the PSS of a volume as an oriented point set (binary PLY)");
+  auto* command = app.add_subcommand("extract", "Extract the PSS of a volume as an oriented point set: .ply, .xyz");
   auto o = std::make_shared<ExtractOptions>();
   add_volume_options(*command, o->volume, false);
-  command->add_option("-o,--output", o->output, "output binary PLY with x y z nx ny nz")->required();
+  command->add_option("-o,--output", o->output, "output points x y z nx ny nz, by extension: .ply (binary) or .xyz (text)")
+      ->required()
+      ->check(points_output());
   add_compute_options(*command, o->compute);
   command->callback([o, action] {
     if (action == Action::run) run_extract(*o);

@@ -1,12 +1,15 @@
-// pss project FILE -o OUT.ply: every point moved onto the PSS, with its normal.
+// pss project FILE -o OUT.ply|.xyz: every point moved onto the PSS, with its normal and, in a
+// PLY, how its projection ended.
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
+#include <vector>
 
 #include "commands.hpp"
 #include "numbers.hpp"
+#include "output_options.hpp"
 #include "pss/core/error.hpp"
 #include "pss/io/output_file.hpp"
-#include "pss/io/ply.hpp"
 #include "pss/io/point_cloud_file.hpp"
 #include "pss/points/project_cloud.hpp"
 #include "pss/points/spacing.hpp"
@@ -58,7 +61,10 @@ void run_project(const ProjectOptions& o) {
   }
   {
     ScopedPhase phase(stats, "write");
-    write_ply(o.output, result.cloud);
+    std::vector<std::int32_t> status(result.status.size());
+    for (std::size_t i = 0; i < status.size(); ++i) status[i] = std::int32_t(result.status[i]);
+    const PlyIntProperty extra[] = {{"status", status}};
+    write_point_cloud(o.output, result.cloud, extra);
   }
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   stats.add_time("total", total);
@@ -95,10 +101,17 @@ void run_project(const ProjectOptions& o) {
 }  // namespace
 
 void add_project_command(CLI::App& app, Action action) {
-  auto* command = app.add_subcommand("project", "Move every point onto the point set surface (MLS projection)");
+  auto* command = app.add_subcommand("project", "Move every point onto the point set surface (MLS projection): .ply, .xyz");
   auto o = std::make_shared<ProjectOptions>();
   command->add_option("file", o->input, "point cloud (.ply, .xyz, .txt, .pts)")->required();
-  command->add_option("-o,--output", o->output, "output binary PLY with x y z nx ny nz")->required();
+  command
+      ->add_option("-o,--output", o->output,
+                   "output points, by extension: .ply (binary: x y z nx ny nz and an int 'status' per point: 0 "
+                   "converged, 1 not converged within --iterations, 2 too few neighbours within rho (point and "
+                   "normal unchanged), 3 degenerate normal (neighbours on a line)) or .xyz (text: x y z nx ny nz, no "
+                   "status)")
+      ->required()
+      ->check(points_output());
   command->add_option("--h", o->h, "Gaussian width h (default: estimated from the spacing, see pss info)")
       ->check(finite_positive());
   command->add_option("--rho", o->rho, "range-query radius (default 2h)")->check(finite_positive());

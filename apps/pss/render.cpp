@@ -1,4 +1,4 @@
-// pss render FILE -o OUT.png: ray tracing the point set surface of a point cloud (§5.2).
+// pss render FILE -o OUT.png|.jpg|.exr: ray tracing the point set surface of a point cloud (§5.2).
 #include <chrono>
 #include <cstdio>
 #include <cfloat>
@@ -111,7 +111,7 @@ std::string check_iterations(const std::string& text) {
 }  // namespace
 
 void add_render_command(CLI::App& app, Action action) {
-  auto* command = app.add_subcommand("render", "Ray trace the point set surface of a point cloud to a PNG (paper 5.2)");
+  auto* command = app.add_subcommand("render", "Ray trace the point set surface of a point cloud to an image: .png, .jpg, .exr (paper 5.2)");
   auto o = std::make_shared<RenderCloudOptions>();
   command->add_option("file", o->input, "point cloud (.ply, .xyz, .txt, .pts)")->required();
   command->add_option("--h", o->h, "Gaussian width h (default: estimated from the spacing, see pss info)")
@@ -134,6 +134,7 @@ void add_render_command(CLI::App& app, Action action) {
       ->capture_default_str();
   add_render_options(*command, o->render);
   command->callback([o, action] {
+    check_render_options(o->render);
     if (action == Action::run) run_render(*o);
   });
 }

@@ -6,11 +6,12 @@
 #include <optional>
 
 #include "numbers.hpp"
+#include "output_options.hpp"
 #include "pss/core/error.hpp"
 #include "pss/core/text.hpp"
+#include "pss/io/output_format.hpp"
 #include "pss/render/camera_file.hpp"
 #include "pss/render/frame_outputs.hpp"
-#include "pss/render/image.hpp"
 
 namespace pss::app {
 
@@ -80,7 +81,15 @@ std::string check_view(const std::string& text) {
 }  // namespace
 
 void add_render_options(CLI::App& command, RenderOptions& o) {
-  command.add_option("-o,--output", o.output, "output image (PNG)")->required();
+  command
+      .add_option("-o,--output", o.output,
+                  "output image, its format by extension: .png, .jpg/.jpeg (quality " + std::to_string(kJpegQuality) +
+                      ") or .exr (linear RGBA half; Z: the primary ray's distance, inf where it missed; N.X N.Y N.Z: "
+                      "the normal facing the camera)")
+      ->required()
+      ->check(image_output());
+  command.add_flag("--transparent", o.transparent,
+                   "alpha 0 where the primary ray missed the surface, opaque where it hit (.png, .exr)");
   command
       .add_option_function<std::string>(
           "--size",
@@ -133,8 +142,11 @@ void add_render_options(CLI::App& command, RenderOptions& o) {
                                     "the camera of a JSON file: the \"camera\" that --stats writes (a --stats file "
                                     "loads as it is), instead of the flags that place the camera");
   for (CLI::Option* placing : {view, fov, look_at, up, distance, zoom, roll}) camera->excludes(placing);
-  command.add_option("--hits", o.hits_path,
-                     "write the primary hits as binary PLY: x y z nx ny nz and the pixel's px py");
+  command
+      .add_option("--hits", o.hits_path,
+                  "write the primary hits as .ply (binary: x y z nx ny nz and the pixel's px py) or .xyz (text: "
+                  "x y z nx ny nz)")
+      ->check(points_output());
   command.add_option("--frames", o.frames,
                      "render the frame N times and report the median frame's time (as a viewer sees it)")
       ->check(CLI::Range(1, 1000))
@@ -145,6 +157,12 @@ void add_render_options(CLI::App& command, RenderOptions& o) {
       ->check(finite_range(0, 1))
       ->capture_default_str();
   add_compute_options(command, o.compute);
+}
+
+void check_render_options(const RenderOptions& o) {
+  if (o.transparent && image_format_of(o.output) == ImageFormat::jpeg)
+    throw CLI::ValidationError("--transparent", printable(o.output, kPathBytes) +
+                                                    " is a JPEG, which has no alpha; name it .png or .exr");
 }
 
 Camera make_camera(const RenderOptions& o, const Aabb& bounds) {
@@ -174,8 +192,8 @@ double frame_seconds(const Stats& stats) {
 }
 
 void write_frame_outputs(const RenderOptions& options, const RenderedFrame& frame) {
-  write_png(options.output, frame.image);
-  if (!options.hits_path.empty()) write_hits_ply(options.hits_path, frame);
+  write_frame_image(options.output, frame, options.transparent);
+  if (!options.hits_path.empty()) write_hits(options.hits_path, frame);
 }
 
 void print_written(const RenderOptions& options) {

@@ -17,8 +17,9 @@
 namespace pss::app {
 
 struct RenderOptions {
-  std::string output;     // -o, the PNG
-  std::string hits_path;  // --hits FILE.ply
+  std::string output;     // -o, the image (.png, .jpg, .exr)
+  bool transparent = false;  // alpha 0 where the primary ray missed
+  std::string hits_path;  // --hits FILE.ply or FILE.xyz
   CameraSettings camera;  // --size, --view, --fov
   std::string camera_file;  // --camera FILE.json, instead of --view and --fov
   bool shadows = false;
@@ -29,6 +30,10 @@ struct RenderOptions {
 };
 
 void add_render_options(CLI::App& command, RenderOptions& options);
+
+// What no single flag's validator can see: --transparent with a JPEG -o. Throws CLI11's
+// usage error, so it is reported like the others, before any work.
+void check_render_options(const RenderOptions& options);
 
 // The camera of --camera, or the default view of `bounds` turned by --view and --fov.
 Camera make_camera(const RenderOptions& options, const Aabb& bounds);
@@ -63,7 +68,7 @@ RenderedFrame render_frames(const RenderOptions& options, Stats& stats, Render&&
   return frame;
 }
 
-// The PNG and --hits, each written atomically.
+// The image and --hits, each written atomically.
 void write_frame_outputs(const RenderOptions& options, const RenderedFrame& frame);
 // "wrote FILE" for each output, --stats included.
 void print_written(const RenderOptions& options);

@@ -1,4 +1,4 @@
-// pss volume FILE (--iso V | --gradient) -o OUT.png: the PSS of a volume, extracted and
+// pss volume FILE (--iso V | --gradient) -o OUT.png|.jpg|.exr: the PSS of a volume, extracted and
 // rendered along every primary ray by the predictor-corrector method (§4, §5.1).
 #include <chrono>
 #include <cstdio>
@@ -66,7 +66,7 @@ void run_volume(const VolumeCommandOptions& o) {
 }  // namespace
 
 void add_volume_command(CLI::App& app, Action action) {
-  auto* command = app.add_subcommand("volume", "Extract and render the PSS of a volume to a PNG (paper 4, 5.1)");
+  auto* command = app.add_subcommand("volume", "Extract and render the PSS of a volume to an image: .png, .jpg, .exr (paper 4, 5.1)");
   auto o = std::make_shared<VolumeCommandOptions>();
   add_volume_options(*command, o->volume, true);
   command->add_flag("--debug-projection", o->debug_projection,
@@ -74,6 +74,7 @@ void add_volume_command(CLI::App& app, Action action) {
                     "epsilon, green where the corrector still did");
   add_render_options(*command, o->render);
   command->callback([o, action] {
+    check_render_options(o->render);
     if (action == Action::run) run_volume(*o);
     else check_volume_options(o->volume);
   });

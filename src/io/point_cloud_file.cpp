@@ -6,6 +6,7 @@
 #include <string>
 
 #include "pss/core/error.hpp"
+#include "pss/io/output_format.hpp"
 #include "pss/io/ply.hpp"
 #include "pss/io/xyz.hpp"
 
@@ -19,6 +20,14 @@ PointCloud read_point_cloud(const std::filesystem::path& path) {
   if (ext == ".xyz" || ext == ".txt" || ext == ".pts") return read_xyz(path);
   throw file_error(path, "unknown point cloud format " + quote(path.extension().string()) +
                              " (expected .ply, .xyz, .txt or .pts)");
+}
+
+void write_point_cloud(const std::filesystem::path& path, const PointCloud& cloud,
+                       std::span<const PlyIntProperty> extra) {
+  switch (points_format_of(path)) {
+    case PointsFormat::ply: return write_ply(path, cloud, extra);
+    case PointsFormat::xyz: return write_xyz(path, cloud);
+  }
 }
 
 void tidy_normals(PointCloud& cloud) {

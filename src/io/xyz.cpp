@@ -1,6 +1,7 @@
 #include "pss/io/xyz.hpp"
 
 #include <charconv>
+#include <cstdio>
 #include <string>
 #include <string_view>
 
@@ -70,6 +71,32 @@ PointCloud read_xyz(const std::filesystem::path& path) {
   if (cloud.positions.empty()) throw file_error(path, "no points");
   tidy_normals(cloud);
   return cloud;
+}
+
+void write_xyz(const std::filesystem::path& path, const PointCloud& cloud) {
+  if (cloud.has_normals() && cloud.normals.size() != cloud.size())
+    throw file_error(path, "cannot write: " + std::to_string(cloud.size()) + " positions but " +
+                               std::to_string(cloud.normals.size()) + " normals");
+  OutputFile file(path);
+  std::string lines;
+  char line[128];  // six %.9g floats take at most 6 * 16 bytes
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const vec3 p = cloud.positions[i];
+    int length = 0;
+    if (cloud.has_normals()) {
+      const vec3 n = cloud.normals[i];
+      length = std::snprintf(line, sizeof line, "%.9g %.9g %.9g %.9g %.9g %.9g\n", p.x, p.y, p.z, n.x, n.y, n.z);
+    } else {
+      length = std::snprintf(line, sizeof line, "%.9g %.9g %.9g\n", p.x, p.y, p.z);
+    }
+    lines.append(line, std::size_t(length));
+    if (lines.size() > (1u << 20)) {  // one write a megabyte, without a copy of a large cloud
+      file.stream().write(lines.data(), std::streamsize(lines.size()));
+      lines.clear();
+    }
+  }
+  file.stream().write(lines.data(), std::streamsize(lines.size()));
+  file.commit();
 }
 
 }  // namespace pss

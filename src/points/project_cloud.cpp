@@ -71,9 +71,11 @@ CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& p
   CloudProjection out;
   out.cloud.positions.resize(n);
   out.cloud.normals.resize(n);
+  out.status.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     out.cloud.positions[i] = projected[i].point;
     out.cloud.normals[i] = projected[i].normal;
+    out.status[i] = projected[i].status;
     switch (projected[i].status) {
       case ProjectionStatus::converged: ++out.counts.converged; break;
       case ProjectionStatus::not_converged: ++out.counts.not_converged; break;

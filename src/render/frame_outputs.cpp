@@ -1,8 +1,13 @@
 #include "pss/render/frame_outputs.hpp"
 
+#include <limits>
 #include <vector>
 
-#include "pss/io/ply.hpp"
+#include "pss/core/error.hpp"
+#include "pss/io/exr.hpp"
+#include "pss/io/image_8bit.hpp"
+#include "pss/io/output_format.hpp"
+#include "pss/io/point_cloud_file.hpp"
 #include "pss/render/camera_file.hpp"
 
 namespace pss {
@@ -24,7 +29,55 @@ FrameSummary summarize(const RenderedFrame& frame) {
   return s;
 }
 
-void write_hits_ply(const std::filesystem::path& path, const RenderedFrame& frame) {
+namespace {
+
+// The hit's normal turned toward the camera, as a viewer sees the surface.
+vec3 normal_facing_camera(const RenderedFrame& frame, std::size_t pixel) {
+  const std::size_t width = std::size_t(frame.camera.width);
+  const Ray ray = frame.camera.primary_ray(int(pixel % width), int(pixel / width));
+  return face_viewer(frame.hits[pixel].normal, ray.dir);
+}
+
+void write_8bit(const std::filesystem::path& path, const RenderedFrame& frame, ImageFormat format, bool transparent) {
+  const Image& image = frame.image;
+  if (format == ImageFormat::jpeg) {
+    if (transparent) throw file_error(path, "cannot write: a JPEG has no alpha for --transparent; name it .png or .exr");
+    return write_jpeg(path, image.width, image.height, to_srgb8(image), kJpegQuality);
+  }
+  if (!transparent) return write_png(path, image.width, image.height, to_srgb8(image));
+  std::vector<std::uint8_t> rgba(image.pixels.size() * 4);
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+    for (int c = 0; c < 3; ++c) rgba[4 * i + c] = linear_to_srgb8(image.pixels[i][c]);
+    rgba[4 * i + 3] = frame.hits[i].found() ? 255 : 0;
+  }
+  write_png(path, image.width, image.height, rgba, 4);
+}
+
+void write_linear(const std::filesystem::path& path, const RenderedFrame& frame, bool transparent) {
+  const std::size_t n = frame.hits.size();
+  std::vector<vec4> rgba(n);
+  std::vector<float> depth(n, std::numeric_limits<float>::infinity());
+  std::vector<vec3> normal(n, vec3(0.0f));
+  for (std::size_t i = 0; i < n; ++i) {
+    const Hit& h = frame.hits[i];
+    // Premultiplied: a transparent pixel has no colour, so compositing over it adds none.
+    rgba[i] = transparent && !h.found() ? vec4(0.0f) : vec4(frame.image.pixels[i], 1.0f);
+    if (!h.found()) continue;
+    depth[i] = h.t;
+    normal[i] = normal_facing_camera(frame, i);
+  }
+  write_exr(path, {frame.image.width, frame.image.height, rgba, depth, normal});
+}
+
+}  // namespace
+
+void write_frame_image(const std::filesystem::path& path, const RenderedFrame& frame, bool transparent) {
+  const ImageFormat format = image_format_of(path);
+  if (format == ImageFormat::exr) write_linear(path, frame, transparent);
+  else write_8bit(path, frame, format, transparent);
+}
+
+void write_hits(const std::filesystem::path& path, const RenderedFrame& frame) {
   PointCloud cloud;
   std::vector<std::int32_t> px, py;
   const int width = frame.camera.width;
@@ -33,12 +86,12 @@ void write_hits_ply(const std::filesystem::path& path, const RenderedFrame& fram
     if (!h.found()) continue;
     const int x = int(i % std::size_t(width)), y = int(i / std::size_t(width));
     cloud.positions.push_back(h.point);
-    cloud.normals.push_back(face_viewer(h.normal, frame.camera.primary_ray(x, y).dir));
+    cloud.normals.push_back(normal_facing_camera(frame, i));
     px.push_back(x);
     py.push_back(y);
   }
   const PlyIntProperty extra[] = {{"px", px}, {"py", py}};
-  write_ply(path, cloud, extra);
+  write_point_cloud(path, cloud, extra);
 }
 
 void record_frame(Stats& stats, const RenderedFrame& frame) {

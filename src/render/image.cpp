@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "pss/io/png.hpp"
+#include "pss/io/image_8bit.hpp"
 
 namespace pss {
 

@@ -21,7 +21,7 @@
 #include "pss/io/output_file.hpp"
 #include "pss/render/camera_file.hpp"
 #include "pss/render/frame_outputs.hpp"
-#include "pss/io/png.hpp"
+#include "pss/io/image_8bit.hpp"
 #include "pss/render/image.hpp"
 #include "render_thread.hpp"
 #include "script.hpp"
@@ -337,20 +337,21 @@ class Viewer {
     }
   }
 
-  // The full-size frame of the current view as PNG, its camera and counts as JSON (what
-  // --stats writes) and its primary hits as PLY (what --hits writes), beside each other.
-  void write_screenshot(const std::string& png) {
-    const std::filesystem::path json = std::filesystem::path(png).replace_extension(".json");
-    const std::filesystem::path hits = std::filesystem::path(png).replace_extension(".ply");
-    OutputSet outputs({}, {png, json, hits});
-    write_png(png, shown_.frame.image);
-    write_hits_ply(hits, shown_.frame);
+  // The full-size frame of the current view as an image (the format its name says), its
+  // camera and counts as JSON (what --stats writes) and its primary hits as PLY (what --hits
+  // writes), beside each other.
+  void write_screenshot(const std::string& image) {
+    const std::filesystem::path json = std::filesystem::path(image).replace_extension(".json");
+    const std::filesystem::path hits = std::filesystem::path(image).replace_extension(".ply");
+    OutputSet outputs({}, {image, json, hits});
+    write_frame_image(image, shown_.frame, false);
+    write_hits(hits, shown_.frame);
     Stats stats;
     record_frame(stats, shown_.frame);
     stats.values()["frame_seconds"] = shown_.seconds;
     stats.write(json);
     outputs.commit();
-    std::printf("wrote %s\n", png.c_str());
+    std::printf("wrote %s\n", image.c_str());
   }
 
   bool full_frame_shown() const {

@@ -1,8 +1,10 @@
-// Reading a point cloud whatever its file format, chosen by extension.
+// Reading and writing a point cloud whatever its file format, chosen by extension.
 #pragma once
 
 #include <filesystem>
+#include <span>
 
+#include "pss/io/ply.hpp"
 #include "pss/points/cloud.hpp"
 
 namespace pss {
@@ -10,6 +12,11 @@ namespace pss {
 // .ply → read_ply; .xyz, .txt, .pts → read_xyz (case-insensitive); anything else is a
 // file_error naming the formats we know.
 PointCloud read_point_cloud(const std::filesystem::path& path);
+
+// .ply → write_ply with the extra properties; .xyz → write_xyz, which has no room for them
+// (case-insensitive); anything else is a file_error (points_format_of).
+void write_point_cloud(const std::filesystem::path& path, const PointCloud& cloud,
+                       std::span<const PlyIntProperty> extra = {});
 
 // The readers' common normal policy. Normals become unit length; zero ones stay zero (no
 // direction to recover, and dropping one would misalign the arrays). One non-finite normal

@@ -12,4 +12,8 @@ namespace pss {
 // "FILE: line N: problem".
 PointCloud read_xyz(const std::filesystem::path& path);
 
+// One point a line, "x y z" or with normals "x y z nx ny nz", each float as %.9g: nine
+// significant digits read back as the same float. Written atomically (OutputFile).
+void write_xyz(const std::filesystem::path& path, const PointCloud& cloud);
+
 }  // namespace pss

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <span>
+#include <vector>
 
 #include "pss/backend/backend.hpp"
 #include "pss/core/progress.hpp"
@@ -30,6 +31,7 @@ struct StatusCounts {
 
 struct CloudProjection {
   PointCloud cloud;  // projected points, with normals
+  std::vector<ProjectionStatus> status;  // one per point
   StatusCounts counts;
 };
 

@@ -15,11 +15,12 @@ namespace pss {
 
 enum class PlaneFitMethod : unsigned char { wls, mls };
 
+// The numbers are a file format: `pss project` writes them as the PLY property 'status'.
 enum class ProjectionStatus : unsigned char {
-  converged,
-  not_converged,       // MLS alternation still moving after max_mls_iterations
-  too_few_neighbours,  // fewer than 3 samples within ρ: no plane; point and normal unchanged
-  degenerate_normal,   // neighbours (nearly) on a line: the normal is the start vector's
+  converged = 0,
+  not_converged = 1,       // MLS alternation still moving after max_mls_iterations
+  too_few_neighbours = 2,  // fewer than 3 samples within ρ: no plane; point and normal unchanged
+  degenerate_normal = 3,   // neighbours (nearly) on a line: the normal is the start vector's
 };
 
 struct ProjectionParams {

@@ -1,5 +1,5 @@
-// What a renderer writes besides the image: --hits (the primary hits as a point cloud) and
-// the frame's counts for --stats.
+// What a renderer writes: the image in the format its name says, --hits (the primary hits
+// as a point cloud) and the frame's counts for --stats.
 #pragma once
 
 #include <cstdint>
@@ -21,9 +21,18 @@ struct FrameSummary {
 
 FrameSummary summarize(const RenderedFrame& frame);
 
-// Binary PLY: x y z nx ny nz (float) and px py (int) for every pixel whose primary ray hit.
-// Normals face the camera.
-void write_hits_ply(const std::filesystem::path& path, const RenderedFrame& frame);
+// JPEG quality of -o *.jpg: artefacts hard to see, a third of the PNG's size.
+inline constexpr int kJpegQuality = 95;
+
+// The image in the format of path's extension (image_format_of): PNG and JPEG in 8-bit sRGB;
+// EXR as linear RGBA with Z, the primary ray's distance (+inf where it missed), and N.X N.Y
+// N.Z, the normal facing the camera (0 where it missed). `transparent`: alpha 0 where the
+// primary ray missed and 1 where it hit (a JPEG has no alpha: an error), else 1 throughout.
+void write_frame_image(const std::filesystem::path& path, const RenderedFrame& frame, bool transparent);
+
+// x y z nx ny nz for every pixel whose primary ray hit, normals facing the camera, as a point
+// cloud in the format of path's extension (write_point_cloud); a PLY adds the pixel's px py.
+void write_hits(const std::filesystem::path& path, const RenderedFrame& frame);
 
 // Adds rays, hits, secondary rays, mean iterations, image size and camera to stats.values().
 void record_frame(Stats& stats, const RenderedFrame& frame);
