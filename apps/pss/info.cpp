@@ -22,7 +22,9 @@ void print_cloud(const std::string& path) {
   const Aabb box = cloud.bounds();
   const vec3 size = box.extent();
   std::printf("file            %s\n", path.c_str());
-  std::printf("points          %zu%s\n", cloud.size(), cloud.has_normals() ? " (with normals)" : "");
+  const char* extras = cloud.has_normals() ? (cloud.has_colors() ? " (with normals and colours)" : " (with normals)")
+                                           : (cloud.has_colors() ? " (with colours)" : "");
+  std::printf("points          %zu%s\n", cloud.size(), extras);
   std::printf("bounds          [%g, %g] x [%g, %g] x [%g, %g]\n", box.lo.x, box.hi.x, box.lo.y, box.hi.y, box.lo.z,
               box.hi.z);
   std::printf("size            %g x %g x %g (diagonal %g)\n", size.x, size.y, size.z, glm::length(size));

@@ -29,7 +29,7 @@ struct StatusCounts {
 };
 
 struct CloudProjection {
-  PointCloud cloud;  // projected points, with normals
+  PointCloud cloud;  // projected points, with normals, and the input's colours when it has them
   StatusCounts counts;
 };
 
