@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "pss/core/error.hpp"
+#include "pss/io/obj.hpp"
 #include "pss/io/ply.hpp"
 #include "pss/points/project_cloud.hpp"
 #include "support/cli.hpp"
@@ -56,6 +57,68 @@ void expect_refused(Read read, const std::string& file, const std::string& probl
   EXPECT_EQ(message.rfind(file + ": ", 0), 0u) << "not a file error: '" << message << "', expected " << problem;
   EXPECT_NE(message.find(problem), std::string::npos) << message;
   EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+}
+
+// ---------------------------------------------------------------------------------------
+// OBJ
+
+TEST_F(FormatTest, ObjVerticesIgnoreWAndOtherStatements) {
+  const PointCloud cloud = pss::read_obj(write("m.obj",
+                                               "# a comment\nmtllib m.mtl\no thing\ng part\ns 1\nusemtl red\n"
+                                               "v 1 2 3\r\nv -4.5 +5e-1 6 1.0\nvt 0.5 0.5\n\nv 7 8 9 # end\n"
+                                               "f 1 2 3\nf 1/1 2/1 3/1\nl 1 2\n"));
+  ASSERT_EQ(cloud.size(), 3u);
+  EXPECT_EQ(cloud.positions[0], vec3(1, 2, 3));
+  EXPECT_EQ(cloud.positions[1], vec3(-4.5f, 0.5f, 6));
+  EXPECT_EQ(cloud.positions[2], vec3(7, 8, 9));
+  EXPECT_FALSE(cloud.has_normals()) << "no vn at all";
+  EXPECT_FALSE(cloud.has_colors());
+}
+
+TEST_F(FormatTest, ObjVertexColoursOnlyWhenEveryVertexHasThem) {
+  const PointCloud colored = pss::read_obj(write("c.obj", "v 0 0 0 1 0 0.2\nv 1 0 0 0 0.5 1\n"));
+  EXPECT_EQ(colored.colors, (std::vector<Rgb8>{{255, 0, 51}, {0, 128, 255}}));
+  const PointCloud partly = pss::read_obj(write("p.obj", "v 0 0 0 1 0 0.2\nv 1 0 0\nv 2 0 0 1 1 1\n"));
+  EXPECT_EQ(partly.size(), 3u);
+  EXPECT_FALSE(partly.has_colors());
+}
+
+TEST_F(FormatTest, ObjFaceNormalsFirstWinsAndUnnamedVerticesGetZero) {
+  const PointCloud cloud = pss::read_obj(write("n.obj",
+                                               "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 5 5\n"
+                                               "vn 0 0 2\nvn 0 1 0\nvn 1 0 0\n"
+                                               "f 1//1 2//1 3//2\n"
+                                               "f 3/1/3 2/1/2 -4/1/-1\n"  // v/vt/vn, negative: vertex 1, vn 3
+                                               "f 2 3 1\n"));            // no normals: ignored
+  ASSERT_EQ(cloud.normals.size(), 4u);
+  EXPECT_EQ(cloud.normals[0], vec3(0, 0, 1)) << "normalised, and the first face's";
+  EXPECT_EQ(cloud.normals[1], vec3(0, 0, 1));
+  EXPECT_EQ(cloud.normals[2], vec3(0, 1, 0)) << "first face wins";
+  EXPECT_EQ(cloud.normals[3], vec3(0, 0, 0)) << "named by no face";
+}
+
+TEST_F(FormatTest, ObjNormalsPairByOrderOnlyWithoutFaceNormalsAndEqualCounts) {
+  const PointCloud paired = pss::read_obj(write("a.obj", "v 0 0 0\nvn 0 0 1\nv 1 0 0\nvn 0 3 0\nf 1 2 1\n"));
+  EXPECT_EQ(paired.normals, (std::vector<vec3>{{0, 0, 1}, {0, 1, 0}}));
+  const PointCloud fewer = pss::read_obj(write("b.obj", "v 0 0 0\nv 1 0 0\nvn 0 0 1\n"));
+  EXPECT_FALSE(fewer.has_normals());
+}
+
+TEST_F(FormatTest, ObjErrors) {
+  const std::pair<std::string, std::string> cases[] = {
+      {"v 1 2 3\nv 4 5 \\\n6\n", "line 2: line continuations ('\\') are not supported"},
+      {"v 1 2\n", "line 1: expected 'v x y z [w]' or 'v x y z r g b', found 2 numbers"},
+      {"v 1 x 3\n", "line 1: malformed number 'x'"},
+      {"v 1 2 3\nv 1 nan 3\n", "line 2: non-finite coordinate"},
+      {"v 1 2 3 1 inf 0\n", "line 1: non-finite colour"},
+      {"vn 1 2\n", "line 1: expected 'vn x y z', found 2 numbers"},
+      {"v 1 2 3\nvn 0 0 1\nf 1//2 1//1 1//1\n", "line 3: face corner '1//2' names a normal not defined before it"},
+      {"v 1 2 3\nvn 0 0 1\nf 0//1 1//1 1//1\n", "line 3: face corner '0//1' names a vertex not defined before it"},
+      {"v 1 2 3\nvn 0 0 1\nf -2//1 1//1 1//1\n", "line 3: face corner '-2//1' names a vertex not defined before it"},
+      {"vn 0 0 1\nf 2//1 1//1 1//1\nv 1 2 3\nv 1 2 3\n", "line 2: face corner '2//1' names a vertex"},
+      {"# nothing\ng empty\n", "no vertices"},
+  };
+  for (const auto& [text, problem] : cases) expect_refused(pss::read_obj, write("bad.obj", text), problem);
 }
 
 // ---------------------------------------------------------------------------------------
