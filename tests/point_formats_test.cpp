@@ -17,6 +17,7 @@
 #include "pss/core/error.hpp"
 #include "pss/io/obj.hpp"
 #include "pss/io/ply.hpp"
+#include "pss/io/stl.hpp"
 #include "pss/points/project_cloud.hpp"
 #include "support/cli.hpp"
 
@@ -119,6 +120,76 @@ TEST_F(FormatTest, ObjErrors) {
       {"# nothing\ng empty\n", "no vertices"},
   };
   for (const auto& [text, problem] : cases) expect_refused(pss::read_obj, write("bad.obj", text), problem);
+}
+
+// ---------------------------------------------------------------------------------------
+// STL
+
+// A unit square in the z = 0 plane as two facets; (0,0,0) is written as -0 in the second.
+const vec3 kSquare[2][3] = {{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}}, {{-0.0f, 0, 0}, {1, 1, 0}, {0, 1, 0}}};
+
+std::string binary_stl(std::uint32_t declared_facets) {
+  Bytes b;
+  b.text("solid looks like ASCII but is not").zeros(80 - 33).put(declared_facets);
+  for (const auto& facet : kSquare) {
+    b.put(0.0f).put(0.0f).put(1.0f);  // the facet normal
+    for (const vec3& v : facet) b.put(v.x).put(v.y).put(v.z);
+    b.put(std::uint16_t(0));
+  }
+  return b.str();
+}
+
+const std::vector<vec3> kSquareVertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+
+TEST_F(FormatTest, StlBinaryVerticesOnceInFirstSeenOrderWithoutNormals) {
+  const PointCloud cloud = pss::read_stl(write("b.stl", binary_stl(2)));
+  EXPECT_EQ(cloud.positions, kSquareVertices);
+  EXPECT_FALSE(std::signbit(cloud.positions[0].x)) << "-0 and +0 are one position";
+  EXPECT_FALSE(cloud.has_normals()) << "facet normals are not vertex normals";
+}
+
+TEST_F(FormatTest, StlAscii) {
+  const std::string facets =
+      "  facet normal 0 0 1\n    outer loop\n      vertex 0 0 0\n      vertex 1 0 0\n      vertex 1 1 0\n"
+      "    endloop\n  endfacet\n"
+      "  facet normal 0 0 1\r\n    outer loop\r\n      vertex -0 0 0\r\n      vertex 1 1 0\r\n"
+      "      vertex 0 1e0 0\r\n    endloop\r\n  endfacet\r\n";
+  const PointCloud cloud = pss::read_stl(write("a.stl", "solid square\n" + facets + "endsolid square\n"));
+  EXPECT_EQ(cloud.positions, kSquareVertices);
+  EXPECT_FALSE(cloud.has_normals());
+  // Two solids one after the other (some tools concatenate them); the name is optional.
+  const PointCloud two = pss::read_stl(write("two.stl", "solid\n" + facets + "endsolid\nsolid b\n"
+                                                        "facet normal 0 0 1\nouter loop\nvertex 5 5 5\n"
+                                                        "vertex 6 5 5\nvertex 5 6 5\nendloop\nendfacet\n"
+                                                        "endsolid b\n"));
+  EXPECT_EQ(two.size(), 7u);
+  EXPECT_EQ(two.positions.back(), vec3(5, 6, 5));
+}
+
+TEST_F(FormatTest, StlErrors) {
+  const std::string binary = binary_stl(2);
+  const std::string facet = "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n";
+  const std::pair<std::string, std::string> cases[] = {
+      {binary.substr(0, binary.size() - 10),
+       "not an STL file, or a truncated binary one: 174 bytes, but 84 + 50 x 2 facets = 184"},
+      {binary_stl(3), "not an STL file, or a truncated binary one: 184 bytes, but 84 + 50 x 3 facets = 234"},
+      {binary_stl(0xFFFFFFFF), "84 + 50 x 4294967295 facets = 214748364834"},
+      {binary_stl(0).substr(0, 84), "no facets"},
+      {"", "not an STL file (too short for binary, no 'solid' for ASCII)"},
+      {"solid x\n" + facet + "endloop\nendfacet\nendsolid\n", "line 6: a facet has 2 vertices, not 3"},
+      {"solid x\n" + facet + "vertex 1 1 0\nendloop\nendfacet\n", "truncated: the file ends inside a solid"},
+      {"solid x\nvertex 1 1 0\nendsolid\n", "line 2: unexpected 'vertex'"},
+      {"solid x\n" + facet + "vertex 1 nan 0\nendloop\nendfacet\nendsolid\n", "line 6: non-finite coordinate"},
+      {"solid x\n" + facet + "vertex 1 1\n", "line 6: expected 'vertex x y z'"},
+      {"solid x\nfacet normal 0 0 1\nfacet normal 0 0 1\n", "line 3: unexpected 'facet'"},
+      {"solid x\nendsolid x\n", "no facets"},
+  };
+  for (const auto& [bytes, problem] : cases) expect_refused(pss::read_stl, write("bad.stl", bytes), problem);
+  // A binary facet with a NaN: the size matches, so it is read as binary and refused.
+  std::string nan_facet = binary;
+  const float nan = kNan;
+  std::memcpy(nan_facet.data() + 84 + 50 + 12 + 4, &nan, 4);
+  expect_refused(pss::read_stl, write("nan.stl", nan_facet), "facet 1 has a non-finite coordinate");
 }
 
 // ---------------------------------------------------------------------------------------
