@@ -16,6 +16,7 @@
 
 #include "pss/core/error.hpp"
 #include "pss/io/obj.hpp"
+#include "pss/io/pcd.hpp"
 #include "pss/io/ply.hpp"
 #include "pss/io/stl.hpp"
 #include "pss/points/project_cloud.hpp"
@@ -190,6 +191,132 @@ TEST_F(FormatTest, StlErrors) {
   const float nan = kNan;
   std::memcpy(nan_facet.data() + 84 + 50 + 12 + 4, &nan, 4);
   expect_refused(pss::read_stl, write("nan.stl", nan_facet), "facet 1 has a non-finite coordinate");
+}
+
+// ---------------------------------------------------------------------------------------
+// PCD
+
+TEST_F(FormatTest, PcdAsciiWithNormalsColoursSkippedFieldsAndNaNPoints) {
+  // rgb is TYPE F: PCL writes the packed bits as an integer (newer) or as the float (older).
+  const float packed = std::bit_cast<float>(std::uint32_t(0x00102030));
+  char old_style[64];
+  std::snprintf(old_style, sizeof old_style, "%.9g", double(packed));
+  const std::string file = "# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\n"
+                           "FIELDS x y z hist normal_x normal_y normal_z rgb\n"
+                           "SIZE 4 4 4 4 4 4 4 4\nTYPE F F F F F F F F\nCOUNT 1 1 1 3 1 1 1 1\n"
+                           "WIDTH 2\nHEIGHT 2\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 4\nDATA ascii\n"
+                           "1 2 3 9 9 9 0 0 2 16744512\n"
+                           "nan nan nan 9 9 9 nan nan nan 0\n"
+                           "-1.5 +2 1e1 0 0 0 0 1 0 " + std::string(old_style) + "\n"
+                           "4 5 6 0 0 0 3 0 4 4278190335\n";  // rgba-style alpha in the top byte
+  const PointCloud cloud = pss::read_pcd(write("a.pcd", file));
+  EXPECT_EQ(cloud.positions, (std::vector<vec3>{{1, 2, 3}, {-1.5f, 2, 10}, {4, 5, 6}}));
+  ASSERT_EQ(cloud.normals.size(), 3u) << "the NaN normal left with its point";
+  EXPECT_EQ(cloud.normals[0], vec3(0, 0, 1));
+  EXPECT_EQ(cloud.normals[1], vec3(0, 1, 0));
+  EXPECT_NEAR(cloud.normals[2].x, 0.6f, 1e-7f);
+  EXPECT_EQ(cloud.colors, (std::vector<Rgb8>{{0xFF, 0x80, 0x40}, {0x10, 0x20, 0x30}, {0, 0, 0xFF}}));
+}
+
+TEST_F(FormatTest, PcdBinaryAnyTypeAndSize) {
+  // x F8, y I2, z U1, a skipped I4 field of COUNT 2, rgba U4, normals F4, then a U8.
+  const std::string header = "VERSION .7\nFIELDS x y z label rgba normal_x normal_y normal_z t\n"
+                             "SIZE 8 2 1 4 4 4 4 4 8\nTYPE F I U I U F F F U\nCOUNT 1 1 1 2 1 1 1 1 1\n"
+                             "WIDTH 3\nHEIGHT 1\nPOINTS 3\nDATA binary\n";
+  Bytes b;
+  b.put(0.125).put(std::int16_t(-300)).put(std::uint8_t(250)).put(7).put(8).put(std::uint32_t(0xFF0A0B0C));
+  b.put(1.0f).put(0.0f).put(0.0f).put(std::uint64_t(1) << 40);
+  b.put(double(kNan)).put(std::int16_t(0)).put(std::uint8_t(0)).put(0).put(0).put(std::uint32_t(0x00FFFFFF));
+  b.put(kNan).put(kNan).put(kNan).put(std::uint64_t(0));
+  b.put(-2.0).put(std::int16_t(32767)).put(std::uint8_t(0)).put(0).put(0).put(std::uint32_t(0x00000102));
+  b.put(0.0f).put(-5.0f).put(0.0f).put(std::uint64_t(0));
+  const PointCloud cloud = pss::read_pcd(write("b.pcd", header + b.str()));
+  EXPECT_EQ(cloud.positions, (std::vector<vec3>{{0.125f, -300, 250}, {-2, 32767, 0}}));
+  EXPECT_EQ(cloud.normals, (std::vector<vec3>{{1, 0, 0}, {0, -1, 0}}));
+  EXPECT_EQ(cloud.colors, (std::vector<Rgb8>{{0x0A, 0x0B, 0x0C}, {0, 1, 2}}));
+}
+
+// 4 points x y z (F4) and rgb (U4), stored field after field: x 1 1 1 1, y 0 0 0 2, z -1 -1
+// NaN -1, rgb FF8040 010203 000000 FF8040, compressed by hand into literal runs and short and
+// long back-references, overlapping ones included.
+std::string compressed_pcd_data() {
+  Bytes lzf;
+  lzf.put(std::uint8_t(3)).put(1.0f);                                            // literal x0
+  lzf.put(std::uint8_t(0xE0)).put(std::uint8_t(3)).put(std::uint8_t(3));        // 12 bytes from 4 back
+  lzf.put(std::uint8_t(0)).put(std::uint8_t(0));                                 // literal 0x00
+  lzf.put(std::uint8_t(0xE0)).put(std::uint8_t(2)).put(std::uint8_t(0));        // 11 bytes from 1 back
+  lzf.put(std::uint8_t(3)).put(2.0f);                                            // literal y3
+  lzf.put(std::uint8_t(3)).put(-1.0f);                                           // literal z0
+  lzf.put(std::uint8_t(0x40)).put(std::uint8_t(3));                              // 4 bytes from 4 back
+  lzf.put(std::uint8_t(7)).put(kNan).put(-1.0f);                                 // literal z2 z3
+  lzf.put(std::uint8_t(11)).put(std::uint32_t(0xFF8040)).put(std::uint32_t(0x010203)).put(std::uint32_t(0));
+  lzf.put(std::uint8_t(0x40)).put(std::uint8_t(11));                             // 4 bytes from 12 back
+  return lzf.str();
+}
+
+const std::string kCompressedHeader = "FIELDS x y z rgb\nSIZE 4 4 4 4\nTYPE F F F U\nCOUNT 1 1 1 1\n"
+                                      "WIDTH 4\nHEIGHT 1\nPOINTS 4\nDATA binary_compressed\n";
+
+std::string compressed_pcd(std::uint32_t compressed, std::uint32_t uncompressed, const std::string& lzf) {
+  return kCompressedHeader + Bytes().put(compressed).put(uncompressed).str() + lzf;
+}
+
+TEST_F(FormatTest, PcdBinaryCompressedWithBackReferences) {
+  const std::string lzf = compressed_pcd_data();
+  const PointCloud cloud = pss::read_pcd(write("c.pcd", compressed_pcd(std::uint32_t(lzf.size()), 64, lzf)));
+  EXPECT_EQ(cloud.positions, (std::vector<vec3>{{1, 0, -1}, {1, 0, -1}, {1, 2, -1}}));
+  EXPECT_EQ(cloud.colors, (std::vector<Rgb8>{{0xFF, 0x80, 0x40}, {1, 2, 3}, {0xFF, 0x80, 0x40}}));
+  EXPECT_FALSE(cloud.has_normals());
+}
+
+TEST_F(FormatTest, PcdErrors) {
+  const std::string xyz = "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n";
+  const std::string two_points = xyz + "WIDTH 2\nHEIGHT 1\nPOINTS 2\n";
+  const std::string lzf = compressed_pcd_data();
+  const auto size = std::uint32_t(lzf.size());
+  const std::pair<std::string, std::string> cases[] = {
+      {"", "not a PCD file (no DATA line)"},
+      {"ply\nformat ascii 1.0\n", "line 1: unexpected header line 'ply'"},
+      {two_points + "DATA zip\n", "unknown DATA 'DATA zip'"},
+      {"FIELDS x y\nSIZE 4 4\nTYPE F F\nPOINTS 1\nDATA ascii\n1 2\n", "no field 'z'"},
+      {"FIELDS x y z\nSIZE 4 4\nTYPE F F F\nPOINTS 1\nDATA ascii\n1 2 3\n", "SIZE has 2 values for 3 FIELDS"},
+      {"FIELDS x y z\nSIZE 4 4 2\nTYPE F F F\nPOINTS 1\nDATA ascii\n1 2 3\n",
+       "field 'z' has an unknown TYPE 'F' with SIZE '2'"},
+      {"FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 0\nPOINTS 1\nDATA ascii\n1 2 3\n",
+       "field 'z' has an invalid COUNT '0'"},
+      {"FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 2 1\nPOINTS 1\nDATA ascii\n1 2 2 3\n",
+       "field 'y' has COUNT 2, not 1"},
+      {xyz + "WIDTH 2\nHEIGHT 2\nPOINTS 3\nDATA ascii\n", "WIDTH x HEIGHT = 2 x 2 is not POINTS 3"},
+      {xyz + "WIDTH 4294967296\nHEIGHT 4294967296\nDATA ascii\n", "WIDTH x HEIGHT overflows"},
+      {xyz + "POINTS 0\nDATA ascii\n", "no points"},
+      {xyz + "DATA ascii\n", "header has neither POINTS nor WIDTH and HEIGHT"},
+      {two_points + "DATA ascii\n1 2 3\n", "truncated: expected 2 points, read 1"},
+      {two_points + "DATA ascii\n1 2 3\n4 5 6\n7 8 9\n", "line 11: more points than the header's 2"},
+      {two_points + "DATA ascii\n1 2 3\n4 5\n", "line 10: expected 3 values, found 2"},
+      {two_points + "DATA ascii\n1 2 3\n4 five 6\n", "line 10: malformed number 'five'"},
+      {two_points + "DATA ascii\nnan 2 3\n4 nan 6\n", "no points: all 2 have a NaN coordinate"},
+      {two_points + "DATA ascii\n1 2 3\n4 inf 6\n", "point 1 has an infinite coordinate"},
+      {two_points + "DATA binary\n" + std::string(23, '\0'),
+       "truncated: 2 points of 12 bytes need more than the 23 bytes after the header"},
+      // A count no file could hold: refused before anything is allocated for it.
+      {xyz + "POINTS 4000000000000\nDATA binary\n" + std::string(24, '\0'),
+       "truncated: 4000000000000 points of 12 bytes need more than the 24 bytes"},
+      {kCompressedHeader + "\x01\x00", "truncated: no compressed sizes after the header"},
+      {compressed_pcd(size + 1, 64, lzf), "truncated: " + std::to_string(size + 1) + " compressed bytes declared"},
+      {compressed_pcd(size, 68, lzf), "the uncompressed size 68 is not that of 4 points of 16 bytes"},
+      {compressed_pcd(size - 2, 64, lzf), "corrupt compressed data: the data decompresses to fewer bytes"},
+      {compressed_pcd(size + 2, 64, lzf + std::string(2, '\0')),
+       "corrupt compressed data: the data decompresses to more bytes than the header says"},
+      {compressed_pcd(size - 1, 64, lzf.substr(0, size - 1)),
+       "corrupt compressed data: a back-reference passes the end of the compressed data"},
+      {compressed_pcd(3, 64, lzf), "corrupt compressed data: a literal run passes the end of the compressed data"},
+      {compressed_pcd(size, 64, "\x60\x05" + lzf.substr(2)),
+       "corrupt compressed data: a back-reference points before the start of the data"},
+      {compressed_pcd(0, 64, lzf), "0 compressed bytes cannot make 64 (LZF expands at most 88 times)"},
+      {xyz + "POINTS 357913941\nDATA binary_compressed\n" + Bytes().put(10u).put(4294967292u).str() + "0123456789",
+       "10 compressed bytes cannot make 4294967292"},
+  };
+  for (const auto& [bytes, problem] : cases) expect_refused(pss::read_pcd, write("bad.pcd", bytes), problem);
 }
 
 // ---------------------------------------------------------------------------------------
