@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "pss/core/error.hpp"
+#include "pss/io/las.hpp"
 #include "pss/io/obj.hpp"
 #include "pss/io/pcd.hpp"
 #include "pss/io/ply.hpp"
@@ -317,6 +318,122 @@ TEST_F(FormatTest, PcdErrors) {
        "10 compressed bytes cannot make 4294967292"},
   };
   for (const auto& [bytes, problem] : cases) expect_refused(pss::read_pcd, write("bad.pcd", bytes), problem);
+}
+
+// ---------------------------------------------------------------------------------------
+// LAS
+
+struct LasHeader {
+  int minor = 2;
+  std::uint8_t format = 2;
+  std::uint16_t record_length = 26;
+  std::uint32_t legacy_points = 0;
+  std::uint64_t points = 0;  // 1.4's 64-bit count
+  std::uint32_t data_offset = 0;  // 0: right after the header
+  std::array<double, 3> scale{0.01, 0.01, 0.01}, offset{};
+};
+
+// The public header of LAS 1.minor, field by field (the ASPRS specification's table 3).
+std::string las_header(const LasHeader& h) {
+  const std::uint16_t size = h.minor >= 4 ? 375 : h.minor == 3 ? 235 : 227;
+  Bytes b;
+  b.text("LASF").put(std::uint16_t(0)).put(std::uint16_t(0)).zeros(16);  // source id, encoding, GUID
+  b.put(std::uint8_t(1)).put(std::uint8_t(h.minor)).zeros(64);            // version, system, software
+  b.put(std::uint16_t(1)).put(std::uint16_t(2024)).put(size);
+  b.put(h.data_offset ? h.data_offset : std::uint32_t(size)).put(std::uint32_t(0));  // offset, VLRs
+  b.put(h.format).put(h.record_length).put(h.legacy_points).zeros(20);
+  for (double s : h.scale) b.put(s);
+  for (double o : h.offset) b.put(o);
+  b.zeros(48);  // max and min x y z
+  if (h.minor >= 3) b.zeros(8);  // waveform data
+  if (h.minor >= 4) b.zeros(12).put(h.points).zeros(120);  // EVLRs, 64-bit count, by return
+  return b.str();
+}
+
+// A LAS 1.2 format 2 record: X Y Z, intensity, flags, class, angle, user, source, RGB.
+std::string las_record_2(std::int32_t x, std::int32_t y, std::int32_t z, std::array<std::uint16_t, 3> rgb) {
+  Bytes b;
+  b.put(x).put(y).put(z).put(std::uint16_t(100)).zeros(4).put(std::uint16_t(7));
+  for (std::uint16_t c : rgb) b.put(c);
+  return b.str();
+}
+
+TEST_F(FormatTest, Las12Format2ScaleOffsetAndEightBitColours) {
+  LasHeader h;
+  h.legacy_points = 2;
+  h.data_offset = 227 + 54;  // a VLR's worth of bytes between the header and the points
+  h.scale = {0.01, 0.5, 0.25};
+  h.offset = {100, -200, 1000};
+  const std::string file = las_header(h) + std::string(54, 'v') + las_record_2(1000, -3, 8, {255, 128, 0}) +
+                           las_record_2(-50, 4, 0, {1, 2, 3});
+  const PointCloud cloud = pss::read_las(write("a.las", file));
+  EXPECT_EQ(cloud.positions, (std::vector<vec3>{{110, -201.5f, 1002}, {99.5f, -198, 1000}}));
+  EXPECT_EQ(cloud.colors, (std::vector<Rgb8>{{255, 128, 0}, {1, 2, 3}})) << "8-bit values stored as 16-bit";
+  EXPECT_FALSE(cloud.has_normals());
+}
+
+TEST_F(FormatTest, Las14Format7ExtraBytesAnd16BitColours) {
+  LasHeader h;
+  h.minor = 4;
+  h.format = 7;
+  h.record_length = 36 + 4;  // 4 extra bytes per point
+  h.points = 2;
+  h.scale = {0.001, 0.001, 0.001};
+  h.offset = {-5, 0, 0.5};
+  const auto record = [](std::int32_t x, std::int32_t y, std::int32_t z, std::array<std::uint16_t, 3> rgb) {
+    Bytes b;
+    b.put(x).put(y).put(z).put(std::uint16_t(9)).zeros(4).put(std::int16_t(0)).put(std::uint16_t(3)).put(1.5);
+    for (std::uint16_t c : rgb) b.put(c);
+    return b.str() + "XTRA";
+  };
+  const std::string file = las_header(h) + record(5000, 250, -500, {65535, 257, 0}) + record(0, -1000, 0, {32896, 0, 65280});
+  const PointCloud cloud = pss::read_las(write("b.las", file));
+  EXPECT_EQ(cloud.positions, (std::vector<vec3>{{0, 0.25f, 0}, {-5, -1, 0.5f}}));
+  EXPECT_EQ(cloud.colors, (std::vector<Rgb8>{{255, 1, 0}, {128, 0, 254}}));
+}
+
+TEST_F(FormatTest, LasWithoutColoursAndTheLegacyCountIn14) {
+  LasHeader h;
+  h.minor = 4;
+  h.format = 1;
+  h.record_length = 28;
+  h.legacy_points = 1;  // formats 0-5 may keep it
+  h.points = 1;
+  const PointCloud cloud = pss::read_las(write("c.las", las_header(h) + Bytes().put(100).put(200).put(300).zeros(16).str()));
+  EXPECT_EQ(cloud.positions, std::vector<vec3>{vec3(1, 2, 3)});
+  EXPECT_FALSE(cloud.has_colors());
+}
+
+TEST_F(FormatTest, LasErrors) {
+  const auto with = [](auto change) {
+    LasHeader h;
+    h.legacy_points = 2;
+    change(h);
+    return las_header(h) + las_record_2(1, 2, 3, {0, 0, 0}) + las_record_2(4, 5, 6, {0, 0, 0});
+  };
+  std::string bad_version = with([](LasHeader&) {});
+  bad_version[24] = 2;
+  const std::pair<std::string, std::string> cases[] = {
+      {"LASX" + std::string(300, '\0'), "not a LAS file (no 'LASF' signature)"},
+      {with([](LasHeader&) {}).substr(0, 200), "truncated: 200 bytes, less than a LAS header"},
+      {bad_version, "unsupported LAS version 2.2 (1.0 to 1.4 are read)"},
+      {with([](LasHeader& h) { h.legacy_points = 3; }), "truncated: 3 points of 26 bytes need more than the 52 bytes"},
+      {with([](LasHeader& h) { h.legacy_points = 4000000000u; }), "truncated: 4000000000 points"},
+      {with([](LasHeader& h) { h.record_length = 25; }), "point records of 25 bytes are shorter than format 2's 26"},
+      {with([](LasHeader& h) { h.format = 2 | 0x80; }), "compressed LAS (LAZ) is not supported"},
+      {with([](LasHeader& h) { h.format = 11; }), "unknown point data record format 11"},
+      {with([](LasHeader& h) { h.data_offset = 100000; }), "offset to point data 100000 is not between"},
+      {with([](LasHeader& h) { h.data_offset = 100; }), "offset to point data 100 is not between"},
+      {with([](LasHeader& h) { h.scale[1] = 0; }), "invalid scale 0 or offset 0 of axis y"},
+      {with([](LasHeader& h) { h.offset[2] = std::numeric_limits<double>::quiet_NaN(); }), "of axis z"},
+      {with([](LasHeader& h) { h.scale[0] = 1e300; }), "point 0 lies beyond float's range"},
+      {with([](LasHeader& h) { h.legacy_points = 0; }), "no points"},
+      {with([](LasHeader& h) { h.minor = 4, h.points = 3; }), "the legacy point count 2 differs from the 64-bit one 3"},
+  };
+  for (const auto& [bytes, problem] : cases) expect_refused(pss::read_las, write("bad.las", bytes), problem);
+  std::string short_header = with([](LasHeader&) {});
+  short_header[94] = char(200);  // header size 200 < 227
+  expect_refused(pss::read_las, write("short.las", short_header), "header size 200 is not between LAS 1.2's 227");
 }
 
 // ---------------------------------------------------------------------------------------
