@@ -19,6 +19,7 @@
 #include "pss/io/obj.hpp"
 #include "pss/io/pcd.hpp"
 #include "pss/io/ply.hpp"
+#include "pss/io/point_cloud_file.hpp"
 #include "pss/io/stl.hpp"
 #include "pss/points/project_cloud.hpp"
 #include "support/cli.hpp"
@@ -493,6 +494,27 @@ TEST_F(FormatTest, ProjectionKeepsColours) {
   const pss::CloudProjection out =
       pss::project_cloud(cloud, pss::ProjectionParams::from_h(0.2f), pss::Backend::cpu, stats);
   EXPECT_EQ(out.cloud.colors, cloud.colors);
+}
+
+// ---------------------------------------------------------------------------------------
+// read_point_cloud
+
+TEST_F(FormatTest, ReadPointCloudDispatchesEveryFormatCaseInsensitively) {
+  LasHeader las;
+  las.legacy_points = 1;
+  const std::pair<std::string, std::string> files[] = {
+      {"m.OBJ", "v 1 2 3\n"},
+      {"m.Stl", "solid\nfacet normal 0 0 1\nouter loop\nvertex 1 2 3\nvertex 1 2 3\nvertex 1 2 3\nendloop\n"
+                "endfacet\nendsolid\n"},
+      {"c.PcD", "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nPOINTS 1\nDATA ascii\n1 2 3\n"},
+      {"s.LAS", las_header(las) + las_record_2(100, 200, 300, {0, 0, 0})},
+  };
+  for (const auto& [name, bytes] : files) {
+    const PointCloud cloud = pss::read_point_cloud(write(name, bytes));
+    EXPECT_EQ(cloud.positions, std::vector<vec3>{vec3(1, 2, 3)}) << name;
+  }
+  expect_refused(pss::read_point_cloud, write("s.laz", "LASF"),
+                 "compressed LAS (LAZ) is not supported; decompress it to .las first (laszip, PDAL)");
 }
 
 }  // namespace

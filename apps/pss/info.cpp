@@ -94,7 +94,7 @@ void add_info_command(CLI::App& app, Action action) {
   auto path = std::make_shared<std::string>();
   auto raw = std::make_shared<RawVolumeOptions>();
   command->add_option("file", *path,
-                      "point cloud (.ply, .xyz, .txt, .pts) or volume (.nrrd/.nhdr, .mhd/.mha, .nii/.nii.gz, or raw "
+                      "point cloud (.ply, .xyz/.txt/.pts, .obj, .stl, .pcd, .las) or volume (.nrrd/.nhdr, .mhd/.mha, .nii/.nii.gz, or raw "
                       "with --dims)")
       ->required();
   add_raw_volume_options(*command, *raw);

@@ -96,7 +96,7 @@ void run_project(const ProjectOptions& o) {
 void add_project_command(CLI::App& app, Action action) {
   auto* command = app.add_subcommand("project", "Move every point onto the point set surface (MLS projection)");
   auto o = std::make_shared<ProjectOptions>();
-  command->add_option("file", o->input, "point cloud (.ply, .xyz, .txt, .pts)")->required();
+  command->add_option("file", o->input, "point cloud (.ply, .xyz/.txt/.pts, .obj, .stl, .pcd, .las)")->required();
   command->add_option("-o,--output", o->output, "output binary PLY with x y z nx ny nz")->required();
   command->add_option("--h", o->h, "Gaussian width h (default: estimated from the spacing, see pss info)")
       ->check(finite_positive());
