@@ -87,6 +87,8 @@ void check_cloud(const PointCloud& cloud) {
     if (!is_finite(p)) finding("a non-finite position was returned");
   if (!cloud.normals.empty() && cloud.normals.size() != cloud.positions.size())
     finding("normals and positions differ in number");
+  if (!cloud.colors.empty() && cloud.colors.size() != cloud.positions.size())
+    finding("colours and positions differ in number");
   for (const vec3& n : cloud.normals) {
     const double len = std::sqrt(double(n.x) * n.x + double(n.y) * n.y + double(n.z) * n.z);
     if (!(len == 0 || std::abs(len - 1) < 1e-5)) finding("a normal is neither unit nor zero");

@@ -174,6 +174,99 @@ def xyz_seeds():
     write("xyz", "long-token.xyz", b"1 2 " + b"9" * 5000 + b"\n")
 
 
+def lzf(data):
+    """liblzf's format, greedily: literal runs and back-references (long ones included)."""
+    out, literal, table, i = bytearray(), bytearray(), {}, 0
+    def flush():
+        for k in range(0, len(literal), 32):
+            out.append(len(literal[k:k + 32]) - 1)
+            out.extend(literal[k:k + 32])
+        literal.clear()
+    while i < len(data):
+        key = data[i:i + 3]
+        ref = table.get(key) if len(key) == 3 else None
+        table[key] = i
+        if ref is None or i - ref > 8192:
+            literal.append(data[i])
+            i += 1
+            continue
+        length = 3
+        while i + length < len(data) and length < 264 and data[ref + length] == data[i + length]:
+            length += 1
+        flush()
+        d, n = i - ref - 1, length - 2
+        out += bytes([n << 5 | d >> 8, d & 255]) if n < 7 else bytes([7 << 5 | d >> 8, n - 7, d & 255])
+        i += length
+    flush()
+    return bytes(out)
+
+
+def las(minor, fmt, record_length, pts, rgb_at=None, scale=1e-6):
+    header_size = 375 if minor == 4 else 227
+    h = b"LASF" + bytes(20) + bytes([1, minor]) + bytes(64) + struct.pack("<HHHII", 1, 2024, header_size, header_size, 0)
+    h += struct.pack("<BHI", fmt, record_length, 0 if fmt >= 6 else len(pts)) + bytes(20)
+    h += struct.pack("<6d", scale, scale, scale, 0.5, -0.5, 0) + bytes(48)
+    if minor == 4:
+        h += bytes(20) + struct.pack("<Q", len(pts)) + bytes(120)
+    records = b""
+    for i, p in enumerate(pts):
+        r = bytearray(struct.pack("<3i", *(round((c - o) / scale) for c, o in zip(p, (0.5, -0.5, 0)))))
+        r += bytes(record_length - len(r))
+        if rgb_at:
+            r[rgb_at:rgb_at + 6] = struct.pack("<3H", i * 257 % 65536, 65535, i * 100 % 65536)
+        records += bytes(r)
+    return h + records
+
+
+def point_format_seeds():
+    pts = bunny_points(120)
+    write("obj", "bunny-colours.obj", b"# bunny\nmtllib a.mtl\no b\n" + "".join(
+        f"v {x:g} {y:g} {z:g} {i % 3 / 2} 0.25 1\n" for i, (x, y, z) in enumerate(pts)).encode() + b"f 1 2 3\n")
+    write("obj", "face-normals.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0 1\nvt 0 0\nvn 0 0 1\nvn 0 2 0\n"
+                                     b"f 1//1 2//2 3//1\nf -1/1/-1 1/1/2 2//1\ng x\ns off\n")
+    write("obj", "normals-in-order.obj", b"v 0 0 0\nvn 0 0 1\nv 1 0 0\nvn nan 0 1\nf 1 2 1\n")
+    write("obj", "continuation.obj", b"v 1 2 \\\n3\n")
+    write("obj", "bad-index.obj", b"v 0 0 0\nvn 0 0 1\nf 1//9223372036854775807 -9223372036854775808//1\n")
+
+    facets = [pts[i:i + 3] for i in range(0, len(pts) - 2, 3)]
+    binary = b"solid binary".ljust(80) + struct.pack("<I", len(facets)) + b"".join(
+        struct.pack("<3f", 0, 0, 1) + b"".join(struct.pack("<3f", *v) for v in f) + b"\0\0" for f in facets)
+    write("stl", "bunny-binary.stl", binary)
+    write("stl", "bunny-binary-truncated.stl", binary[:-7])
+    write("stl", "lying-count.stl", binary[:80] + struct.pack("<I", 0xFFFFFFFF) + binary[84:])
+    write("stl", "bunny-ascii.stl", ("solid bunny\n" + "".join(
+        " facet normal 0 0 1\n  outer loop\n" + "".join(f"   vertex {x:g} {y:g} {z:g}\n" for x, y, z in f) +
+        "  endloop\n endfacet\n" for f in facets[:20]) + "endsolid bunny\n").encode())
+    write("stl", "two-vertices.stl", b"solid\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\n")
+
+    fields = "FIELDS x y z normal_x normal_y normal_z rgb hist\nSIZE 4 4 4 4 4 4 4 2\nTYPE F F F F F F U I\n" \
+             "COUNT 1 1 1 1 1 1 1 3\nWIDTH {n}\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS {n}\nDATA {data}\n"
+    rows = [(*p, *normal_of(p), i * 0x010203 & 0xFFFFFF, i, -i, 7) for i, p in enumerate(pts)]
+    rows[5] = (math.nan,) * 6 + rows[5][6:]  # PCL's invalid point
+    write("pcd", "bunny-ascii.pcd", fields.format(n=len(rows), data="ascii").encode() + "".join(
+        " ".join(f"{v:g}" if isinstance(v, float) else str(v) for v in r) + "\n" for r in rows).encode())
+    aos = b"".join(struct.pack("<6fI3h", *r) for r in rows)
+    write("pcd", "bunny-binary.pcd", fields.format(n=len(rows), data="binary").encode() + aos)
+    soa = b"".join(b"".join(struct.pack("<" + t, *r[a:b]) for r in rows)
+                   for t, a, b in [("f", 0, 1), ("f", 1, 2), ("f", 2, 3), ("f", 3, 4), ("f", 4, 5), ("f", 5, 6),
+                                   ("I", 6, 7), ("3h", 7, 10)])
+    packed = lzf(soa)
+    compressed = fields.format(n=len(rows), data="binary_compressed").encode() + struct.pack("<II", len(packed), len(soa))
+    write("pcd", "bunny-compressed.pcd", compressed + packed)
+    write("pcd", "compressed-lying-size.pcd", compressed[:-4] + struct.pack("<I", 0xFFFFFFF0) + packed)
+    write("pcd", "types.pcd", b"FIELDS x y z t\nSIZE 8 1 2 8\nTYPE F I U U\nWIDTH 2\nHEIGHT 1\nDATA binary\n" +
+          struct.pack("<dbHQdbHQ", 0.5, -3, 65535, 1, float("nan"), 0, 0, 2))
+
+    write("las", "bunny-12-format-2.las", las(2, 2, 26, pts, rgb_at=20))
+    write("las", "bunny-14-format-7-extra-bytes.las", las(4, 7, 40, pts, rgb_at=30))
+    write("las", "format-0.las", las(2, 0, 20, pts[:10]))
+    write("las", "format-10.las", las(4, 10, 67, pts[:10], rgb_at=30))
+    write("las", "truncated.las", las(2, 1, 28, pts[:10])[:-5])
+    laz = bytearray(las(2, 2, 26, pts[:3], rgb_at=20))
+    laz[104] |= 0x80  # LASzip's compressed flag
+    write("las", "laz-bit.las", bytes(laz))
+
+
 # ---- raw: 18-byte format (type, flags, dims x y z, skip as int32 LE), then the file ----
 
 TYPES = {"int8": 0, "uint8": 1, "int16": 2, "uint16": 3, "int32": 4, "uint32": 5, "float32": 6, "float64": 7}
@@ -444,6 +537,7 @@ if __name__ == "__main__":
     clear()
     ply_seeds()
     xyz_seeds()
+    point_format_seeds()
     raw_seeds()
     nrrd_seeds()
     metaimage_seeds()

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Fuzzes pss's file readers and its command line with libFuzzer (docs/fuzzing.md).
-#   scripts/fuzz.sh [TARGET|all] [SECONDS]     TARGET: ply xyz raw nrrd metaimage nifti cli
+#   scripts/fuzz.sh [TARGET|all] [SECONDS]     TARGET: ply xyz obj stl pcd las raw nrrd metaimage nifti cli
 # Builds the targets with clang, ASan and UBSan (CPU-only) in build-fuzz/, then runs each for
 # SECONDS (default 600), two at a time (nice 10), from a working corpus out/fuzz/TARGET/ that
 # starts as a copy of the seeds fuzz/corpus/TARGET/ and keeps what each run adds. A crash,
@@ -11,7 +11,7 @@
 # A finding that is fixed goes into fuzz/corpus/TARGET/, which the test suite replays.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-all=(ply xyz raw nrrd metaimage nifti cli)
+all=(ply xyz obj stl pcd las raw nrrd metaimage nifti cli)
 target=${1:-all}
 seconds=${2:-600}
 if [[ $target == all ]]; then
@@ -45,7 +45,7 @@ cmake --build build-fuzz -j"$(nproc)" --target "${targets[@]/#/fuzz_}"
 
 # The longest input each target is given: room for the seeds (each under 64 KiB), and for a
 # command line of a few dozen arguments.
-declare -A max_len=([ply]=65536 [xyz]=16384 [raw]=65536 [nrrd]=65536 [metaimage]=65536 [nifti]=65536 [cli]=2048)
+declare -A max_len=([ply]=65536 [xyz]=16384 [obj]=16384 [stl]=65536 [pcd]=65536 [las]=65536 [raw]=65536 [nrrd]=65536 [metaimage]=65536 [nifti]=65536 [cli]=2048)
 export ASAN_OPTIONS=abort_on_error=0:detect_leaks=1:strict_string_checks=1
 export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
 mkdir -p out/fuzz/logs

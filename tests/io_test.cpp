@@ -489,9 +489,9 @@ TEST_F(PointCloudFileTest, DispatchesOnExtensionCaseInsensitively) {
 }
 
 TEST_F(PointCloudFileTest, UnknownExtension) {
-  const fs::path path = write("mesh.obj", "v 1 2 3\n");
+  const fs::path path = write("mesh.off", "OFF\n");
   expect_file_error([&] { pss::read_point_cloud(path); }, path,
-                    "unknown point cloud format '.obj' (expected .ply, .xyz, .txt or .pts)");
+                    "unknown point cloud format '.off' (expected .ply, .xyz, .txt, .pts, .obj, .stl, .pcd or .las)");
 }
 
 // ---------------------------------------------------------------------------------------

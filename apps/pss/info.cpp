@@ -22,7 +22,9 @@ void print_cloud(const std::string& path) {
   const Aabb box = cloud.bounds();
   const vec3 size = box.extent();
   std::printf("file            %s\n", path.c_str());
-  std::printf("points          %zu%s\n", cloud.size(), cloud.has_normals() ? " (with normals)" : "");
+  const char* extras = cloud.has_normals() ? (cloud.has_colors() ? " (with normals and colours)" : " (with normals)")
+                                           : (cloud.has_colors() ? " (with colours)" : "");
+  std::printf("points          %zu%s\n", cloud.size(), extras);
   std::printf("bounds          [%g, %g] x [%g, %g] x [%g, %g]\n", box.lo.x, box.hi.x, box.lo.y, box.hi.y, box.lo.z,
               box.hi.z);
   std::printf("size            %g x %g x %g (diagonal %g)\n", size.x, size.y, size.z, glm::length(size));
@@ -92,7 +94,7 @@ void add_info_command(CLI::App& app, Action action) {
   auto path = std::make_shared<std::string>();
   auto raw = std::make_shared<RawVolumeOptions>();
   command->add_option("file", *path,
-                      "point cloud (.ply, .xyz, .txt, .pts) or volume (.nrrd/.nhdr, .mhd/.mha, .nii/.nii.gz, or raw "
+                      "point cloud (.ply, .xyz/.txt/.pts, .obj, .stl, .pcd, .las) or volume (.nrrd/.nhdr, .mhd/.mha, .nii/.nii.gz, or raw "
                       "with --dims)")
       ->required();
   add_raw_volume_options(*command, *raw);

@@ -103,10 +103,11 @@ void run_project(const ProjectOptions& o) {
 void add_project_command(CLI::App& app, Action action) {
   auto* command = app.add_subcommand("project", "Move every point onto the point set surface (MLS projection): .ply, .xyz");
   auto o = std::make_shared<ProjectOptions>();
-  command->add_option("file", o->input, "point cloud (.ply, .xyz, .txt, .pts)")->required();
+  command->add_option("file", o->input, "point cloud (.ply, .xyz/.txt/.pts, .obj, .stl, .pcd, .las)")->required();
   command
       ->add_option("-o,--output", o->output,
-                   "output points, by extension: .ply (binary: x y z nx ny nz and an int 'status' per point: 0 "
+                   "output points, by extension: .ply (binary: x y z nx ny nz, red green blue when the input has "
+                   "colours, and an int 'status' per point: 0 "
                    "converged, 1 not converged within --iterations, 2 too few neighbours within rho (point and "
                    "normal unchanged), 3 degenerate normal (neighbours on a line)) or .xyz (text: x y z nx ny nz, no "
                    "status)")

@@ -14,6 +14,8 @@
 #include "pss/io/output_file.hpp"
 #include "pss/io/point_cloud_file.hpp"
 #include "bytes.hpp"
+#include "color.hpp"
+#include "text.hpp"
 
 namespace pss {
 namespace {
@@ -75,18 +77,6 @@ struct Header {
   int lines = 0;               // so that ascii errors can name file lines
 };
 
-std::vector<std::string_view> split_words(std::string_view line) {
-  std::vector<std::string_view> words;
-  std::size_t i = 0;
-  while (true) {
-    i = line.find_first_not_of(" \t", i);
-    if (i == std::string_view::npos) return words;
-    const std::size_t end = std::min(line.find_first_of(" \t", i), line.size());
-    words.push_back(line.substr(i, end - i));
-    i = end;
-  }
-}
-
 Header parse_header(const fs::path& path, std::string_view file) {
   if (!file.starts_with("ply\n") && !file.starts_with("ply\r\n"))
     throw file_error(path, "not a PLY file (missing 'ply' magic)");
@@ -108,7 +98,7 @@ Header parse_header(const fs::path& path, std::string_view file) {
     if (line.ends_with('\r')) line.remove_suffix(1);
     pos = end + 1;
     if (++line_number == 1) continue;  // the magic
-    const std::vector<std::string_view> words = split_words(line);
+    const std::vector<std::string_view> words = io::split_words(line);
     if (words.empty() || words[0] == "comment" || words[0] == "obj_info") continue;
     if (words[0] == "format" && words.size() >= 2) {
       if (words[1] == "ascii") header.format = Format::Ascii;
@@ -265,24 +255,45 @@ void for_each_record(const fs::path& path, const Element& element, ReadRecord re
   }
 }
 
-constexpr std::string_view kVertexNames[] = {"x", "y", "z", "nx", "ny", "nz"};
+// The vertex properties read, by slot: x y z, nx ny nz, red green blue (or MeshLab's older
+// diffuse_red ...).
+constexpr std::string_view kVertexNames[] = {"x", "y", "z", "nx", "ny", "nz", "red", "green", "blue"};
+constexpr int kNormal = 3, kColor = 6, kSlots = 9;
 
-// Which of x y z nx ny nz each vertex property is (-1: skipped). Normals count only when
-// all three are present.
+bool names_slot(std::string_view name, int k) {
+  return name == kVertexNames[k] ||
+         (k >= kColor && name.starts_with("diffuse_") && name.substr(8) == kVertexNames[k]);
+}
+
+// Which slot each vertex property fills (-1: skipped). Normals and colours count only when
+// all three of their properties are present.
 std::vector<int> vertex_slots(const fs::path& path, const Element& vertex) {
   std::vector<int> slots(vertex.properties.size(), -1);
-  std::array<bool, 6> found{};
+  std::array<bool, kSlots> found{};
   for (std::size_t i = 0; i < slots.size(); ++i) {
     if (vertex.properties[i].count) continue;
-    for (int k = 0; k < 6; ++k)
-      if (vertex.properties[i].name == kVertexNames[k]) slots[i] = k, found[k] = true;
+    for (int k = 0; k < kSlots; ++k)
+      if (!found[k] && names_slot(vertex.properties[i].name, k)) slots[i] = k, found[k] = true;
   }
-  for (int k = 0; k < 3; ++k)
+  for (int k = 0; k < kNormal; ++k)
     if (!found[k])
       throw file_error(path, "vertex element has no '" + std::string(kVertexNames[k]) + "' property");
-  if (!(found[3] && found[4] && found[5]))
-    for (int& s : slots) s = s >= 3 ? -1 : s;
+  for (const int group : {kNormal, kColor})
+    if (!(found[group] && found[group + 1] && found[group + 2]))
+      for (int& s : slots) s = s >= group && s < group + 3 ? -1 : s;
   return slots;
+}
+
+// A colour channel of any type: floats from 0..1, 16-bit integers scaled from 0..65535, the
+// others as 0..255 values (clamped).
+std::uint8_t color_channel(double v, Scalar type) {
+  switch (type) {
+    case Scalar::Float32:
+    case Scalar::Float64: return io::channel_from_unit(v);
+    case Scalar::Int16:
+    case Scalar::UInt16: return io::channel_from_16bit(v > 0 ? std::uint32_t(v) : 0);
+    default: return static_cast<std::uint8_t>(std::clamp(v, 0.0, 255.0));
+  }
 }
 
 // The most records of an element the remaining bytes could hold. Reserving no more than
@@ -310,13 +321,18 @@ PointCloud read_data(const fs::path& path, const Header& header, Cursor in) {
       }
     });
   }
-  const bool normals = std::find(slots.begin(), slots.end(), 3) != slots.end();
+  const bool normals = std::find(slots.begin(), slots.end(), kNormal) != slots.end();
+  const bool colors = std::find(slots.begin(), slots.end(), kColor) != slots.end();
+  std::array<Scalar, 3> color_types{};
+  for (std::size_t j = 0; j < slots.size(); ++j)
+    if (slots[j] >= kColor) color_types[slots[j] - kColor] = vertex->properties[j].type;
   PointCloud cloud;
   const std::uint64_t capacity = std::min(vertex->count, max_records(in, *vertex));
   cloud.positions.reserve(capacity);
   if (normals) cloud.normals.reserve(capacity);
+  if (colors) cloud.colors.reserve(capacity);
   for_each_record(path, *vertex, [&](std::uint64_t i) {
-    double v[6] = {};
+    double v[kSlots] = {};
     for (std::size_t j = 0; j < slots.size(); ++j) {
       const Property& p = vertex->properties[j];
       if (p.count) skip_list(in, p);
@@ -329,6 +345,12 @@ PointCloud read_data(const fs::path& path, const Header& header, Cursor in) {
       throw file_error(path, "vertex " + std::to_string(i) + " has a non-finite coordinate");
     cloud.positions.push_back(position);
     if (normals) cloud.normals.push_back(vec3(glm::dvec3(v[3], v[4], v[5])));
+    if (colors) {
+      if (!std::isfinite(v[6]) || !std::isfinite(v[7]) || !std::isfinite(v[8]))
+        throw file_error(path, "vertex " + std::to_string(i) + " has a non-finite colour");
+      cloud.colors.emplace_back(color_channel(v[6], color_types[0]), color_channel(v[7], color_types[1]),
+                                color_channel(v[8], color_types[2]));
+    }
   });
   // Elements after the vertices are not read: nothing there is needed.
   tidy_normals(cloud);
@@ -363,6 +385,9 @@ void write_ply(const fs::path& path, const PointCloud& cloud, std::span<const Pl
   if (cloud.has_normals() && cloud.normals.size() != n)
     throw file_error(path, "cannot write: " + std::to_string(n) + " positions but " +
                                std::to_string(cloud.normals.size()) + " normals");
+  if (cloud.has_colors() && cloud.colors.size() != n)
+    throw file_error(path, "cannot write: " + std::to_string(n) + " positions but " +
+                               std::to_string(cloud.colors.size()) + " colours");
   for (const PlyIntProperty& p : extra) {
     if (p.values.size() != n)
       throw file_error(path, "cannot write: " + std::to_string(n) + " positions but " +
@@ -378,11 +403,12 @@ void write_ply(const fs::path& path, const PointCloud& cloud, std::span<const Pl
   out << "ply\nformat binary_little_endian 1.0\ncomment written by pss\nelement vertex " << n
       << "\nproperty float x\nproperty float y\nproperty float z\n";
   if (cloud.has_normals()) out << "property float nx\nproperty float ny\nproperty float nz\n";
+  if (cloud.has_colors()) out << "property uchar red\nproperty uchar green\nproperty uchar blue\n";
   for (const PlyIntProperty& p : extra) out << "property int " << p.name << "\n";
   out << "end_header\n";
 
   // Records go out in chunks: one write per chunk, without a second copy of a large cloud.
-  const std::size_t stride = (cloud.has_normals() ? 24 : 12) + 4 * extra.size();
+  const std::size_t stride = (cloud.has_normals() ? 24 : 12) + (cloud.has_colors() ? 3 : 0) + 4 * extra.size();
   constexpr std::size_t kChunk = 1 << 16;
   std::vector<char> buffer(std::min(n, kChunk) * stride);
   for (std::size_t begin = 0; begin < n; begin += kChunk) {
@@ -392,6 +418,8 @@ void write_ply(const fs::path& path, const PointCloud& cloud, std::span<const Pl
       for (int k = 0; k < 3; ++k) o = store_little_endian(o, cloud.positions[i][k]);
       if (cloud.has_normals())
         for (int k = 0; k < 3; ++k) o = store_little_endian(o, cloud.normals[i][k]);
+      if (cloud.has_colors())
+        for (int k = 0; k < 3; ++k) o = store_little_endian(o, cloud.colors[i][k]);
       for (const PlyIntProperty& p : extra) o = store_little_endian(o, p.values[i]);
     }
     out.write(buffer.data(), o - buffer.data());

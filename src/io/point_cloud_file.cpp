@@ -7,7 +7,11 @@
 
 #include "pss/core/error.hpp"
 #include "pss/io/output_format.hpp"
+#include "pss/io/las.hpp"
+#include "pss/io/obj.hpp"
+#include "pss/io/pcd.hpp"
 #include "pss/io/ply.hpp"
+#include "pss/io/stl.hpp"
 #include "pss/io/xyz.hpp"
 
 namespace pss {
@@ -18,8 +22,13 @@ PointCloud read_point_cloud(const std::filesystem::path& path) {
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext == ".ply") return read_ply(path);
   if (ext == ".xyz" || ext == ".txt" || ext == ".pts") return read_xyz(path);
+  if (ext == ".obj") return read_obj(path);
+  if (ext == ".stl") return read_stl(path);
+  if (ext == ".pcd") return read_pcd(path);
+  if (ext == ".las") return read_las(path);
+  if (ext == ".laz") throw file_error(path, "compressed LAS (LAZ) is not supported; decompress it to .las first (laszip, PDAL)");
   throw file_error(path, "unknown point cloud format " + quote(path.extension().string()) +
-                             " (expected .ply, .xyz, .txt or .pts)");
+                             " (expected .ply, .xyz, .txt, .pts, .obj, .stl, .pcd or .las)");
 }
 
 void write_point_cloud(const std::filesystem::path& path, const PointCloud& cloud,

@@ -72,6 +72,7 @@ CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& p
   out.cloud.positions.resize(n);
   out.cloud.normals.resize(n);
   out.status.resize(n);
+  out.cloud.colors = input.colors;  // the projections keep the input's order
   for (std::size_t i = 0; i < n; ++i) {
     out.cloud.positions[i] = projected[i].point;
     out.cloud.normals[i] = projected[i].normal;

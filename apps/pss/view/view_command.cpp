@@ -16,7 +16,7 @@ void add_view_command(CLI::App& app) {
   auto o = std::make_shared<view::ViewerOptions>();
   add_volume_options(*command, o->file, true);
   command->get_option("file")->description(
-      "point cloud (.ply, .xyz, .txt, .pts) or volume (.nrrd/.nhdr, .mhd/.mha, .nii/.nii.gz, or raw with --dims and "
+      "point cloud (.ply, .xyz/.txt/.pts, .obj, .stl, .pcd, .las) or volume (.nrrd/.nhdr, .mhd/.mha, .nii/.nii.gz, or raw with --dims and "
       "--type)");
   // --h means a cloud's own units too: the volume bound (at least 0.5 voxels) is checked
   // when a volume opens (VolumeSettings), here only that it is a positive number.

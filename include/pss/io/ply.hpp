@@ -12,8 +12,9 @@
 namespace pss {
 
 // Reads the 'vertex' element's x y z (any scalar type) and, when all three are present,
-// nx ny nz. Other properties and elements are skipped. Every problem is a one-line
-// pss::Error "FILE: problem".
+// nx ny nz and red green blue (or diffuse_red ...): uchar colours as they are, float ones
+// from 0..1, 16-bit ones from 0..65535, other integers as 0..255 (clamped). Other
+// properties and elements are skipped. Every problem is a one-line pss::Error "FILE: problem".
 PointCloud read_ply(const std::filesystem::path& path);
 
 // An extra per-vertex 'int' property, e.g. a label per point; values.size() == cloud size.
@@ -22,8 +23,8 @@ struct PlyIntProperty {
   std::span<const std::int32_t> values;
 };
 
-// binary_little_endian: float x y z, float nx ny nz if the cloud has normals, then each
-// extra property as int. Written atomically (OutputFile).
+// binary_little_endian: float x y z, float nx ny nz if the cloud has normals, uchar red
+// green blue if it has colours, then each extra property as int. Written atomically (OutputFile).
 void write_ply(const std::filesystem::path& path, const PointCloud& cloud,
                std::span<const PlyIntProperty> extra = {});
 

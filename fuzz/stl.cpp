@@ -1,0 +1,11 @@
+// STL: the input is the file (read_stl).
+#include "fuzz_input.hpp"
+#include "pss/io/stl.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace pss::fuzz;
+  fresh_folder();
+  const auto path = write_file("input.stl", as_text(data, size));
+  expect_value_or_error([&] { check_cloud(pss::read_stl(path)); });
+  return 0;
+}

@@ -1,0 +1,114 @@
+#include "pss/io/las.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <string>
+
+#include "bytes.hpp"
+#include "color.hpp"
+#include "pss/core/error.hpp"
+#include "pss/io/output_file.hpp"
+
+namespace pss {
+namespace {
+
+constexpr bool kSwap = std::endian::native != std::endian::little;  // LAS is little-endian
+
+// The public header's size up to LAS 1.3's fields, and with 1.4's 64-bit point counts.
+constexpr std::size_t kHeaderBefore14 = 227, kHeader14 = 375;
+
+// Each point data record format's length in bytes and where its RGB begins (0: none).
+struct RecordFormat {
+  std::uint64_t length, rgb;
+};
+constexpr RecordFormat kFormats[] = {{20, 0},  {28, 0},  {26, 20}, {34, 28}, {57, 0}, {63, 28},
+                                     {30, 0},  {36, 30}, {38, 30}, {59, 0},  {67, 30}};
+
+// A little-endian value at a byte offset the caller has checked.
+template <class T>
+T get(const std::string& file, std::uint64_t at) {
+  return io::load<T>(file.data() + at, kSwap);
+}
+
+}  // namespace
+
+PointCloud read_las(const std::filesystem::path& path) {
+  const std::string file = read_file(path);
+  if (!file.starts_with("LASF")) throw file_error(path, "not a LAS file (no 'LASF' signature)");
+  if (file.size() < kHeaderBefore14)
+    throw file_error(path, "truncated: " + std::to_string(file.size()) + " bytes, less than a LAS header");
+  const int major = get<std::uint8_t>(file, 24), minor = get<std::uint8_t>(file, 25);
+  if (major != 1 || minor > 4)
+    throw file_error(path, "unsupported LAS version " + std::to_string(major) + "." + std::to_string(minor) +
+                               " (1.0 to 1.4 are read)");
+  const std::uint64_t header_size = get<std::uint16_t>(file, 94), data_offset = get<std::uint32_t>(file, 96);
+  const unsigned format = get<std::uint8_t>(file, 104);
+  const std::uint64_t record_length = get<std::uint16_t>(file, 105);
+  const std::size_t needed_header = minor >= 4 ? kHeader14 : kHeaderBefore14;
+  if (header_size < needed_header || header_size > file.size())
+    throw file_error(path, "header size " + std::to_string(header_size) + " is not between LAS 1." +
+                               std::to_string(minor) + "'s " + std::to_string(needed_header) + " and the file's " +
+                               std::to_string(file.size()) + " bytes");
+  // LAZ sets the top bits of the format (LASzip's convention).
+  if (format & 0xC0) throw file_error(path, "compressed LAS (LAZ) is not supported; decompress it to .las first (laszip, PDAL)");
+  if (format > 10) throw file_error(path, "unknown point data record format " + std::to_string(format));
+  const RecordFormat record = kFormats[format];
+  if (record_length < record.length)
+    throw file_error(path, "point records of " + std::to_string(record_length) + " bytes are shorter than format " +
+                               std::to_string(format) + "'s " + std::to_string(record.length));
+  if (data_offset < header_size || data_offset > file.size())
+    throw file_error(path, "offset to point data " + std::to_string(data_offset) + " is not between the header's " +
+                               std::to_string(header_size) + " bytes and the file's " + std::to_string(file.size()));
+
+  std::uint64_t points = get<std::uint32_t>(file, 107);
+  if (minor >= 4) {
+    // 1.4 keeps the legacy count 0 for formats 6-10 and where the count passes 32 bits.
+    const std::uint64_t points64 = get<std::uint64_t>(file, 247);
+    if (points != 0 && points64 != 0 && points != points64)
+      throw file_error(path, "the legacy point count " + std::to_string(points) + " differs from the 64-bit one " +
+                                 std::to_string(points64));
+    points = std::max(points, points64);
+  }
+  if (points == 0) throw file_error(path, "no points");
+  const std::uint64_t available = file.size() - data_offset;
+  if (points > available / record_length)
+    throw file_error(path, "truncated: " + std::to_string(points) + " points of " + std::to_string(record_length) +
+                               " bytes need more than the " + std::to_string(available) + " bytes after the header");
+
+  glm::dvec3 scale, offset;
+  for (int k = 0; k < 3; ++k) {
+    scale[k] = get<double>(file, 131 + 8 * k);
+    offset[k] = get<double>(file, 155 + 8 * k);
+    if (!(std::isfinite(scale[k]) && scale[k] != 0 && std::isfinite(offset[k])))
+      throw file_error(path, "invalid scale " + format_number(scale[k]) + " or offset " + format_number(offset[k]) +
+                                 " of axis " + "xyz"[k]);
+  }
+  const auto record_at = [&](std::uint64_t i) { return data_offset + i * record_length; };
+  PointCloud cloud;
+  cloud.positions.reserve(points);
+  for (std::uint64_t i = 0; i < points; ++i) {
+    const std::uint64_t r = record_at(i);
+    const glm::dvec3 integer(get<std::int32_t>(file, r), get<std::int32_t>(file, r + 4), get<std::int32_t>(file, r + 8));
+    const vec3 position(integer * scale + offset);
+    if (!is_finite(position))
+      throw file_error(path, "point " + std::to_string(i) + " lies beyond float's range");
+    cloud.positions.push_back(position);
+  }
+  if (record.rgb != 0) {
+    const auto channel = [&](std::uint64_t i, int c) {
+      return get<std::uint16_t>(file, record_at(i) + record.rgb + 2 * std::uint64_t(c));
+    };
+    std::uint16_t brightest = 0;
+    for (std::uint64_t i = 0; i < points; ++i)
+      for (int c = 0; c < 3; ++c) brightest = std::max(brightest, channel(i, c));
+    cloud.colors.resize(points);
+    for (std::uint64_t i = 0; i < points; ++i)
+      for (int c = 0; c < 3; ++c)
+        cloud.colors[i][c] = brightest <= 255 ? std::uint8_t(channel(i, c)) : io::channel_from_16bit(channel(i, c));
+  }
+  return cloud;
+}
+
+}  // namespace pss
