@@ -16,7 +16,8 @@ cd "$(dirname "$0")/.."
 # runtime is on every system, and a second one on the library path would shadow it).
 packages=(libglm-dev libcli11-dev libstb-dev libstb0 nlohmann-json3-dev libnanoflann-dev
           zlib1g-dev libnifti2-dev libnifti2-2 libniftiio-dev libniftiio2 libznz-dev libznz3
-          libnifticdf-dev libnifticdf2 libgtest-dev libgmock-dev googletest)
+          libnifticdf-dev libnifticdf2 libgtest-dev libgmock-dev googletest
+          libopenexr-dev libopenexr-3-1-30 libimath-dev libimath-3-1-29)
 if [[ ${1:-} == --packages ]]; then
   echo "${packages[@]}"
   exit 0
