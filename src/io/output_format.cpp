@@ -1,23 +1,17 @@
 #include "pss/io/output_format.hpp"
 
-#include <algorithm>
-#include <cctype>
 #include <string>
 
 #include "pss/core/error.hpp"
+#include "text.hpp"
 
 namespace pss {
 namespace {
 
+using io::lowercase_extension;
+
 constexpr const char* kImageExtensions = ".png, .jpg, .jpeg or .exr";
 constexpr const char* kPointsExtensions = ".ply or .xyz";
-
-std::string lowercase_extension(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
 
 // Says what the name should be, so that -o cloud.ply on `render` is no mystery.
 [[noreturn]] void refuse(const std::filesystem::path& path, const std::string& what, const char* extensions) {

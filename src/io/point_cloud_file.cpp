@@ -1,7 +1,6 @@
 #include "pss/io/point_cloud_file.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <string>
 
@@ -13,13 +12,12 @@
 #include "pss/io/ply.hpp"
 #include "pss/io/stl.hpp"
 #include "pss/io/xyz.hpp"
+#include "text.hpp"
 
 namespace pss {
 
 PointCloud read_point_cloud(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string ext = io::lowercase_extension(path);
   if (ext == ".ply") return read_ply(path);
   if (ext == ".xyz" || ext == ".txt" || ext == ".pts") return read_xyz(path);
   if (ext == ".obj") return read_obj(path);

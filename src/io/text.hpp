@@ -2,13 +2,23 @@
 #pragma once
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cstdint>
+#include <filesystem>
+#include <string>
 #include <string_view>
 #include <system_error>
 #include <vector>
 
 namespace pss::io {
+
+// The file's extension in lower case (".PLY" → ".ply"): formats are chosen by it in any case.
+inline std::string lowercase_extension(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
 
 // Words separated by spaces and tabs.
 inline std::vector<std::string_view> split_words(std::string_view line) {
