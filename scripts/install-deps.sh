@@ -3,7 +3,8 @@
 set -euo pipefail
 packages=(g++ cmake ninja-build pkg-config libglm-dev libcli11-dev libstb-dev nlohmann-json3-dev
           libnanoflann-dev zlib1g-dev libnifti2-dev libopenexr-dev libgtest-dev libgmock-dev
-          libglfw3-dev libimgui-dev xvfb xauth libgl1-mesa-dri)
+          libglfw3-dev libimgui-dev xvfb xauth libgl1-mesa-dri
+          python3-dev pybind11-dev python3-numpy python3-pytest)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -48,16 +48,10 @@ void run_project(const ProjectOptions& o) {
   params.max_mls_iterations = o.iterations;
 
   const CloudProjection result = project_cloud(cloud, params, backend, stats);
-  const auto& counts = result.counts;
-  if (cloud.size() > 0 && counts.converged + counts.not_converged == 0) {
-    // Writing the input back unmoved would look like success.
-    char message[300];
-    std::snprintf(message, sizeof message,
-                  "no point was projected with h = %g, rho = %g (too few neighbours %lld, degenerate normal %lld); "
-                  "h is likely too small for the sample spacing (pss info suggests one)",
-                  double(params.h), double(params.rho), (long long)counts.too_few_neighbours,
-                  (long long)counts.degenerate_normal);
-    throw Error(o.input + ": " + message);
+  try {
+    check_some_projected(result, params);
+  } catch (const Error& e) {
+    throw file_error(o.input, e.what());
   }
   {
     ScopedPhase phase(stats, "write");

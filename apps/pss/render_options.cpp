@@ -30,18 +30,13 @@ std::optional<std::pair<T, T>> parse_pair(const std::string& text, char separato
   return std::make_pair(a, b);
 }
 
-// A frame keeps an image pixel and a hit record (about 64 bytes) per pixel: 2^26 pixels
-// (8192x8192) are about 4 GiB, and a side up to 16384 still allows wide panoramas.
-constexpr int kMaxSide = 16384;
-constexpr long long kMaxPixels = 1LL << 26;
-
 std::string check_size(const std::string& text) {
   const auto wh = parse_pair<int>(text, 'x');
   if (!wh) return "expected WIDTHxHEIGHT, e.g. 512x512 (got " + quote(text) + ")";
-  if (wh->first < 1 || wh->second < 1 || wh->first > kMaxSide || wh->second > kMaxSide)
-    return "width and height must be between 1 and " + std::to_string(kMaxSide) + " (got " + quote(text) + ")";
-  if (static_cast<long long>(wh->first) * wh->second > kMaxPixels)
-    return "at most " + std::to_string(kMaxPixels) + " pixels in all, e.g. 8192x8192 (got " + quote(text) + ")";
+  if (wh->first < 1 || wh->second < 1 || wh->first > kMaxImageSide || wh->second > kMaxImageSide)
+    return "width and height must be between 1 and " + std::to_string(kMaxImageSide) + " (got " + quote(text) + ")";
+  if (static_cast<long long>(wh->first) * wh->second > kMaxImagePixels)
+    return "at most " + std::to_string(kMaxImagePixels) + " pixels in all, e.g. 8192x8192 (got " + quote(text) + ")";
   return {};
 }
 
@@ -112,7 +107,7 @@ void add_render_options(CLI::App& command, RenderOptions& o) {
       ->check(CLI::Validator(check_view, "AZ,EL", "view"));
   auto* view = command.get_option("--view");
   auto* fov = command.add_option("--fov", o.camera.fov_deg, "vertical field of view in degrees")
-                  ->check(finite_range(1, 170))
+                  ->check(finite_range(kMinFovDeg, kMaxFovDeg))
                   ->capture_default_str();
   auto* look_at = command
                       .add_option_function<std::string>(
@@ -133,10 +128,10 @@ void add_render_options(CLI::App& command, RenderOptions& o) {
                                       "given, --fov zooms)")
                        ->check(finite_positive());
   auto* zoom = command.add_option("--zoom", o.camera.zoom, "divides the eye's distance: 2 comes twice as close")
-                   ->check(finite_range(1e-3, 1e3))
+                   ->check(finite_range(kMinZoom, kMaxZoom))
                    ->capture_default_str();
   auto* roll = command.add_option("--roll", o.camera.roll_deg, "turns the camera about the view direction, degrees counter-clockwise (the picture turns clockwise)")
-                   ->check(finite_range(-360, 360))
+                   ->check(finite_range(-kMaxRollDeg, kMaxRollDeg))
                    ->capture_default_str();
   auto* camera = command.add_option("--camera", o.camera_file,
                                     "the camera of a JSON file: the \"camera\" that --stats writes (a --stats file "
@@ -166,16 +161,9 @@ void check_render_options(const RenderOptions& o) {
 }
 
 Camera make_camera(const RenderOptions& o, const Aabb& bounds) {
-  if (o.camera_file.empty()) {
-    // The flags are each valid; together the view direction must not lie along --up.
-    const vec3 up = glm::normalize(o.camera.up);
-    const Camera c = Camera::framing(bounds, o.camera);
-    if (std::abs(glm::dot(c.forward, up)) > 0.9999f && o.camera.up != vec3(0, 1, 0))
-      throw pss::Error("--up " + format_number(o.camera.up.x) + "," + format_number(o.camera.up.y) + "," +
-                  format_number(o.camera.up.z) + " lies along the view direction: choose another --view or --up");
-    return c;
-  }
-  return read_camera_file(o.camera_file, o.camera.width, o.camera.height);
+  if (!o.camera_file.empty()) return read_camera_file(o.camera_file, o.camera.width, o.camera.height);
+  validate(o.camera);  // each flag is checked; together the view must not look along --up
+  return Camera::framing(bounds, o.camera);
 }
 
 TraceSettings trace_settings(const RenderOptions& o, const Camera& camera) {

@@ -34,6 +34,18 @@ void check_neighbourhood(const ProjectionParams& p, double diagonal) {
   }
 }
 
+void check_some_projected(const CloudProjection& projection, const ProjectionParams& params) {
+  const StatusCounts& c = projection.counts;
+  if (projection.cloud.size() == 0 || c.converged + c.not_converged > 0) return;
+  char message[300];
+  std::snprintf(message, sizeof message,
+                "no point was projected with h = %g, rho = %g (too few neighbours %lld, degenerate normal %lld); "
+                "h is likely too small for the sample spacing (pss info suggests one)",
+                double(params.h), double(params.rho), (long long)c.too_few_neighbours,
+                (long long)c.degenerate_normal);
+  throw Error(message);
+}
+
 CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& params, Backend backend,
                               Stats& stats) {
   validate(params);

@@ -3,8 +3,50 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <string>
+
+#include "pss/core/error.hpp"
+#include "pss/core/text.hpp"
 
 namespace pss {
+
+namespace {
+
+std::string triple_text(vec3 v) { return format_number(v.x) + "," + format_number(v.y) + "," + format_number(v.z); }
+
+bool finite(vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+void check_range(const char* what, double x, double lo, double hi) {
+  if (!(x >= lo && x <= hi))
+    throw Error(std::string(what) + " must be from " + format_number(lo) + " to " + format_number(hi) + " (got " +
+                format_number(x) + ")");
+}
+
+}  // namespace
+
+void validate(const CameraSettings& s) {
+  if (s.width < 1 || s.height < 1 || s.width > kMaxImageSide || s.height > kMaxImageSide)
+    throw Error("the image's width and height must be from 1 to " + std::to_string(kMaxImageSide) + " (got " +
+                std::to_string(s.width) + "x" + std::to_string(s.height) + ")");
+  if (static_cast<long long>(s.width) * s.height > kMaxImagePixels)
+    throw Error("the image may have at most " + std::to_string(kMaxImagePixels) + " pixels, e.g. 8192x8192 (got " +
+                std::to_string(s.width) + "x" + std::to_string(s.height) + ")");
+  if (!std::isfinite(s.azimuth_deg)) throw Error("the azimuth must be a finite number of degrees");
+  check_range("the elevation", s.elevation_deg, -90, 90);
+  check_range("the field of view", s.fov_deg, kMinFovDeg, kMaxFovDeg);
+  if (s.has_look_at && !finite(s.look_at)) throw Error("the look-at point must be three finite numbers");
+  if (!finite(s.up) || !(glm::length(s.up) > 0)) throw Error("up must be a non-zero direction of three finite numbers");
+  if (!(s.distance >= 0 && std::isfinite(s.distance)))
+    throw Error("the distance must be a finite positive number (got " + format_number(s.distance) + ")");
+  check_range("the zoom", s.zoom, kMinZoom, kMaxZoom);
+  check_range("the roll", s.roll_deg, -kMaxRollDeg, kMaxRollDeg);
+  // The eye sits at elevation el above the plane across up: the view direction lies along
+  // up when |sin el| is 1 (the default up has a frame for it: Camera::framing's side axis).
+  constexpr float degree = std::numbers::pi_v<float> / 180.0f;
+  if (std::abs(std::sin(s.elevation_deg * degree)) > 0.9999f && glm::normalize(s.up) != vec3(0, 1, 0))
+    throw Error("the view direction lies along up " + triple_text(s.up) +
+                ": choose another elevation or up direction");
+}
 
 Camera Camera::framing(const Aabb& box, const CameraSettings& s) {
   constexpr float degree = std::numbers::pi_v<float> / 180.0f;

@@ -46,21 +46,26 @@ Camera read_camera_file(const std::filesystem::path& path, int width, int height
   std::ifstream in(path, std::ios::binary);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (!in && !in.eof()) throw file_error(path, "cannot read the camera file");
-  nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
-  if (doc.is_discarded() || !doc.is_object()) throw file_error(path, "is not a JSON object (expected a camera)");
-  const nlohmann::json& cam = doc.contains("camera") ? doc["camera"] : doc;
-  if (!cam.is_object()) throw file_error(path, "\"camera\" is not a JSON object");
+  const nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
+  if (doc.is_discarded()) throw file_error(path, "is not a JSON object (expected a camera)");
+  return camera_from_json(doc, width, height, path.string());
+}
 
+Camera camera_from_json(const nlohmann::json& doc, int width, int height, const std::string& source) {
+  auto error = [&](const std::string& problem) { return file_error(source, problem); };
+  if (!doc.is_object()) throw error("is not a JSON object (expected a camera)");
+  const nlohmann::json& cam = doc.contains("camera") ? doc["camera"] : doc;
+  if (!cam.is_object()) throw error("\"camera\" is not a JSON object");
   auto number = [&](const nlohmann::json& j, const std::string& name) {
-    if (!j.is_number()) throw file_error(path, "camera field \"" + name + "\" must be a number");
+    if (!j.is_number()) throw error("camera field \"" + name + "\" must be a number");
     const double x = j.get<double>();
-    if (!std::isfinite(x) || std::abs(x) > 1e30) throw file_error(path, "camera field \"" + name + "\" is out of range");
+    if (!std::isfinite(x) || std::abs(x) > 1e30) throw error("camera field \"" + name + "\" is out of range");
     return float(x);
   };
   auto vector = [&](const std::string& name) {
-    if (!cam.contains(name)) throw file_error(path, "camera field \"" + name + "\" is missing");
+    if (!cam.contains(name)) throw error("camera field \"" + name + "\" is missing");
     const nlohmann::json& j = cam[name];
-    if (!j.is_array() || j.size() != 3) throw file_error(path, "camera field \"" + name + "\" must be [x, y, z]");
+    if (!j.is_array() || j.size() != 3) throw error("camera field \"" + name + "\" must be [x, y, z]");
     return vec3(number(j[0], name), number(j[1], name), number(j[2], name));
   };
   Camera c;
@@ -68,10 +73,10 @@ Camera read_camera_file(const std::filesystem::path& path, int width, int height
   c.height = height;
   c.eye = vector("eye");
   const vec3 forward = vector("forward"), up = vector("up");
-  if (!cam.contains("tan_half_fov")) throw file_error(path, "camera field \"tan_half_fov\" is missing");
+  if (!cam.contains("tan_half_fov")) throw error("camera field \"tan_half_fov\" is missing");
   c.tan_half_fov = number(cam["tan_half_fov"], "tan_half_fov");
   if (!(c.tan_half_fov >= kMinTanHalfFov && c.tan_half_fov <= kMaxTanHalfFov))
-    throw file_error(path, "camera field \"tan_half_fov\" must give a field of view from 1 to 170 degrees");
+    throw error("camera field \"tan_half_fov\" must give a field of view from 1 to 170 degrees");
   const vec3 right = cam.contains("right") ? vector("right") : glm::cross(forward, up);
   if (orthonormal(forward, right, up)) {
     c.forward = forward;
@@ -84,7 +89,7 @@ Camera read_camera_file(const std::filesystem::path& path, int width, int height
   const glm::dvec3 f = glm::dvec3(forward), u = glm::dvec3(up);
   const glm::dvec3 r = glm::cross(f, u);
   if (!(glm::length(f) > 0) || !(glm::length(r) > 1e-6 * glm::length(f) * glm::length(u)))
-    throw file_error(path, "camera \"forward\" must be non-zero and \"up\" not parallel to it");
+    throw error("camera \"forward\" must be non-zero and \"up\" not parallel to it");
   c.forward = vec3(glm::normalize(f));
   c.right = vec3(glm::normalize(r));
   c.up = glm::cross(c.right, c.forward);

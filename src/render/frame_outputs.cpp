@@ -29,14 +29,24 @@ FrameSummary summarize(const RenderedFrame& frame) {
   return s;
 }
 
-namespace {
-
-// The hit's normal turned toward the camera, as a viewer sees the surface.
 vec3 normal_facing_camera(const RenderedFrame& frame, std::size_t pixel) {
   const std::size_t width = std::size_t(frame.camera.width);
   const Ray ray = frame.camera.primary_ray(int(pixel % width), int(pixel / width));
   return face_viewer(frame.hits[pixel].normal, ray.dir);
 }
+
+std::vector<std::uint8_t> frame_srgb8(const RenderedFrame& frame, bool transparent) {
+  const Image& image = frame.image;
+  if (!transparent) return to_srgb8(image);
+  std::vector<std::uint8_t> rgba(image.pixels.size() * 4);
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+    for (int c = 0; c < 3; ++c) rgba[4 * i + c] = linear_to_srgb8(image.pixels[i][c]);
+    rgba[4 * i + 3] = frame.hits[i].found() ? 255 : 0;
+  }
+  return rgba;
+}
+
+namespace {
 
 void write_8bit(const std::filesystem::path& path, const RenderedFrame& frame, ImageFormat format, bool transparent) {
   const Image& image = frame.image;
@@ -44,13 +54,7 @@ void write_8bit(const std::filesystem::path& path, const RenderedFrame& frame, I
     if (transparent) throw file_error(path, "cannot write: a JPEG has no alpha for --transparent; name it .png or .exr");
     return write_jpeg(path, image.width, image.height, to_srgb8(image), kJpegQuality);
   }
-  if (!transparent) return write_png(path, image.width, image.height, to_srgb8(image));
-  std::vector<std::uint8_t> rgba(image.pixels.size() * 4);
-  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
-    for (int c = 0; c < 3; ++c) rgba[4 * i + c] = linear_to_srgb8(image.pixels[i][c]);
-    rgba[4 * i + 3] = frame.hits[i].found() ? 255 : 0;
-  }
-  write_png(path, image.width, image.height, rgba, 4);
+  write_png(path, image.width, image.height, frame_srgb8(frame, transparent), transparent ? 4 : 3);
 }
 
 void write_linear(const std::filesystem::path& path, const RenderedFrame& frame, bool transparent) {

@@ -29,6 +29,21 @@ struct CameraSettings {
                          // seen from behind it (the picture turns clockwise)
 };
 
+// The limits every caller's settings meet (validate): a frame keeps an image pixel and a hit
+// record (about 64 bytes) per pixel, so 2^26 pixels (8192x8192) are about 4 GiB, and a side
+// up to 16384 still allows wide panoramas.
+inline constexpr int kMaxImageSide = 16384;
+inline constexpr long long kMaxImagePixels = 1LL << 26;
+// Doubles, as the CLI's flags are parsed: 1e-3f is above the decimal 0.001.
+inline constexpr double kMinFovDeg = 1, kMaxFovDeg = 170;
+inline constexpr double kMinZoom = 1e-3, kMaxZoom = 1e3;
+inline constexpr double kMaxRollDeg = 360;
+
+// Throws a one-line Error naming the first setting out of its range (a NaN is out of every
+// range), or saying that the view looks along a non-default `up` (elevation ±90°), where
+// the orbit's frame is undefined.
+void validate(const CameraSettings& settings);
+
 struct Camera {
   vec3 eye{0.0f};
   vec3 forward{0, 0, -1}, right{1, 0, 0}, up{0, 1, 0};  // orthonormal

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
@@ -19,5 +20,8 @@ nlohmann::json camera_to_json(const Camera& camera);
 // of forward and up). The image size is the caller's. Throws Error naming the file for
 // what is not such a camera (bounded: a camera file over 1 MiB is refused unread).
 Camera read_camera_file(const std::filesystem::path& path, int width, int height);
+
+// The same from a parsed document; errors name `source` (the file, or where the JSON came from).
+Camera camera_from_json(const nlohmann::json& doc, int width, int height, const std::string& source);
 
 }  // namespace pss

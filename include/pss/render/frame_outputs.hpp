@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <vector>
 
 #include "pss/core/stats.hpp"
 #include "pss/render/rendered_frame.hpp"
@@ -20,6 +21,13 @@ struct FrameSummary {
 };
 
 FrameSummary summarize(const RenderedFrame& frame);
+
+// The hit's normal turned toward the camera, as a viewer sees the surface.
+vec3 normal_facing_camera(const RenderedFrame& frame, std::size_t pixel);
+
+// The image as 8-bit sRGB, row by row from the top: RGB, or with `transparent` RGBA with alpha
+// 255 where the primary ray hit and 0 where it missed.
+std::vector<std::uint8_t> frame_srgb8(const RenderedFrame& frame, bool transparent);
 
 // JPEG quality of -o *.jpg: artefacts hard to see, a third of the PNG's size.
 inline constexpr int kJpegQuality = 95;

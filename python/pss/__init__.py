@@ -1,0 +1,187 @@
+"""pss: point set surfaces of point clouds and volumes, on the CPU or the GPU.
+
+The moving-least-squares surface of a point cloud or a volume (Schmitt et al.,
+"Hardware-accelerated extraction and rendering of point set surfaces"), from NumPy:
+
+    points, normals, status = pss.project(points)          # every point onto the surface
+    image = pss.render(points, view=(30, 20))              # (H, W, 3) uint8, ray traced
+    volume = pss.Volume(values, spacing=(1, 1, 1))         # values indexed [z, y, x]
+    image = volume.render(iso=100)
+    points, normals = volume.extract(iso=100)
+
+Arrays come in as any array-like of numbers and are converted once to float32 (the
+surface's grid reorders them anyway); results are NumPy arrays that own the library's
+memory, without a copy. The work runs without the GIL. Every problem raises pss.Error (a
+ValueError) with the one-line message the `pss` command prints. Units are the data's:
+h, rho, b and epsilon of point clouds in its coordinates; the volume's h and error in voxels.
+"""
+
+import json as _json
+import os as _os
+
+from . import _pss
+from ._pss import Error, Volume
+
+__all__ = ["Error", "Volume", "estimate_h", "project", "read_points", "read_volume", "render", "set_progress"]
+__version__ = "0.1.0"
+
+
+
+def set_progress(mode):
+    """Whether the work shows its progress on stderr, as `pss --progress`: 'never' (the
+    default: a library call prints nothing), 'auto' (a bar while stderr is a terminal) or
+    'always' (and lines a log can read elsewhere)."""
+    _pss.set_progress(mode)
+
+_CAMERA_ARGS = ("view", "fov", "look_at", "up", "distance", "zoom", "roll")
+
+
+def _frame_options(size, view, fov, look_at, up, distance, zoom, roll, camera, shadows, reflections,
+                   reflectivity, transparent, backend, full_output):
+    given = [name for name, value in zip(_CAMERA_ARGS, (view, fov, look_at, up, distance, zoom, roll))
+             if value is not None]
+    if camera is not None and given:
+        raise Error("camera excludes " + ", ".join(given) + ": the camera says where the eye is")
+    options = {
+        "size": size, "view": view, "fov": fov, "look_at": look_at, "up": up, "distance": distance,
+        "zoom": zoom, "roll": roll, "camera_json": None, "camera_file": None, "shadows": shadows, "reflections": reflections,
+        "reflectivity": reflectivity, "transparent": transparent, "backend": backend, "full_output": full_output,
+    }
+    if isinstance(camera, (str, bytes, _os.PathLike)):
+        options["camera_file"] = _os.fsdecode(camera)
+    elif camera is not None:
+        options["camera_json"] = _json.dumps(camera)
+    return options
+
+
+_FRAME_DOC = """
+    Camera (as `pss render`'s flags; each left at None keeps the default view, which frames
+    the object's bounding sphere):
+      size=(width, height) in pixels (default {size});
+      view=(azimuth, elevation) in degrees about the look-at point (default (0, 0): from +z);
+      fov: the vertical field of view in degrees (default {fov:g});
+      look_at=(x, y, z): the point orbited (default: the centre of the object's box);
+      up=(x, y, z): the world's up (default (0, 1, 0)); distance: of the eye (then fov zooms);
+      zoom: divides the distance; roll: degrees about the view direction;
+      camera: instead of those, a camera dict (the 'camera' of a full_output's stats, or of a
+        --stats file) or the path of a camera JSON file.
+    Shading: shadows, reflections (one mirror bounce), reflectivity (default {reflectivity:g}),
+      transparent (an (H, W, 4) image with alpha 0 where the ray missed).
+    backend: 'auto' (the GPU when this build has one and a device is present), 'cpu' or 'cuda'.
+    Returns the (H, W, 3) uint8 sRGB image, row 0 at the top; with full_output=True the tuple
+    (image, hits, stats): hits a dict of per-pixel arrays 'mask' (bool), 'depth' (the primary
+    ray's distance, inf where it missed), 'iterations', 'points' (NaN where missed) and
+    'normals' (facing the camera, 0 where missed); stats the dict `pss ... --stats` writes.
+""".format(**_pss.frame_defaults)
+
+
+def estimate_h(points):
+    """The Gaussian width h that `pss info` suggests for these (N, 3) points: the median
+    distance to the 15th nearest sample (a ball of radius 2h then holds about 60)."""
+    return _pss.estimate_h(points)
+
+
+def project(points, h=None, *, normals=None, method="mls", rho=None, iterations=4, backend="auto"):
+    """Move every point onto the point set surface, as `pss project`.
+
+    points: (N, 3). h: the Gaussian width (default: estimate_h(points)); rho: the
+    neighbourhood radius (default 2h); method: 'mls' (the paper's Eq. 2) or 'wls' (Eq. 1);
+    iterations: the most MLS alternations; normals: (N, 3) hints of the side each point's
+    normal faces (without them the normals are oriented consistently over the cloud).
+
+    Returns (points, normals, status): (N, 3) float32, (N, 3) float32 unit normals, and (N,)
+    int32 status: 0 converged, 1 not converged within `iterations`, 2 too few neighbours
+    within rho (point and normal unchanged), 3 degenerate normal (neighbours on a line).
+    """
+    return _pss.project(points, {"normals": normals, "h": h, "method": method, "rho": rho,
+                                 "iterations": iterations, "backend": backend})
+
+
+def render(points, h=None, *, normals=None, rho=None, b=None, epsilon=None, ball_spacing=None, iterations=2,
+           secondary="full", size=None, view=None, fov=None, look_at=None, up=None, distance=None,
+           zoom=None, roll=None, camera=None, shadows=False, reflections=False, reflectivity=None,
+           transparent=False, backend="auto", full_output=False):
+    """Ray trace the point set surface of (N, 3) points (the paper's section 5.2), as `pss render`.
+
+    Surface: h (default: estimated from the spacing), rho (default 2h), b: the radius of the
+    balls around the local polynomials (default h), epsilon: a hit's tolerance (default 1e-3 h),
+    ball_spacing (default b/2; 0 keeps one polynomial per sample, as the paper),
+    iterations: projections per ray candidate, 1 to 32 or 'auto' (default 2, the paper's),
+    secondary: 'full' or 'paper' (the paper's rough secondary hits); normals: optional hints.
+    """
+    options = _frame_options(size, view, fov, look_at, up, distance, zoom, roll, camera, shadows, reflections,
+                             reflectivity, transparent, backend, full_output)
+    options.update({"normals": normals, "h": h, "rho": rho, "b": b, "epsilon": epsilon,
+                    "ball_spacing": ball_spacing, "iterations": iterations, "secondary": secondary})
+    return _pss.render(points, options)
+
+
+render.__doc__ += _FRAME_DOC
+
+
+def read_points(path):
+    """The point cloud of a file (.ply, .xyz/.txt/.pts, .obj, .stl, .pcd, .las), as the CLI
+    reads it: (points, normals, colors) with (N, 3) float32 points, (N, 3) float32 normals or
+    None, (N, 3) uint8 colours or None."""
+    return _pss.read_points(_os.fsdecode(path))
+
+
+def read_volume(path, *, dims=None, type="uint8", spacing=(1, 1, 1), endian="little", skip=0):
+    """A pss.Volume from a file: .nrrd/.nhdr, .mhd/.mha, .nii/.nii.gz, or a raw file described
+    by dims=(nx, ny, nz) (x fastest in the file), type ('int8', 'uint8', 'int16', 'uint16',
+    'int32', 'uint32', 'float32', 'float64'), spacing, endian ('little' or 'big') and skip
+    (header bytes), as `pss volume`'s raw flags. Errors about its data then name the file."""
+    return _pss.read_volume(_os.fsdecode(path), {"dims": dims, "type": type, "spacing": spacing,
+                                                 "endian": endian, "skip": skip})
+
+
+_SURFACE_DOC = """
+    The surface (paper section 4): iso=V (the iso-surface, theta1 weights) or gradient=True
+    (high gradient magnitude, theta2; threshold: (|grad f|/max)^2 above it is projected,
+    default 0.5). In voxels u = (sx sy sz)^(1/3): h (default {h:g}), k: the marching step
+    b = k h (default {k:g}), radius: the neighbourhood in units of h (default {radius:g}),
+    error: epsilon (default {error:g}), smoothing: theta1's width (default {smoothing:g});
+    alpha: alpha1 of the corrector (default {alpha:g}); method: 'predictor-corrector'
+    (default) or 'predictor'.
+""".format(**_pss.volume_defaults)
+
+
+def _surface_options(iso, gradient, method, h, k, radius, alpha, error, smoothing, threshold, backend):
+    return {"iso": iso, "gradient": gradient, "method": method, "h": h, "k": k, "radius": radius, "alpha": alpha,
+            "error": error, "smoothing": smoothing, "threshold": threshold, "backend": backend}
+
+
+def _volume_render(self, iso=None, *, gradient=False, method="predictor-corrector", h=None, k=None, radius=None,
+                   alpha=None, error=None, smoothing=None, threshold=None, size=None, view=None, fov=None,
+                   look_at=None, up=None, distance=None, zoom=None, roll=None, camera=None, shadows=False,
+                   reflections=False, reflectivity=None, transparent=False, backend="auto", full_output=False):
+    options = _frame_options(size, view, fov, look_at, up, distance, zoom, roll, camera, shadows, reflections,
+                             reflectivity, transparent, backend, full_output)
+    options.update(_surface_options(iso, gradient, method, h, k, radius, alpha, error, smoothing, threshold, backend))
+    return self._render(options)
+
+
+def _volume_extract(self, iso=None, *, gradient=False, h=None, k=None, radius=None, alpha=None, error=None,
+                    smoothing=None, threshold=None, backend="auto", full_output=False):
+    options = _surface_options(iso, gradient, "predictor-corrector", h, k, radius, alpha, error, smoothing,
+                               threshold, backend)
+    options["full_output"] = full_output
+    return self._extract(options)
+
+
+_volume_render.__name__ = "render"
+_volume_render.__doc__ = """Extract and render the volume's point set surface along every
+    primary ray (the paper's section 5.1), as `pss volume`.
+    """ + _SURFACE_DOC + _FRAME_DOC
+_volume_extract.__name__ = "extract"
+_volume_extract.__doc__ = """The volume's point set surface as an oriented point set, about
+    one point per step b (predictor-corrector), as `pss extract`: (points, normals), both
+    (N, 3) float32, normals along the gradient; with full_output=True also the stats dict.
+    """ + _SURFACE_DOC
+Volume.render = _volume_render
+Volume.extract = _volume_extract
+Volume.__doc__ = """Volume(values, spacing=(1, 1, 1), origin=(0, 0, 0)): a scalar volume on a
+    uniform grid. values: a 3-D array indexed [z, y, x] (x fastest, as SimpleITK and VTK give
+    them), copied once as float32; voxel (i, j, k) sits at origin + (i sx, j sy, k sz).
+    Properties: values (read-only float32 view), spacing, origin, source (the file it was
+    read from, or '')."""

@@ -1,0 +1,67 @@
+#include "arrays.hpp"
+
+#include <cfloat>
+#include <cmath>
+#include <string>
+
+#include "pss/core/error.hpp"
+
+namespace pss::python {
+
+namespace {
+
+static_assert(sizeof(vec3) == 3 * sizeof(float) && sizeof(Rgb8) == 3, "rows are packed triples");
+
+std::string shape_text(const py::array& a) {
+  std::string text = "(";
+  for (py::ssize_t i = 0; i < a.ndim(); ++i) text += (i ? ", " : "") + std::to_string(a.shape(i));
+  return text + (a.ndim() == 1 ? ",)" : ")");
+}
+
+// Any array-like of numbers as C-ordered T, converted once; a one-line Error otherwise.
+template <class T>
+py::array_t<T, py::array::c_style | py::array::forcecast> numbers(const py::handle& value, const char* name) {
+  const py::array any = py::array::ensure(value);
+  if (!any || any.dtype().kind() == 'O' || any.dtype().kind() == 'U' || any.dtype().kind() == 'S')
+    throw Error(std::string(name) + ": expected an array of numbers");
+  return py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(any);
+}
+
+template <class T>
+py::array_t<T, py::array::c_style | py::array::forcecast> rows_of_three(const py::handle& value, const char* name) {
+  auto a = numbers<T>(value, name);
+  if (!a) throw Error(std::string(name) + ": expected an array of numbers");
+  if (a.ndim() != 2 || a.shape(1) != 3)
+    throw Error(std::string(name) + ": expected an array of shape (N, 3) (got shape " + shape_text(a) + ")");
+  return a;
+}
+
+}  // namespace
+
+std::vector<vec3> vec3_rows(const py::handle& array, const char* name) {
+  // Read as double, so that a value beyond float's range is refused rather than cast to inf.
+  const auto a = rows_of_three<double>(array, name);
+  std::vector<vec3> out(std::size_t(a.shape(0)));
+  const double* v = a.data();
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      const double x = v[3 * i + c];
+      if (!(std::abs(x) <= FLT_MAX))
+        throw Error(std::string(name) + ": row " + std::to_string(i) + " is not three finite numbers (that fit a float)");
+      out[i][c] = float(x);
+    }
+  }
+  return out;
+}
+
+vec3 vec3_of(const py::handle& value, const char* name) {
+  const auto a = numbers<float>(value, name);
+  if (a.ndim() != 1 || a.shape(0) != 3)
+    throw Error(std::string(name) + ": expected three numbers (got shape " + shape_text(a) + ")");
+  const vec3 v(a.at(0), a.at(1), a.at(2));
+  if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
+    throw Error(std::string(name) + ": expected three finite numbers");
+  return v;
+}
+
+}  // namespace pss::python

@@ -1,0 +1,141 @@
+#include "points.hpp"
+
+#include <string>
+#include <utility>
+
+#include "arrays.hpp"
+#include "frame.hpp"
+#include "options.hpp"
+#include "pss/core/error.hpp"
+#include "pss/io/point_cloud_file.hpp"
+#include "pss/points/project_cloud.hpp"
+#include "pss/points/render_cloud.hpp"
+#include "pss/points/spacing.hpp"
+
+namespace pss::python {
+
+namespace {
+
+// The points, and normals when given (their count the points'); colours are the caller's.
+PointCloud cloud_of(const py::handle& points, const py::object& normals) {
+  PointCloud cloud;
+  cloud.positions = vec3_rows(points, "points");
+  if (!normals.is_none()) {
+    cloud.normals = vec3_rows(normals, "normals");
+    if (cloud.normals.size() != cloud.positions.size())
+      throw Error("normals: expected one per point (" + std::to_string(cloud.positions.size()) + "), got " +
+                  std::to_string(cloud.normals.size()));
+    tidy_normals(cloud);
+  }
+  return cloud;
+}
+
+// The h of `pss info` (and of the CLI when --h is not given); problems name the points.
+template <class Estimate>
+float h_from_spacing(const std::vector<vec3>& points, Estimate estimate) {
+  try {
+    return float(estimate(points));
+  } catch (const Error& e) {
+    throw Error(std::string("points: ") + e.what());
+  }
+}
+
+float suggested_h(const std::vector<vec3>& p) {
+  return h_from_spacing(p, [](const auto& q) { return estimate_spacing(q).suggested_h; });
+}
+
+float estimate_h(const py::handle& points) {
+  const std::vector<vec3> p = vec3_rows(points, "points");
+  py::gil_scoped_release release;
+  return suggested_h(p);
+}
+
+py::tuple project(const py::handle& points, const py::dict& o) {
+  const PointCloud cloud = cloud_of(points, option(o, "normals"));
+  const std::string method = choice(o, "method", "mls|wls");
+  const std::optional<float> h = positive_or_none(o, "h"), rho = positive_or_none(o, "rho");
+  const int iterations = integer_in(o, "iterations", 1, 100);
+  const Backend backend = backend_of(o);
+  CloudProjection result;
+  {
+    py::gil_scoped_release release;
+    Stats stats;
+    ProjectionParams params = ProjectionParams::from_h(
+        h ? *h : suggested_h(cloud.positions), method == "wls" ? PlaneFitMethod::wls : PlaneFitMethod::mls);
+    if (rho) params.rho = *rho;
+    params.max_mls_iterations = iterations;
+    result = project_cloud(cloud, params, backend, stats);
+    check_some_projected(result, params);
+  }
+  std::vector<std::int32_t> status(result.status.size());
+  for (std::size_t i = 0; i < status.size(); ++i) status[i] = std::int32_t(result.status[i]);
+  const auto n = py::ssize_t(status.size());
+  return py::make_tuple(to_numpy(std::move(result.cloud.positions)), to_numpy(std::move(result.cloud.normals)),
+                        to_numpy<std::int32_t>(std::move(status), {n}));
+}
+
+py::object render(const py::handle& points, const py::dict& o) {
+  const PointCloud cloud = cloud_of(points, option(o, "normals"));
+  if (cloud.size() == 0) throw Error("points: there are none to render");
+  const std::optional<float> h = positive_or_none(o, "h"), rho = positive_or_none(o, "rho"),
+                             b = positive_or_none(o, "b"), epsilon = positive_or_none(o, "epsilon");
+  const py::object iterations = option(o, "iterations");
+  const int max_iterations = py::isinstance<py::str>(iterations) && iterations.cast<std::string>() == "auto"
+                                 ? kAutoIterations
+                                 : integer_in(o, "iterations", 1, kAutoIterations);
+  const SecondaryMode secondary =
+      choice(o, "secondary", "full|paper") == "paper" ? SecondaryMode::paper : SecondaryMode::full;
+  const std::optional<float> spacing = is_given(o, "ball_spacing")
+                                           ? std::optional<float>(float(number_in(o, "ball_spacing", 0, 1e30)))
+                                           : std::nullopt;
+  const Backend backend = backend_of(o);
+  const FrameRequest request = frame_request(o);
+  const Camera camera = make_camera(request, cloud.bounds());
+  const TraceSettings settings = trace_settings(request, camera);
+
+  Stats stats;
+  RenderedFrame frame;
+  {
+    py::gil_scoped_release release;
+    RayPssParams params = RayPssParams::from_h(
+        h ? *h : h_from_spacing(cloud.positions, [](const auto& q) { return default_h(q); }));
+    if (rho) params.projection.rho = *rho;
+    if (b) params.ball_radius = *b;
+    params.ball_spacing = spacing ? *spacing : 0.5f * params.ball_radius;
+    if (epsilon) params.epsilon = *epsilon;
+    params.max_iterations = max_iterations;
+    params.secondary = secondary;
+    validate(params);
+    const PreparedCloud prepared(cloud, params, backend, stats);
+    frame = render_cloud(prepared, camera, settings, backend, stats);
+    stats.values()["local_polynomials"] = prepared.locals().size();
+    stats.values()["params"] = {{"h", params.projection.h}, {"rho", params.projection.rho}, {"b", params.ball_radius},
+                                {"ball_spacing", params.ball_spacing}, {"epsilon", params.epsilon},
+                                {"iterations", params.max_iterations}};
+  }
+  stats.values()["backend"] = backend_name(backend);
+  return frame_result(std::move(frame), stats, request);
+}
+
+py::tuple read_points(const std::string& path) {
+  PointCloud cloud;
+  {
+    py::gil_scoped_release release;
+    cloud = read_point_cloud(path);
+  }
+  py::object normals = py::none(), colors = py::none();
+  if (cloud.has_normals()) normals = to_numpy(std::move(cloud.normals));
+  if (cloud.has_colors()) colors = to_numpy(std::move(cloud.colors));
+  return py::make_tuple(to_numpy(std::move(cloud.positions)), normals, colors);
+}
+
+}  // namespace
+
+void bind_points(py::module_& m) {
+  m.def("estimate_h", &estimate_h, py::arg("points"));
+  m.def("project", &project, py::arg("points"), py::arg("options"));
+  m.def("render", &render, py::arg("points"), py::arg("options"));
+  m.def("read_points", &read_points, py::arg("path"));
+}
+
+}  // namespace pss::python

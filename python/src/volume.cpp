@@ -1,0 +1,177 @@
+#include "volume.hpp"
+
+#include <cfloat>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "arrays.hpp"
+#include "frame.hpp"
+#include "options.hpp"
+#include "pss/core/error.hpp"
+#include "pss/io/volume_file.hpp"
+#include "pss/volume/extract.hpp"
+#include "pss/volume/prepared.hpp"
+#include "pss/volume/render_volume.hpp"
+
+namespace pss::python {
+
+namespace {
+
+// pss.Volume: the values (owned, float32, x fastest) and, when read from a file, its name,
+// which the errors about the data then begin with, as the CLI's do.
+struct PyVolume {
+  Volume volume;
+  std::string source;
+};
+
+PyVolume volume_of(const py::handle& values, const py::handle& spacing, const py::handle& origin) {
+  const py::array any = py::array::ensure(values);
+  if (!any || any.ndim() != 3 || any.dtype().kind() == 'O' || any.dtype().kind() == 'U' || any.dtype().kind() == 'S')
+    throw Error("values: expected a 3-D array of numbers indexed [z, y, x] (got " + shown(values) + ")");
+  const auto a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(any);
+  PyVolume v;
+  v.volume.dims = ivec3(int(a.shape(2)), int(a.shape(1)), int(a.shape(0)));
+  if (v.volume.dims.x < 1 || v.volume.dims.y < 1 || v.volume.dims.z < 1) throw Error("values: the array is empty");
+  v.volume.values.assign(a.data(), a.data() + a.size());
+  for (std::size_t i = 0; i < v.volume.values.size(); ++i)
+    if (!std::isfinite(v.volume.values[i])) throw Error("values: voxel " + std::to_string(i) + " is not a finite number");
+  v.volume.spacing = vec3_of(spacing, "spacing");
+  if (!(v.volume.spacing.x > 0 && v.volume.spacing.y > 0 && v.volume.spacing.z > 0))
+    throw Error("spacing: expected three positive numbers (sx, sy, sz)");
+  v.volume.origin = vec3_of(origin, "origin");
+  return v;
+}
+
+VolumeSettings settings_of(const py::dict& o) {
+  VolumeSettings s;
+  s.gradient = flag(o, "gradient");
+  if (is_given(o, "iso") == s.gradient) throw Error("choose the surface: iso=V or gradient=True");
+  if (!s.gradient) s.iso = float(number_in(o, "iso", -FLT_MAX, FLT_MAX));
+  s.method = choice(o, "method", "predictor|predictor-corrector") == "predictor" ? VolumeMethod::predictor
+                                                                                : VolumeMethod::predictor_corrector;
+  s.h = float(number_or(o, "h", s.h, kMinVolumeH, FLT_MAX));
+  s.k = float(number_or(o, "k", s.k, kMinStepK, kMaxStepK));
+  s.radius = float(number_or(o, "radius", s.radius, kMinRadius, kMaxRadius));
+  s.alpha = float(number_or(o, "alpha", s.alpha, 0, 1));
+  s.error = float(number_or(o, "error", s.error, 0, FLT_MAX, true));
+  s.smoothing = float(number_or(o, "smoothing", s.smoothing, 0, FLT_MAX, true));
+  if (is_given(o, "threshold")) {
+    if (!s.gradient) throw Error("threshold applies to gradient surfaces only");
+    s.threshold = float(number_in(o, "threshold", 0, 1));
+  }
+  validate(s);
+  return s;
+}
+
+// Gradients, weights, surface cells and bricks of a copy of the values (prepare_volume
+// owns what it computes from); the data's problems name the volume's file, as the CLI's do.
+PreparedVolume prepare(const PyVolume& v, const VolumeSettings& settings, Stats& stats) {
+  try {
+    return prepare_volume(Volume(v.volume), settings, stats);
+  } catch (const Error& e) {
+    if (v.source.empty()) throw;
+    throw file_error(v.source, e.what());
+  }
+}
+
+py::object render(const PyVolume& v, const py::dict& o) {
+  const VolumeSettings settings = settings_of(o);
+  const Backend backend = backend_of(o);
+  const FrameRequest request = frame_request(o);
+  Stats stats;
+  RenderedFrame frame;
+  {
+    py::gil_scoped_release release;
+    const PreparedVolume prepared = prepare(v, settings, stats);
+    const Camera camera = make_camera(request, prepared.surface_bounds());
+    const SceneMirror scene(backend, prepared);
+    frame = render_volume(scene, camera, trace_settings(request, camera), backend, stats);
+  }
+  stats.values()["backend"] = backend_name(backend);
+  return frame_result(std::move(frame), stats, request);
+}
+
+py::object extract(const PyVolume& v, const py::dict& o) {
+  const VolumeSettings settings = settings_of(o);
+  const Backend backend = backend_of(o);
+  const bool full_output = flag(o, "full_output");
+  Stats stats;
+  PointCloud cloud;
+  ExtractionCounts counts;
+  {
+    py::gil_scoped_release release;
+    cloud = extract_surface(prepare(v, settings, stats), backend, stats, counts);
+  }
+  py::tuple points = py::make_tuple(to_numpy(std::move(cloud.positions)), to_numpy(std::move(cloud.normals)));
+  if (!full_output) return points;
+  stats.values()["candidates"] = counts.candidates;
+  stats.values()["accepted"] = counts.accepted;
+  stats.values()["points"] = counts.kept;
+  stats.values()["backend"] = backend_name(backend);
+  return py::make_tuple(points[0], points[1], stats_dict(stats));
+}
+
+// A headed file, or a raw one described by the arguments (as `pss volume`'s raw flags).
+PyVolume read(const std::string& path, const py::dict& o) {
+  std::optional<RawVolumeFormat> raw;
+  if (is_given(o, "dims")) {
+    const py::array dims = py::array::ensure(option(o, "dims"));
+    if (!dims || dims.ndim() != 1 || dims.shape(0) != 3 || (dims.dtype().kind() != 'i' && dims.dtype().kind() != 'u'))
+      throw Error("dims: expected (nx, ny, nz), three integers (got " + shown(option(o, "dims")) + ")");
+    const auto d = py::array_t<long long, py::array::forcecast>::ensure(dims);
+    RawVolumeFormat f;
+    f.dims = parse_dims(std::to_string(d.at(0)) + "x" + std::to_string(d.at(1)) + "x" + std::to_string(d.at(2)));
+    f.type = parse_voxel_type(text(o, "type"));
+    f.spacing = vec3_of(option(o, "spacing"), "spacing");
+    f.big_endian = choice(o, "endian", "little|big") == "big";
+    f.skip = integer_in(o, "skip", 0, INT32_MAX);
+    raw = f;
+  }
+  PyVolume v;
+  v.source = path;
+  py::gil_scoped_release release;
+  v.volume = read_volume(path, raw);
+  return v;
+}
+
+py::array values_of(const py::object& self) {
+  const Volume& v = self.cast<const PyVolume&>().volume;
+  const auto f = py::ssize_t(sizeof(float));
+  py::array a(py::dtype::of<float>(), {py::ssize_t(v.dims.z), py::ssize_t(v.dims.y), py::ssize_t(v.dims.x)},
+              {f * v.dims.x * v.dims.y, f * v.dims.x, f}, v.values.data(), self);
+  a.attr("setflags")(py::arg("write") = false);  // the volume's own values, viewed
+  return a;
+}
+
+py::tuple triple(vec3 v) { return py::make_tuple(v.x, v.y, v.z); }
+
+}  // namespace
+
+py::dict default_settings() {
+  const VolumeSettings s;
+  py::dict d;
+  d["h"] = s.h;
+  d["k"] = s.k;
+  d["radius"] = s.radius;
+  d["alpha"] = s.alpha;
+  d["error"] = s.error;
+  d["smoothing"] = s.smoothing;
+  return d;
+}
+
+void bind_volume(py::module_& m) {
+  m.attr("volume_defaults") = default_settings();
+  py::class_<PyVolume>(m, "Volume")
+      .def(py::init(&volume_of), py::arg("values"), py::arg("spacing") = py::make_tuple(1, 1, 1),
+           py::arg("origin") = py::make_tuple(0, 0, 0))
+      .def_property_readonly("values", &values_of)
+      .def_property_readonly("spacing", [](const PyVolume& v) { return triple(v.volume.spacing); })
+      .def_property_readonly("origin", [](const PyVolume& v) { return triple(v.volume.origin); })
+      .def_property_readonly("source", [](const PyVolume& v) { return v.source; })
+      .def("_render", &render, py::arg("options"))  // with their signatures in __init__.py
+      .def("_extract", &extract, py::arg("options"));
+  m.def("read_volume", &read, py::arg("path"), py::arg("options"));
+}
+
+}  // namespace pss::python

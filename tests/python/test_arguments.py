@@ -1,0 +1,99 @@
+# Bad arguments: a pss.Error (a ValueError) with one line naming the argument, before any
+# work, as the CLI's flags are refused.
+import numpy as np
+import pytest
+
+import pss
+from conftest import BUNNY, cli_error
+
+SOME = np.random.default_rng(1).random((300, 3), np.float32)
+
+
+def test_errors_are_value_errors():
+    assert issubclass(pss.Error, ValueError)
+
+
+@pytest.mark.parametrize("points, message", [
+    (np.zeros((5, 2)), r"^points: expected an array of shape \(N, 3\) \(got shape \(5, 2\)\)$"),
+    (np.zeros(6), r"^points: expected an array of shape \(N, 3\) \(got shape \(6,\)\)$"),
+    ([["a", "b", "c"]], r"^points: expected an array of numbers$"),
+    (np.array([[0, 0, 0], [1, np.nan, 0]]), r"^points: row 1 is not three finite numbers \(that fit a float\)$"),
+    (np.array([[0, 0, 1e300]]), r"^points: row 0 is not three finite numbers \(that fit a float\)$"),
+])
+def test_points_that_are_not_finite_rows_of_three_are_refused(points, message):
+    for call in (pss.estimate_h, pss.project, pss.render):
+        with pytest.raises(pss.Error, match=message):
+            call(points)
+
+
+@pytest.mark.parametrize("arguments, message", [
+    ({"h": float("nan")}, r"^h: expected a finite number > 0 \(got nan\)$"),
+    ({"h": -1}, r"^h: expected a finite number > 0 \(got -1\)$"),
+    ({"h": 1e-50}, r"^h: expected a finite number > 0 \(got 1e-50\)$"),
+    ({"h": "0.1"}, r"^h: expected a finite number > 0 \(got '0.1'\)$"),
+    ({"fov": 200}, r"^fov: expected a finite number from 1 to 170 \(got 200\)$"),
+    ({"zoom": 0}, r"^zoom: expected a finite number from 0.001 to 1000 \(got 0\)$"),
+    ({"size": (0, 10)}, r"^size: expected \(width, height\), two integers from 1 to 16384 \(got \(0, 10\)\)$"),
+    ({"size": (10.5, 10)}, r"^size: expected \(width, height\)"),
+    ({"size": (16384, 16384)}, r"at most 67108864 pixels"),
+    ({"view": (0, 91)}, r"^the elevation must be from -90 to 90 \(got 91\)$"),
+    ({"view": (float("inf"), 0)}, r"^view: expected \(azimuth, elevation\)"),
+    ({"up": (0, 0, 0)}, r"^up must be a non-zero direction"),
+    ({"up": (0, 0, 1), "view": (0, 90)}, r"^the view direction lies along up 0,0,1"),
+    ({"iterations": 0}, r"^iterations: expected an integer from 1 to 32 \(got 0\)$"),
+    ({"iterations": "many"}, r"^iterations: expected an integer from 1 to 32"),
+    ({"secondary": "some"}, r"^secondary: expected one of 'full', 'paper' \(got 'some'\)$"),
+    ({"backend": "tpu"}, r"^backend: expected one of 'auto', 'cpu', 'cuda' \(got 'tpu'\)$"),
+    ({"shadows": 1}, r"^shadows: expected True or False \(got 1\)$"),
+    ({"camera": {"eye": [0, 0, 1]}}, r"^camera: camera field \"forward\" is missing$"),
+    ({"camera": {"eye": [0, 0, 1]}, "fov": 20}, r"^camera excludes fov"),
+    ({"normals": np.zeros((3, 3))}, r"^normals: expected one per point \(300\), got 3$"),
+])
+def test_render_arguments_out_of_range_are_refused_naming_them(arguments, message):
+    with pytest.raises(pss.Error, match=message):
+        pss.render(SOME, **arguments)
+
+
+def test_a_missing_or_malformed_file_gives_the_cli_s_message(tmp_path):
+    for path in (tmp_path / "missing.ply", tmp_path / "cloud.laz"):
+        expected = cli_error("render", path, "-o", tmp_path / "x.png")
+        with pytest.raises(pss.Error) as caught:
+            pss.read_points(path)
+        assert str(caught.value) == expected
+    bad = tmp_path / "camera.json"
+    bad.write_text("{}")
+    expected = cli_error("render", BUNNY, "--camera", bad, "-o", tmp_path / "x.png")
+    with pytest.raises(pss.Error) as caught:
+        pss.render(SOME, camera=bad)
+    assert str(caught.value) == expected
+
+
+def test_a_cloud_projected_nowhere_is_an_error_not_the_input_unmoved():
+    with pytest.raises(pss.Error, match=r"^no point was projected with h = 1e-06"):
+        pss.project(SOME, 1e-6)
+
+
+@pytest.mark.parametrize("arguments, message", [
+    ({}, r"^choose the surface: iso=V or gradient=True$"),
+    ({"iso": 1, "gradient": True}, r"^choose the surface: iso=V or gradient=True$"),
+    ({"iso": 1, "threshold": 0.5}, r"^threshold applies to gradient surfaces only$"),
+    ({"iso": 1, "h": 0.1}, r"^h: expected a finite number >= 0.5 \(got 0.1\)$"),
+    ({"iso": 1, "k": 2}, r"^k: expected a finite number from 0.05 to 1 \(got 2\)$"),
+    ({"iso": 1, "method": "corrector"}, r"^method: expected one of 'predictor', 'predictor-corrector'"),
+])
+def test_volume_arguments_out_of_range_are_refused_naming_them(arguments, message):
+    volume = pss.Volume(np.zeros((4, 4, 4)))
+    with pytest.raises(pss.Error, match=message):
+        volume.render(**arguments)
+
+
+@pytest.mark.parametrize("values, spacing, message", [
+    (np.zeros((4, 4)), (1, 1, 1), r"^values: expected a 3-D array of numbers indexed \[z, y, x\]"),
+    (np.full((2, 2, 2), np.nan), (1, 1, 1), r"^values: voxel 0 is not a finite number$"),
+    (np.zeros((0, 2, 2)), (1, 1, 1), r"^values: the array is empty$"),
+    (np.zeros((2, 2, 2)), (1, 0, 1), r"^spacing: expected three positive numbers"),
+    (np.zeros((2, 2, 2)), (1, 1), r"^spacing: expected three numbers"),
+])
+def test_volumes_that_are_not_finite_3d_arrays_are_refused(values, spacing, message):
+    with pytest.raises(pss.Error, match=message):
+        pss.Volume(values, spacing=spacing)

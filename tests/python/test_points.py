@@ -1,0 +1,116 @@
+# pss.estimate_h, pss.project, pss.render and pss.read_points against the CLI on the bunny.
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import pss
+from conftest import BUNNY, cli_error, cli_ok, read_binary_ply, read_png
+
+
+def test_read_points_matches_an_independent_reading_of_the_ascii_ply(bunny):
+    lines = open(BUNNY).read().split("end_header\n")[1].splitlines()
+    expected = np.array([line.split()[:3] for line in lines[:35947]], np.float32)
+    assert bunny.shape == (35947, 3) and bunny.dtype == np.float32
+    assert np.array_equal(bunny, expected)
+
+
+def test_estimate_h_is_the_h_pss_info_suggests(bunny):
+    line = next(l for l in cli_ok("info", BUNNY).splitlines() if l.startswith("suggested h"))
+    assert pss.estimate_h(bunny) == pytest.approx(float(line.split()[2]), rel=1e-5)
+
+
+@pytest.mark.parametrize("method", ["mls", "wls"])
+def test_project_gives_the_cli_s_points_normals_and_status(bunny, tmp_path, method):
+    out = tmp_path / "projected.ply"
+    cli_ok("project", BUNNY, "--h", "0.004", "--method", method, "-o", out)
+    cli = read_binary_ply(out)
+    points, normals, status = pss.project(bunny, 0.004, method=method)
+    assert points.shape == (35947, 3) and points.dtype == np.float32 and status.dtype == np.int32
+    assert np.array_equal(points, np.stack([cli["x"], cli["y"], cli["z"]], 1))
+    assert np.array_equal(normals, np.stack([cli["nx"], cli["ny"], cli["nz"]], 1))
+    assert np.array_equal(status, cli["status"])
+    assert np.count_nonzero(status == 0) > 0.9 * len(status)
+
+
+def test_project_takes_any_array_like_and_hands_back_arrays_it_does_not_copy(bunny):
+    as_list = bunny[:2000].astype(np.float64).tolist()
+    points, _, _ = pss.project(as_list, 0.004)
+    again, _, _ = pss.project(bunny[:2000], 0.004)
+    assert np.array_equal(points, again)
+    assert not points.flags.owndata and points.base is not None  # the library's vector, kept alive
+    assert points.flags.c_contiguous and points.flags.writeable
+
+
+def render_like_cli(tmp_path, *flags):
+    image_path, hits_path, stats_path = tmp_path / "image.png", tmp_path / "hits.ply", tmp_path / "stats.json"
+    cli_ok("render", BUNNY, *flags, "-o", image_path, "--hits", hits_path, "--stats", stats_path)
+    return read_png(image_path), read_binary_ply(hits_path), stats_path
+
+
+def test_render_gives_the_cli_s_image_hits_and_counts(bunny, tmp_path):
+    cli_image, cli_hits, _ = render_like_cli(tmp_path, "--size", "96x64", "--view", "30,20", "--shadows",
+                                             "--reflections", "--iterations", "3")
+    image, hits, stats = pss.render(bunny, size=(96, 64), view=(30, 20), shadows=True, reflections=True,
+                                    iterations=3, full_output=True)
+    assert image.shape == (64, 96, 3) and image.dtype == np.uint8
+    assert np.array_equal(image, cli_image)
+    mask = hits["mask"]
+    assert mask.sum() == len(cli_hits) == stats["hits"] > 500
+    assert np.array_equal(hits["points"][cli_hits["py"], cli_hits["px"]],
+                          np.stack([cli_hits["x"], cli_hits["y"], cli_hits["z"]], 1))
+    assert np.array_equal(hits["normals"][cli_hits["py"], cli_hits["px"]],
+                          np.stack([cli_hits["nx"], cli_hits["ny"], cli_hits["nz"]], 1))
+    assert np.isinf(hits["depth"][~mask]).all() and np.isnan(hits["points"][~mask]).all()
+    eye = np.array(stats["camera"]["eye"], np.float32)
+    depth = np.linalg.norm(hits["points"][mask] - eye, axis=1)
+    assert np.allclose(hits["depth"][mask], depth, rtol=1e-4)
+
+
+def test_a_camera_from_the_stats_renders_the_same_image_as_the_view_did(bunny, tmp_path):
+    image, _, stats = pss.render(bunny, size=(48, 40), view=(-40, 10), zoom=1.5, full_output=True)
+    assert np.array_equal(pss.render(bunny, size=(48, 40), camera=stats["camera"]), image)
+    _, _, stats_path = render_like_cli(tmp_path, "--size", "48x40", "--view", "-40,10", "--zoom", "1.5")
+    assert np.array_equal(pss.render(bunny, size=(48, 40), camera=stats_path), image)
+
+
+def test_transparent_images_have_alpha_where_the_rays_hit(bunny):
+    image, hits, _ = pss.render(bunny, size=(40, 30), transparent=True, full_output=True)
+    assert image.shape == (30, 40, 4)
+    assert np.array_equal(image[..., 3], np.where(hits["mask"], 255, 0))
+
+
+def test_the_work_runs_without_the_gil(bunny):
+    # The main thread keeps running Python while a render runs on another: with the GIL
+    # held it would stall for the whole render.
+    done = threading.Event()
+    seconds = []
+
+    def work():
+        start = time.perf_counter()
+        pss.render(bunny, size=(256, 256), reflections=True, backend="cpu")
+        seconds.append(time.perf_counter() - start)
+        done.set()
+
+    thread = threading.Thread(target=work)
+    last, longest_gap = time.perf_counter(), 0.0
+    thread.start()
+    while not done.is_set():
+        now = time.perf_counter()
+        longest_gap, last = max(longest_gap, now - last), now
+    thread.join()
+    assert seconds[0] > 0.05
+    assert longest_gap < 0.5 * seconds[0]
+
+
+def test_progress_is_silent_by_default_and_shown_when_asked(bunny, capfd):
+    pss.render(bunny, size=(16, 16))
+    assert capfd.readouterr().err == ""
+    try:
+        pss.set_progress("always")
+        pss.render(bunny, size=(16, 16))
+        err = capfd.readouterr().err
+        assert "preprocess: done in" in err and "primary rays: done in" in err
+    finally:
+        pss.set_progress("never")
