@@ -162,7 +162,11 @@ void check_render_options(const RenderOptions& o) {
 
 Camera make_camera(const RenderOptions& o, const Aabb& bounds) {
   if (!o.camera_file.empty()) return read_camera_file(o.camera_file, o.camera.width, o.camera.height);
-  validate(o.camera);  // each flag is checked; together the view must not look along --up
+  try {
+    validate(o.camera);  // each flag is checked; together the view must not look along --up
+  } catch (const Error& e) {
+    throw Error(std::string("--view, --up: ") + e.what());
+  }
   return Camera::framing(bounds, o.camera);
 }
 
