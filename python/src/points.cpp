@@ -96,7 +96,7 @@ py::object render(const py::handle& points, const py::dict& o) {
   Stats stats;
   RenderedFrame frame;
   {
-    py::gil_scoped_release release;
+    py::gil_scoped_release while_rendering;
     RayPssParams params = RayPssParams::from_h(
         h ? *h : h_from_spacing(cloud.positions, [](const auto& q) { return default_h(q); }));
     if (rho) params.projection.rho = *rho;
