@@ -23,6 +23,7 @@ struct RenderCloudOptions {
   float ball_spacing = -1;  // -1: b/2
   std::string iterations = "2";
   std::string secondary = "full";
+  bool color = false;  // shade with the samples' colours
   RenderOptions render;
 };
 
@@ -40,6 +41,8 @@ void run_render(const RenderCloudOptions& o) {
     cloud = read_point_cloud(o.input);
   }
   if (cloud.size() == 0) throw file_error(o.input, "has no points");
+  if (o.color && !cloud.has_colors())
+    throw file_error(o.input, "has no per-point colours (--color needs red, green, blue)");
   float h = o.h;
   if (h == 0) {
     ScopedPhase phase(stats, "estimate h");
@@ -60,7 +63,7 @@ void run_render(const RenderCloudOptions& o) {
 
   const Camera camera = make_camera(o.render, cloud.bounds());
   const TraceSettings settings = trace_settings(o.render, camera);
-  const PreparedCloud prepared(cloud, params, backend, stats);
+  const PreparedCloud prepared(cloud, params, backend, stats, o.color ? SurfaceColor::samples : SurfaceColor::albedo);
   const RenderedFrame frame =
       render_frames(o.render, stats, [&](Stats& s) { return render_cloud(prepared, camera, settings, backend, s); });
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -87,7 +90,7 @@ void run_render(const RenderCloudOptions& o) {
                    {"ball_spacing", params.ball_spacing},
                    {"epsilon", params.epsilon}, {"iterations", o.iterations},
                    {"max_candidates", params.max_candidates}, {"secondary", o.secondary},
-                   {"secondary_offset", params.secondary_offset}};
+                   {"secondary_offset", params.secondary_offset}, {"color", o.color}};
     stats.write(o.render.compute.stats_path);
   }
   outputs.commit();
@@ -132,6 +135,9 @@ void add_render_command(CLI::App& app, Action action) {
                       "secondary rays: full (projected like primary rays) or paper (first local-polynomial hit)")
       ->check(CLI::IsMember({"full", "paper"}))
       ->capture_default_str();
+  command->add_flag("--color", o->color,
+                    "shade with the points' own colours (the file's red green blue), averaged at each hit with the "
+                    "projection's Gaussian weights over the points within rho, in linear light");
   add_render_options(*command, o->render);
   command->callback([o, action] {
     check_render_options(o->render);

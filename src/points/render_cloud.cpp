@@ -9,6 +9,7 @@
 #include "pss/core/error.hpp"
 #include "pss/points/project_cloud.hpp"
 #include "pss/points/thinning.hpp"
+#include "pss/render/image.hpp"
 #include "pss/render/render_frame.hpp"
 #include "pss/spatial/grid_mirror.hpp"
 #include "unit_frame.hpp"
@@ -76,6 +77,19 @@ std::vector<Aabb> disc_boxes(const std::vector<LocalPolynomial>& locals, float b
   return boxes;
 }
 
+// The cloud's colours in linear light, in the grid's order of the samples, so that a kernel
+// reads sample i's colour where the grid walk reads its position.
+std::vector<vec3> linear_colors(const UniformGrid& grid, const PointCloud& cloud) {
+  if (!cloud.has_colors()) throw Error("the point cloud has no per-point colours");
+  const std::span<const int> original = grid.original_index();
+  std::vector<vec3> colors(original.size());
+  for (std::size_t i = 0; i < colors.size(); ++i) {
+    const Rgb8 c = cloud.colors[std::size_t(original[i])];
+    colors[i] = vec3(srgb8_to_linear(c.r), srgb8_to_linear(c.g), srgb8_to_linear(c.b));
+  }
+  return colors;
+}
+
 }  // namespace points_detail
 using namespace points_detail;
 
@@ -86,25 +100,30 @@ struct PreparedCloud::DeviceCopy {
         nodes(Backend::cuda, std::span<const BvhNode>(cloud.bvh_.view().nodes, std::size_t(cloud.bvh_.view().node_count))),
         primitives(Backend::cuda, cloud.bvh_.primitives()),
         locals(Backend::cuda, cloud.locals_),
+        colors(Backend::cuda, cloud.colors_),
         view(cloud.view()) {
     view.grid = grid.view();
     view.bvh.nodes = nodes.data();
     view.bvh.primitives = primitives.data();
     view.locals = locals.data();
+    view.colors = cloud.colors_.empty() ? nullptr : colors.data();
   }
   GridMirror grid;
   Mirror<BvhNode> nodes;
   Mirror<int> primitives;
   Mirror<LocalPolynomial> locals;
+  Mirror<vec3> colors;
   PointSurfaceView view;
 };
 
-PreparedCloud::PreparedCloud(const PointCloud& cloud, const RayPssParams& params, Backend backend, Stats& stats)
+PreparedCloud::PreparedCloud(const PointCloud& cloud, const RayPssParams& params, Backend backend, Stats& stats,
+                             SurfaceColor color)
     : params_((validate(params), params)),
       grid_(timed_grid(cloud, params.projection, stats)),
       bvh_(std::span<const Aabb>{}) {
   {
     ScopedPhase phase(stats, "preprocess");
+    if (color == SurfaceColor::samples) colors_ = linear_colors(grid_, cloud);
     for (const LocalFit& f : fit_all(grid_, cloud, params, backend, stats)) {
       if (f.status == LocalFitStatus::too_few_neighbours)
         ++left_out_;
@@ -135,6 +154,7 @@ PointSurfaceView PreparedCloud::view() const {
   v.grid = grid_.view();
   v.bvh = bvh_.view();
   v.locals = locals_.data();
+  v.colors = colors_.empty() ? nullptr : colors_.data();
   v.params = params_;
   return v;
 }

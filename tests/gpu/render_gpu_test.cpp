@@ -8,12 +8,16 @@
 namespace pss {
 namespace {
 
-TEST(GpuRender, MatchesCpu) {
-  if (cuda::device_count() == 0) GTEST_SKIP() << "no CUDA device";
+PointCloud noisy_torus() {
   test::SampleOptions o;
   o.count = 12000;
   o.noise = 0.005f * test::Torus{}.minor;
-  const PointCloud cloud = test::sample(test::Torus{}, o);
+  return test::sample(test::Torus{}, o);
+}
+
+// The cloud rendered on both backends, prepared on each (the GPU's preprocessing on the
+// device), with shadows and reflections; hits and image compared.
+void expect_backends_agree(const PointCloud& cloud, SurfaceColor color) {
   const float h = test::suggested_h(cloud);
   const RayPssParams params = RayPssParams::from_h(h);
   CameraSettings view;
@@ -25,8 +29,8 @@ TEST(GpuRender, MatchesCpu) {
   settings.shading = ShadingParams::for_camera(camera);
   settings.shadows = settings.reflections = true;
   Stats stats;
-  const PreparedCloud on_cpu(cloud, params, Backend::cpu, stats);
-  const PreparedCloud on_gpu(cloud, params, Backend::cuda, stats);  // preprocessing on the device
+  const PreparedCloud on_cpu(cloud, params, Backend::cpu, stats, color);
+  const PreparedCloud on_gpu(cloud, params, Backend::cuda, stats, color);
   const RenderedFrame cpu = render_cloud(on_cpu, camera, settings, Backend::cpu, stats);
   const RenderedFrame gpu = render_cloud(on_gpu, camera, settings, Backend::cuda, stats);
 
@@ -45,6 +49,19 @@ TEST(GpuRender, MatchesCpu) {
   EXPECT_LE(flipped, cpu.hits.size() / 200);
   EXPECT_LE(far, cpu.hits.size() / 200);
   EXPECT_LE(pixels_off, cpu.hits.size() / 100);
+}
+
+TEST(GpuRender, MatchesCpu) {
+  if (cuda::device_count() == 0) GTEST_SKIP() << "no CUDA device";
+  expect_backends_agree(noisy_torus(), SurfaceColor::albedo);
+}
+
+// --color: the colours reach the device in the grid's order and interpolate as on the CPU.
+TEST(GpuRender, ColoursMatchCpu) {
+  if (cuda::device_count() == 0) GTEST_SKIP() << "no CUDA device";
+  PointCloud cloud = noisy_torus();
+  for (const vec3& p : cloud.positions) cloud.colors.push_back(p.x > 0 ? Rgb8(230, 40, 20) : Rgb8(20, 60, 240));
+  expect_backends_agree(cloud, SurfaceColor::samples);
 }
 
 }  // namespace

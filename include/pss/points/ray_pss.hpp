@@ -62,11 +62,13 @@ inline constexpr float kThinningTolerance = 0.05f;
 inline constexpr int kAutoIterations = 32;
 
 // What a kernel sees of a prepared cloud: the grid for the range queries of the
-// projection, the BVH over the balls, and the local polynomials in BVH order.
+// projection, the BVH over the balls, the local polynomials in BVH order and, for
+// `--color`, the samples' colours.
 struct PointSurfaceView {
   GridView grid;
   BvhView bvh;
   const LocalPolynomial* locals = nullptr;  // locals[k] belongs to BVH primitive k
+  const vec3* colors = nullptr;  // linear RGB of the grid's sorted samples; null: the shading's albedo
   RayPssParams params;
 };
 

@@ -11,6 +11,7 @@
 #include "pss/core/stats.hpp"
 #include "pss/points/cloud.hpp"
 #include "pss/points/ray_pss.hpp"
+#include "pss/points/sample_colors.hpp"
 #include "pss/render/rendered_frame.hpp"
 
 namespace pss {
@@ -26,15 +27,26 @@ struct PointFinder {
     return intersect_secondary(surface, ray, t_max, surface.params.max_iterations);
   }
   PSS_HOST_DEVICE float secondary_offset() const { return surface.params.secondary_offset; }
+  PSS_HOST_DEVICE vec3 albedo(const Hit& hit, vec3 base) const {
+    if (!surface.colors) return base;
+    const ProjectionParams& p = surface.params.projection;
+    return interpolated_color(surface.grid, surface.colors, hit.point, p.rho, p.h, base);
+  }
 };
+
+// What colours the surface: the shading's albedo, or the samples' colours interpolated at
+// each hit (points/sample_colors.hpp).
+enum class SurfaceColor : unsigned char { albedo, samples };
 
 // The host owner of everything a PointSurfaceView points to.
 class PreparedCloud {
  public:
   // Runs the "Initial approximation" on `backend`, thins the polynomials (points/thinning.hpp)
   // and builds the BVH over those kept (on the host); the phases "preprocess" and
-  // "acceleration structure" go to stats.
-  PreparedCloud(const PointCloud& cloud, const RayPssParams& params, Backend backend, Stats& stats);
+  // "acceleration structure" go to stats. SurfaceColor::samples keeps the cloud's colours
+  // (an Error if it has none).
+  PreparedCloud(const PointCloud& cloud, const RayPssParams& params, Backend backend, Stats& stats,
+                SurfaceColor color = SurfaceColor::albedo);
   PreparedCloud(const PreparedCloud&) = delete;
   PreparedCloud& operator=(const PreparedCloud&) = delete;
   ~PreparedCloud();
@@ -55,6 +67,7 @@ class PreparedCloud {
   RayPssParams params_;
   UniformGrid grid_;
   std::vector<LocalPolynomial> locals_;
+  std::vector<vec3> colors_;  // empty, or linear RGB in the grid's order
   std::int64_t left_out_ = 0;
   Bvh bvh_;
   struct DeviceCopy;

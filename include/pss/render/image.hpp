@@ -21,6 +21,8 @@ struct Image {
 
 // The sRGB transfer function (IEC 61966-2-1), clamped to [0, 1], rounded to 8 bits.
 std::uint8_t linear_to_srgb8(float linear);
+// Its inverse for 8-bit input, exact to float: what an sRGB colour is in linear light.
+float srgb8_to_linear(std::uint8_t srgb);
 std::vector<std::uint8_t> to_srgb8(const Image& image);
 
 // Written atomically through write_png.

@@ -41,7 +41,7 @@ RenderedFrame render_frame(Backend backend, const Finder& finder, const Camera& 
   }
   parallel_for(backend, "shading", n, PSS_KERNEL(std::int64_t i) {
     const SecondaryHits none;  // what a pixel without secondary rays sees
-    px[i] = shade_pixel(ts, cam.primary_ray(int(i % cam.width), int(i / cam.width)), h[i],
+    px[i] = shade_pixel(f, ts, cam.primary_ray(int(i % cam.width), int(i / cam.width)), h[i],
                         traces_secondary ? s[i] : none);
   }, stats);
 

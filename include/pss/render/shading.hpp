@@ -48,16 +48,17 @@ PSS_INLINE float fresnel(const ShadingParams& p, vec3 n, vec3 ray_dir) {
   return p.reflectivity + (1.0f - p.reflectivity) * (m * m) * (m * m) * m;
 }
 
-// The light leaving a surface point toward the viewer, without reflections. n faces the
-// viewer; `shadow` is 1 where the key light is seen, 0 where it is blocked.
-PSS_INLINE vec3 shade_surface(const ShadingParams& p, vec3 n, vec3 ray_dir, float shadow) {
+// The light leaving a surface point of diffuse colour `albedo` (p.albedo, or the finder's
+// own) toward the viewer, without reflections. n faces the viewer; `shadow` is 1 where the
+// key light is seen, 0 where it is blocked.
+PSS_INLINE vec3 shade_surface(const ShadingParams& p, vec3 albedo, vec3 n, vec3 ray_dir, float shadow) {
   const float key = max(0.0f, glm::dot(n, p.key_direction)) * shadow;
   const float fill = max(0.0f, glm::dot(n, p.fill_direction));
   const float up = 0.5f + 0.5f * n.y;
   const vec3 ambient = p.ambient * (p.ground + (p.sky - p.ground) * up);
   const vec3 half = glm::normalize(p.key_direction - ray_dir);
   const float spec = key > 0 ? p.specular * pow(max(0.0f, glm::dot(n, half)), p.shininess) : 0.0f;
-  return p.albedo * (ambient + key * p.key_color + fill * p.fill_color) + spec * shadow * p.key_color;
+  return albedo * (ambient + key * p.key_color + fill * p.fill_color) + spec * shadow * p.key_color;
 }
 
 }  // namespace pss

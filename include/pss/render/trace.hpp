@@ -6,6 +6,7 @@
 //   Hit primary(const Ray&) const;                   // the surface along a camera ray
 //   Hit secondary(const Ray&, float t_max) const;    // for reflection and shadow rays
 //   float secondary_offset() const;                  // how far off the surface they start
+//   vec3 albedo(const Hit&, vec3 base) const;        // the surface's colour at a hit, or base
 #pragma once
 
 #include <cstdint>
@@ -58,15 +59,18 @@ PSS_HOST_DEVICE SecondaryHits trace_secondary(const Finder& f, const TraceSettin
   return out;
 }
 
-PSS_INLINE vec3 shade_pixel(const TraceSettings& s, const Ray& primary, const Hit& hit, const SecondaryHits& sec) {
+template <class Finder>
+PSS_HOST_DEVICE vec3 shade_pixel(const Finder& f, const TraceSettings& s, const Ray& primary, const Hit& hit,
+                                 const SecondaryHits& sec) {
   const ShadingParams& p = s.shading;
   if (!hit.found()) return background(p, primary.dir);
   const vec3 n = face_viewer(hit.normal, primary.dir);
-  const vec3 local = shade_surface(p, n, primary.dir, sec.shadow);
+  const vec3 local = shade_surface(p, f.albedo(hit, p.albedo), n, primary.dir, sec.shadow);
   if (!s.reflections) return local;
   const vec3 dir = reflect(primary.dir, n);
   const vec3 reflected = sec.reflection.found()
-                             ? shade_surface(p, face_viewer(sec.reflection.normal, dir), dir, sec.reflection_shadow)
+                             ? shade_surface(p, f.albedo(sec.reflection, p.albedo),
+                                             face_viewer(sec.reflection.normal, dir), dir, sec.reflection_shadow)
                              : background(p, dir);
   const float k = fresnel(p, n, primary.dir);
   return local * (1.0f - k) + reflected * k;

@@ -21,6 +21,7 @@ struct VolumeFinder {
   // Samples within b of the surface pass the fragment test; from 1.5·b away the surface
   // just left projects outside the ball of trust and is not found again.
   PSS_HOST_DEVICE float secondary_offset() const { return 1.5f * scene.params.step; }
+  PSS_HOST_DEVICE vec3 albedo(const Hit&, vec3 base) const { return base; }  // a volume has one colour
 };
 
 // The scene's arrays where the kernels run: make the SceneMirror once to draw many frames
