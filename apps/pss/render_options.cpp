@@ -171,12 +171,7 @@ Camera make_camera(const RenderOptions& o, const Aabb& bounds) {
 }
 
 TraceSettings trace_settings(const RenderOptions& o, const Camera& camera) {
-  TraceSettings s;
-  s.shading = ShadingParams::for_camera(camera);
-  s.shading.reflectivity = o.reflectivity;
-  s.shadows = o.shadows;
-  s.reflections = o.reflections;
-  return s;
+  return TraceSettings::for_camera(camera, o.shadows, o.reflections, o.reflectivity);
 }
 
 double frame_seconds(const Stats& stats) {

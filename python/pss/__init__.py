@@ -97,7 +97,7 @@ def project(points, h=None, *, normals=None, method="mls", rho=None, iterations=
                                  "iterations": iterations, "backend": backend})
 
 
-def render(points, h=None, *, normals=None, rho=None, b=None, epsilon=None, ball_spacing=None, iterations=2,
+def render(points, h=None, *, normals=None, colors=None, rho=None, b=None, epsilon=None, ball_spacing=None, iterations=2,
            secondary="full", size=None, view=None, fov=None, look_at=None, up=None, distance=None,
            zoom=None, roll=None, camera=None, shadows=False, reflections=False, reflectivity=None,
            transparent=False, backend="auto", full_output=False):
@@ -108,10 +108,12 @@ def render(points, h=None, *, normals=None, rho=None, b=None, epsilon=None, ball
     ball_spacing (default b/2; 0 keeps one polynomial per sample, as the paper),
     iterations: projections per ray candidate, 1 to 32 or 'auto' (default 2, the paper's),
     secondary: 'full' or 'paper' (the paper's rough secondary hits); normals: optional hints.
+    colors: (N, 3) sRGB colours of the points (uint8 0..255, or floats 0..1) to shade with, as
+    `pss render --color`: averaged at each hit with the projection's weights, in linear light.
     """
     options = _frame_options(size, view, fov, look_at, up, distance, zoom, roll, camera, shadows, reflections,
                              reflectivity, transparent, backend, full_output)
-    options.update({"normals": normals, "h": h, "rho": rho, "b": b, "epsilon": epsilon,
+    options.update({"normals": normals, "colors": colors, "h": h, "rho": rho, "b": b, "epsilon": epsilon,
                     "ball_spacing": ball_spacing, "iterations": iterations, "secondary": secondary})
     return _pss.render(points, options)
 

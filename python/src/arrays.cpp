@@ -54,6 +54,24 @@ std::vector<vec3> vec3_rows(const py::handle& array, const char* name) {
   return out;
 }
 
+std::vector<Rgb8> rgb8_rows(const py::handle& array, const char* name) {
+  const py::array any = py::array::ensure(array);
+  const bool floats = any && any.dtype().kind() == 'f';
+  const auto a = rows_of_three<double>(array, name);
+  const double scale = floats ? 255.0 : 1.0;
+  std::vector<Rgb8> out(std::size_t(a.shape(0)));
+  const double* v = a.data();
+  for (std::size_t i = 0; i < out.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      const double x = v[3 * i + c] * scale;
+      if (!(x >= 0 && x <= 255.5))
+        throw Error(std::string(name) + ": row " + std::to_string(i) + " is not a colour (" +
+                    (floats ? "floats from 0 to 1" : "integers from 0 to 255") + ")");
+      out[i][c] = std::uint8_t(std::lround(std::min(x, 255.0)));
+    }
+  return out;
+}
+
 vec3 vec3_of(const py::handle& value, const char* name) {
   const auto a = numbers<float>(value, name);
   if (a.ndim() != 1 || a.shape(0) != 3)

@@ -21,6 +21,9 @@ namespace py = pybind11;
 // An (N, 3) array of finite numbers as points; a one-line pss::Error naming `name` otherwise.
 std::vector<vec3> vec3_rows(const py::handle& array, const char* name);
 
+// An (N, 3) array of colours, 0..255 integers or 0..1 floats, as 8-bit sRGB.
+std::vector<Rgb8> rgb8_rows(const py::handle& array, const char* name);
+
 // Three finite numbers (a tuple, list or array).
 vec3 vec3_of(const py::handle& value, const char* name);
 

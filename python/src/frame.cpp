@@ -73,12 +73,7 @@ Camera make_camera(const FrameRequest& r, const Aabb& bounds) {
 }
 
 TraceSettings trace_settings(const FrameRequest& r, const Camera& camera) {
-  TraceSettings s;
-  s.shading = ShadingParams::for_camera(camera);
-  s.shading.reflectivity = r.reflectivity;
-  s.shadows = r.shadows;
-  s.reflections = r.reflections;
-  return s;
+  return TraceSettings::for_camera(camera, r.shadows, r.reflections, r.reflectivity);
 }
 
 py::dict stats_dict(const Stats& stats) {

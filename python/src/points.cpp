@@ -75,8 +75,14 @@ py::tuple project(const py::handle& points, const py::dict& o) {
 }
 
 py::object render(const py::handle& points, const py::dict& o) {
-  const PointCloud cloud = cloud_of(points, option(o, "normals"));
+  PointCloud cloud = cloud_of(points, option(o, "normals"));
   if (cloud.size() == 0) throw Error("points: there are none to render");
+  if (is_given(o, "colors")) {
+    cloud.colors = rgb8_rows(option(o, "colors"), "colors");
+    if (cloud.colors.size() != cloud.size())
+      throw Error("colors: expected one per point (" + std::to_string(cloud.size()) + "), got " +
+                  std::to_string(cloud.colors.size()));
+  }
   const std::optional<float> h = positive_or_none(o, "h"), rho = positive_or_none(o, "rho"),
                              b = positive_or_none(o, "b"), epsilon = positive_or_none(o, "epsilon");
   const py::object iterations = option(o, "iterations");
@@ -106,7 +112,8 @@ py::object render(const py::handle& points, const py::dict& o) {
     params.max_iterations = max_iterations;
     params.secondary = secondary;
     validate(params);
-    const PreparedCloud prepared(cloud, params, backend, stats);
+    const PreparedCloud prepared(cloud, params, backend, stats,
+                                 cloud.has_colors() ? SurfaceColor::samples : SurfaceColor::albedo);
     frame = render_cloud(prepared, camera, settings, backend, stats);
     stats.values()["local_polynomials"] = prepared.locals().size();
     stats.values()["params"] = {{"h", params.projection.h}, {"rho", params.projection.rho}, {"b", params.ball_radius},

@@ -48,6 +48,9 @@ def test_points_that_are_not_finite_rows_of_three_are_refused(points, message):
     ({"camera": {"eye": [0, 0, 1]}}, r"^camera: camera field \"forward\" is missing$"),
     ({"camera": {"eye": [0, 0, 1]}, "fov": 20}, r"^camera excludes fov"),
     ({"normals": np.zeros((3, 3))}, r"^normals: expected one per point \(300\), got 3$"),
+    ({"colors": np.zeros((3, 3))}, r"^colors: expected one per point \(300\), got 3$"),
+    ({"colors": np.full((300, 3), 256)}, r"^colors: row 0 is not a colour \(integers from 0 to 255\)$"),
+    ({"colors": np.full((300, 3), 1.5)}, r"^colors: row 0 is not a colour \(floats from 0 to 1\)$"),
 ])
 def test_render_arguments_out_of_range_are_refused_naming_them(arguments, message):
     with pytest.raises(pss.Error, match=message):

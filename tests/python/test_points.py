@@ -68,6 +68,24 @@ def test_render_gives_the_cli_s_image_hits_and_counts(bunny, tmp_path):
     assert np.allclose(hits["depth"][mask], depth, rtol=1e-4)
 
 
+def test_colors_shade_as_the_cli_s_color_does(bunny, tmp_path):
+    # Red on top, blue below, in a PLY the CLI reads: the same image from both.
+    height = (bunny[:, 1] - bunny[:, 1].min()) / np.ptp(bunny[:, 1])
+    colors = np.stack([40 + 200 * height, 60 + 0 * height, 240 - 200 * height], 1).round().astype(np.uint8)
+    cloud = tmp_path / "coloured.ply"
+    header = ("ply\nformat ascii 1.0\nelement vertex %d\nproperty float x\nproperty float y\nproperty float z\n"
+              "property uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n" % len(bunny))
+    rows = "\n".join("%.9g %.9g %.9g %d %d %d" % (*p, *c) for p, c in zip(bunny.tolist(), colors.tolist()))
+    cloud.write_text(header + rows + "\n")
+    out = tmp_path / "coloured.png"
+    cli_ok("render", cloud, "--color", "--size", "64x48", "-o", out)
+    image = pss.render(bunny, colors=colors, size=(64, 48))
+    assert np.array_equal(image, read_png(out))
+    assert np.array_equal(pss.render(bunny, colors=colors / 255.0, size=(64, 48)), image)
+    plain = pss.render(bunny, size=(64, 48))
+    assert np.abs(image.astype(int) - plain).max() > 50
+
+
 def test_a_camera_from_the_stats_renders_the_same_image_as_the_view_did(bunny, tmp_path):
     image, _, stats = pss.render(bunny, size=(48, 40), view=(-40, 10), zoom=1.5, full_output=True)
     assert np.array_equal(pss.render(bunny, size=(48, 40), camera=stats["camera"]), image)

@@ -50,10 +50,7 @@ class CloudScene : public Scene {
       prepared_backend_ = s.backend;
     }
     prepared_->set_search(params);
-    TraceSettings trace;
-    trace.shading = ShadingParams::for_camera(camera);
-    trace.shadows = s.shadows;
-    trace.reflections = s.reflections;
+    const TraceSettings trace = TraceSettings::for_camera(camera, s.shadows, s.reflections);
     const CancelScope scope(&cancel);
     return render_cloud(*prepared_, camera, trace, s.backend, stats);
   }
@@ -90,10 +87,7 @@ class VolumeScene : public Scene {
                        Stats& stats) override {
     if (!(s.volume == prepared_settings_.volume) || s.backend != prepared_settings_.backend) prepare(s, stats);
     prepared_->params.debug_projection = s.debug_projection;
-    TraceSettings trace;
-    trace.shading = ShadingParams::for_camera(camera);
-    trace.shadows = s.shadows;
-    trace.reflections = s.reflections;
+    const TraceSettings trace = TraceSettings::for_camera(camera, s.shadows, s.reflections);
     const SceneMirror scene(s.backend, *prepared_);
     const CancelScope scope(&cancel);
     RenderedFrame frame = render_volume(scene, camera, trace, s.backend, stats);

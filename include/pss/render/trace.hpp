@@ -20,6 +20,17 @@ struct TraceSettings {
   ShadingParams shading;
   bool shadows = false;
   bool reflections = false;
+
+  // The lights of `camera`'s view (ShadingParams::for_camera) with these secondary rays.
+  static TraceSettings for_camera(const Camera& camera, bool shadows, bool reflections,
+                                  float reflectivity = ShadingParams{}.reflectivity) {
+    TraceSettings s;
+    s.shading = ShadingParams::for_camera(camera);
+    s.shading.reflectivity = reflectivity;
+    s.shadows = shadows;
+    s.reflections = reflections;
+    return s;
+  }
 };
 
 struct SecondaryHits {
