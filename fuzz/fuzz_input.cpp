@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <system_error>
@@ -89,6 +90,12 @@ void check_cloud(const PointCloud& cloud) {
     finding("normals and positions differ in number");
   if (!cloud.colors.empty() && cloud.colors.size() != cloud.positions.size())
     finding("colours and positions differ in number");
+  for (const ScalarProperty& s : cloud.scalars) {
+    if (s.values.size() != cloud.positions.size()) finding("a scalar property and positions differ in number");
+    const auto same_name = [&](const ScalarProperty& t) { return t.name == s.name; };
+    if (std::count_if(cloud.scalars.begin(), cloud.scalars.end(), same_name) != 1)
+      finding("two scalar properties share a name");
+  }
   for (const vec3& n : cloud.normals) {
     const double len = std::sqrt(double(n.x) * n.x + double(n.y) * n.y + double(n.z) * n.z);
     if (!(len == 0 || std::abs(len - 1) < 1e-5)) finding("a normal is neither unit nor zero");

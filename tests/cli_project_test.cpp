@@ -39,6 +39,38 @@ TEST_F(CliProject, ProjectsASphereAndWritesAReadablePly) {
   EXPECT_NE(json.find("\"points\": 4000"), std::string::npos);
 }
 
+// The input's scalar properties come out in their types, each value beside its own point's
+// projection; the input's own 'status' is kept, as input_status, beside the projection's.
+TEST_F(CliProject, PassesTheInputsScalarsThroughInItsOrder) {
+  PointCloud in = test::sample(test::Sphere{}, {});
+  ScalarProperty label{"label", ScalarType::uint8, {}}, intensity{"intensity", ScalarType::float32, {}},
+      status{"status", ScalarType::int32, {}};
+  for (std::size_t i = 0; i < in.size(); ++i) {
+    label.values.push_back(double(i % 256));
+    intensity.values.push_back(0.25 * double(i));
+    status.values.push_back(-double(i));
+  }
+  in.scalars = {label, intensity, status};
+  write_ply(path("in.ply"), in);
+  const test::CliResult r = test::run_pss("project " + path("in.ply") + " -o " + path("out.ply") + " --backend cpu");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const PointCloud out = read_ply(path("out.ply"));
+  ASSERT_EQ(out.size(), in.size());
+  ASSERT_EQ(out.scalars.size(), 4u);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(out.scalars[k].name, in.scalars[k].name == "status" ? "input_status" : in.scalars[k].name);
+    EXPECT_EQ(out.scalars[k].type, in.scalars[k].type) << out.scalars[k].name;
+    EXPECT_EQ(out.scalars[k].values, in.scalars[k].values) << out.scalars[k].name;
+  }
+  EXPECT_EQ(out.scalars[3].name, "status");
+  EXPECT_EQ(out.scalars[3].type, ScalarType::int32);
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    // Samples lie on the sphere: each projection stays at its own point, about 0.06 from the next.
+    EXPECT_LT(glm::distance(out.positions[i], in.positions[i]), 0.005f) << i;
+    EXPECT_TRUE(out.scalars[3].values[i] >= 0 && out.scalars[3].values[i] <= 3) << i;
+  }
+}
+
 TEST_F(CliProject, InfoReportsSizeAndSuggestedH) {
   write_ply(path("sphere.ply"), test::sample(test::Sphere{}, {}));
   const test::CliResult r = test::run_pss("info " + path("sphere.ply"));

@@ -254,6 +254,10 @@ TEST_F(PlyTest, AsciiWithCrlfHeaderCommentsAndExtraProperties) {
   EXPECT_EQ(cloud.positions[1], vec3(-4.5f, 0.5f, 6));
   EXPECT_EQ(cloud.positions[2], vec3(7, 8, 100));
   EXPECT_FALSE(cloud.has_normals());
+  // A lone red is no colour, nor a scalar (a name the reader reads); confidence is kept.
+  ASSERT_EQ(cloud.scalars.size(), 1u);
+  EXPECT_EQ(cloud.scalars[0].name, "confidence");
+  EXPECT_EQ(cloud.scalars[0].values, (std::vector<double>{0.5, 1, 0}));
 }
 
 TEST_F(PlyTest, BinaryBothByteOrdersAndScalarTypes) {
@@ -270,6 +274,9 @@ TEST_F(PlyTest, BinaryBothByteOrdersAndScalarTypes) {
     ASSERT_EQ(cloud.size(), 2u) << name;
     EXPECT_EQ(cloud.positions[0], vec3(-7, 0.1f, 2.5f)) << name;
     EXPECT_EQ(cloud.positions[1], vec3(300, -1e10f, -0.25f)) << name;
+    ASSERT_EQ(cloud.scalars.size(), 1u) << name;
+    EXPECT_EQ(cloud.scalars[0].type, pss::ScalarType::uint8) << name;
+    EXPECT_EQ(cloud.scalars[0].values, (std::vector<double>{9, 0})) << name;
   }
 }
 
@@ -346,6 +353,12 @@ TEST_F(PlyTest, StanfordBunny) {
   EXPECT_EQ(cloud.size(), 35947u);
   EXPECT_FALSE(cloud.has_normals());
   expect_bounds(cloud, vec3(-0.0947f, 0.0330f, -0.0619f), vec3(0.0610f, 0.1873f, 0.0588f), 1e-4f);
+  // The scanner's per-point confidence and intensity, kept for outputs (its first line's).
+  ASSERT_EQ(cloud.scalars.size(), 2u);
+  EXPECT_EQ(cloud.scalars[0].name, "confidence");
+  EXPECT_EQ(cloud.scalars[1].name, "intensity");
+  EXPECT_EQ(cloud.scalars[0].values[0], double(0.850855f));
+  EXPECT_EQ(cloud.scalars[1].values[0], 0.5);
 }
 
 TEST_F(PlyTest, BinaryDragonFromMeshLab) {

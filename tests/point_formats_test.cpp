@@ -1,6 +1,6 @@
-// The point cloud formats beyond PLY and XYZ (OBJ, STL, PCD, LAS), PLY colours, and
-// read_point_cloud's choice by extension. Every file is written byte by byte here, and every
-// expectation is a value written into it.
+// The point cloud formats beyond PLY and XYZ (OBJ, STL, PCD, LAS), PLY colours and scalar
+// properties, and read_point_cloud's choice by extension. Every file is written byte by byte
+// here, and every expectation is a value written into it.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <limits>
 #include <string>
 #include <vector>
@@ -494,6 +495,160 @@ TEST_F(FormatTest, ProjectionKeepsColours) {
   const pss::CloudProjection out =
       pss::project_cloud(cloud, pss::ProjectionParams::from_h(0.2f), pss::Backend::cpu, stats);
   EXPECT_EQ(out.cloud.colors, cloud.colors);
+}
+
+// ---------------------------------------------------------------------------------------
+// PLY scalar properties
+
+using pss::ScalarProperty;
+using pss::ScalarType;
+
+void expect_scalars(const PointCloud& cloud, const std::vector<ScalarProperty>& expected) {
+  ASSERT_EQ(cloud.scalars.size(), expected.size());
+  for (std::size_t k = 0; k < expected.size(); ++k) {
+    EXPECT_EQ(cloud.scalars[k].name, expected[k].name) << k;
+    EXPECT_EQ(cloud.scalars[k].type, expected[k].type) << expected[k].name;
+    EXPECT_EQ(cloud.scalars[k].values, expected[k].values) << expected[k].name;
+  }
+}
+
+// Every type at its extremes, a sized type name, and a list between them that is skipped.
+const std::string kScalarProperties =
+    "element vertex 2\nproperty float x\nproperty float y\nproperty float z\nproperty uint8 label\n"
+    "property list uchar int ids\nproperty int count\nproperty float intensity\nproperty double confidence\n"
+    "property char offset\nproperty ushort u16\nproperty uint u32\nend_header\n";
+
+const std::vector<ScalarProperty> kScalarsWritten = {
+    {"label", ScalarType::uint8, {255, 0}},
+    {"count", ScalarType::int32, {-2147483648.0, 2147483647}},
+    {"intensity", ScalarType::float32, {0.25, double(0.1f)}},  // the text's 0.1 rounded to float
+    {"confidence", ScalarType::float64, {0.1, 1e300}},
+    {"offset", ScalarType::int8, {-128, 127}},
+    {"u16", ScalarType::uint16, {65535, 0}},
+    {"u32", ScalarType::uint32, {4294967295.0, 0}},
+};
+
+std::string scalars_binary() {
+  Bytes b;
+  b.text("ply\nformat binary_little_endian 1.0\n" + kScalarProperties);
+  b.put(1.f).put(2.f).put(3.f).put(std::uint8_t(255)).put(std::uint8_t(2)).put(7).put(8).put(-2147483647 - 1);
+  b.put(0.25f).put(0.1).put(std::int8_t(-128)).put(std::uint16_t(65535)).put(std::uint32_t(4294967295u));
+  b.put(4.f).put(5.f).put(6.f).put(std::uint8_t(0)).put(std::uint8_t(0)).put(2147483647);
+  b.put(0.1f).put(1e300).put(std::int8_t(127)).put(std::uint16_t(0)).put(std::uint32_t(0));
+  return b.str();
+}
+
+TEST_F(FormatTest, PlyScalarsRoundTripWithTheirTypes) {
+  const std::string ascii = "ply\nformat ascii 1.0\n" + kScalarProperties +
+                            "1 2 3 255 2 7 8 -2147483648 0.25 0.1 -128 65535 4294967295\n"
+                            "4 5 6 0 0 2147483647 0.1 1e300 127 0 0\n";
+  for (const std::string& bytes : {ascii, scalars_binary()}) {
+    const PointCloud cloud = pss::read_ply(write("s.ply", bytes));
+    EXPECT_EQ(cloud.positions, (std::vector<vec3>{{1, 2, 3}, {4, 5, 6}}));
+    expect_scalars(cloud, kScalarsWritten);
+    pss::write_ply(path("out.ply"), cloud);
+    // After the colours would be, in their types under their original names.
+    EXPECT_NE(read(path("out.ply")).find("property float z\nproperty uchar label\nproperty int count\n"
+                                         "property float intensity\nproperty double confidence\n"
+                                         "property char offset\nproperty ushort u16\nproperty uint u32\n"
+                                         "end_header\n"),
+              std::string::npos);
+    expect_scalars(pss::read_ply(path("out.ply")), kScalarsWritten);
+  }
+}
+
+TEST_F(FormatTest, PlyScalarsAreKeptOnceEachAndNeverUnderAReadName) {
+  // nx ny without nz are no normals, and not scalars either: a second 'x' neither; the
+  // second 'intensity' is skipped; alpha is an ordinary scalar.
+  const PointCloud cloud = pss::read_ply(write(
+      "k.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
+               "property float nx\nproperty float ny\nproperty float x\nproperty float intensity\n"
+               "property uchar red\nproperty uchar green\nproperty uchar blue\nproperty uchar alpha\n"
+               "property float intensity\nend_header\n1 2 3 0 1 9 0.5 10 20 30 40 0.75\n"));
+  EXPECT_FALSE(cloud.has_normals());
+  EXPECT_EQ(cloud.positions, std::vector<vec3>{vec3(1, 2, 3)});
+  EXPECT_EQ(cloud.colors, std::vector<Rgb8>{Rgb8(10, 20, 30)});
+  expect_scalars(cloud, {{"intensity", ScalarType::float32, {0.5}}, {"alpha", ScalarType::uint8, {40}}});
+
+  // Only the first 64 are kept; the rest are skipped like lists.
+  std::string header =
+      "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\n";
+  std::string values = "1 2 3";
+  for (int k = 0; k < 70; ++k) {
+    header += "property short s" + std::to_string(k) + "\n";
+    values += " " + std::to_string(k);
+  }
+  const PointCloud many = pss::read_ply(write("m.ply", header + "end_header\n" + values + "\n"));
+  ASSERT_EQ(many.scalars.size(), 64u);
+  EXPECT_EQ(many.scalars.back().name, "s63");
+  EXPECT_EQ(many.scalars.back().values, std::vector<double>{63});
+}
+
+TEST_F(FormatTest, PlyScalarErrors) {
+  const std::string header = "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
+                             "property float z\nproperty uchar label\nproperty int count\nend_header\n";
+  expect_refused(pss::read_ply, write("a.ply", header + "1 2 3 4 5\n1 2 3 4 3.5\n"),
+                 "line 11: value 3.5 of 'count' does not fit its type int");
+  expect_refused(pss::read_ply, write("b.ply", header + "1 2 3 256 5\n"),
+                 "line 10: value 256 of 'label' does not fit its type uchar");
+  expect_refused(pss::read_ply, write("c.ply", header + "1 2 3 4 5\n1 2 3 4\n"),
+                 "truncated: expected 2 vertices, read 1");
+  const std::string binary = scalars_binary();
+  expect_refused(pss::read_ply, write("d.ply", binary.substr(0, binary.size() - 3)),
+                 "truncated: expected 2 vertices, read 1");
+  // A count no file could hold: the scalars too are reserved for what the bytes can hold.
+  std::string lying = binary;
+  lying.replace(lying.find("vertex 2"), 8, "vertex 4000000000000");
+  expect_refused(pss::read_ply, write("e.ply", lying), "truncated: expected 4000000000000 vertices, read 2");
+}
+
+TEST_F(FormatTest, PlyWriterKeepsEveryNameOnce) {
+  PointCloud cloud;
+  cloud.positions = {{1, 2, 3}};
+  cloud.scalars = {{"status", ScalarType::uint8, {7}}, {"input_status", ScalarType::float32, {0.5}}};
+  const std::int32_t status[] = {2};
+  const pss::PlyIntProperty extra[] = {{"status", status}};
+  // The input's status is renamed, past a name the input already has.
+  pss::write_ply(path("s.ply"), cloud, extra);
+  EXPECT_NE(read(path("s.ply")).find("property float z\nproperty uchar input_input_status\n"
+                                     "property float input_status\nproperty int status\nend_header\n"),
+            std::string::npos)
+      << read(path("s.ply"));
+  expect_scalars(pss::read_ply(path("s.ply")), {{"input_input_status", ScalarType::uint8, {7}},
+                                                {"input_status", ScalarType::float32, {0.5}},
+                                                {"status", ScalarType::int32, {2}}});
+
+  const auto refused = [&](const PointCloud& bad, const std::string& problem) {
+    EXPECT_NE(pss::test::error_of([&] { pss::write_ply(path("bad.ply"), bad); }).find(problem), std::string::npos)
+        << problem;
+    EXPECT_FALSE(std::filesystem::exists(path("bad.ply")));
+  };
+  PointCloud bad = cloud;
+  bad.scalars[1].name = "x";
+  refused(bad, "cannot write: two properties named 'x'");
+  bad.scalars[1].name = "in tensity";
+  refused(bad, "cannot write: invalid property name 'in tensity'");
+  bad = cloud;
+  bad.scalars[0].values = {256};
+  refused(bad, "cannot write: value 256 of 'status' does not fit its type uchar");
+  bad.scalars[0].values = {1, 2};
+  refused(bad, "cannot write: 1 positions but 2 values of 'status'");
+}
+
+// Projection moves points but keeps their order: the scalars stay with them.
+TEST_F(FormatTest, ProjectionKeepsScalars) {
+  PointCloud cloud;
+  ScalarProperty label{"label", ScalarType::int32, {}};
+  for (int i = 0; i < 20; ++i)
+    for (int j = 0; j < 20; ++j) {
+      cloud.positions.emplace_back(0.1f * float(i), 0.1f * float(j), 0.01f * float((i * 7 + j * 3) % 5));
+      label.values.push_back(i * 20 + j);
+    }
+  cloud.scalars = {label};
+  pss::Stats stats;
+  const pss::CloudProjection out =
+      pss::project_cloud(cloud, pss::ProjectionParams::from_h(0.2f), pss::Backend::cpu, stats);
+  expect_scalars(out.cloud, cloud.scalars);
 }
 
 // ---------------------------------------------------------------------------------------

@@ -1,5 +1,5 @@
 // pss project FILE -o OUT.ply|.xyz: every point moved onto the PSS, with its normal and, in a
-// PLY, how its projection ended.
+// PLY, the input's colours and scalars and how its projection ended.
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
@@ -101,10 +101,11 @@ void add_project_command(CLI::App& app, Action action) {
   command
       ->add_option("-o,--output", o->output,
                    "output points, by extension: .ply (binary: x y z nx ny nz, red green blue when the input has "
-                   "colours, and an int 'status' per point: 0 "
+                   "colours, the input PLY's other scalar properties in their types (an input 'status' written as "
+                   "input_status), and an int 'status' per point: 0 "
                    "converged, 1 not converged within --iterations, 2 too few neighbours within rho (point and "
                    "normal unchanged), 3 degenerate normal (neighbours on a line)) or .xyz (text: x y z nx ny nz, no "
-                   "status)")
+                   "colours, scalars or status)")
       ->required()
       ->check(points_output());
   command->add_option("--h", o->h, "Gaussian width h (default: estimated from the spacing, see pss info)")

@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <optional>
 #include <string_view>
 #include <vector>
@@ -22,38 +23,74 @@ namespace {
 
 namespace fs = std::filesystem;
 
-enum class Scalar { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64 };
+using Scalar = ScalarType;
+
+struct TypeName {
+  std::string_view name;
+  Scalar type;
+};
+// Both the original PLY names and the sized ones that newer writers use; the original first.
+constexpr TypeName kTypeNames[] = {
+    {"char", Scalar::int8},     {"int8", Scalar::int8},       {"uchar", Scalar::uint8},
+    {"uint8", Scalar::uint8},   {"short", Scalar::int16},     {"int16", Scalar::int16},
+    {"ushort", Scalar::uint16}, {"uint16", Scalar::uint16},   {"int", Scalar::int32},
+    {"int32", Scalar::int32},   {"uint", Scalar::uint32},     {"uint32", Scalar::uint32},
+    {"float", Scalar::float32}, {"float32", Scalar::float32}, {"double", Scalar::float64},
+    {"float64", Scalar::float64}};
 
 std::optional<Scalar> scalar_named(std::string_view name) {
-  struct Entry {
-    std::string_view name;
-    Scalar type;
-  };
-  // Both the original PLY names and the sized ones that newer writers use.
-  static constexpr Entry kTypes[] = {
-      {"char", Scalar::Int8},     {"int8", Scalar::Int8},       {"uchar", Scalar::UInt8},
-      {"uint8", Scalar::UInt8},   {"short", Scalar::Int16},     {"int16", Scalar::Int16},
-      {"ushort", Scalar::UInt16}, {"uint16", Scalar::UInt16},   {"int", Scalar::Int32},
-      {"int32", Scalar::Int32},   {"uint", Scalar::UInt32},     {"uint32", Scalar::UInt32},
-      {"float", Scalar::Float32}, {"float32", Scalar::Float32}, {"double", Scalar::Float64},
-      {"float64", Scalar::Float64}};
-  for (const Entry& e : kTypes)
+  for (const TypeName& e : kTypeNames)
     if (e.name == name) return e.type;
   return std::nullopt;
 }
 
+// The original name, which every PLY reader knows.
+std::string_view name_of(Scalar type) {
+  for (const TypeName& e : kTypeNames)
+    if (e.type == type) return e.name;
+  return {};
+}
+
 std::size_t size_of(Scalar type) {
   switch (type) {
-    case Scalar::Int8:
-    case Scalar::UInt8: return 1;
-    case Scalar::Int16:
-    case Scalar::UInt16: return 2;
-    case Scalar::Int32:
-    case Scalar::UInt32:
-    case Scalar::Float32: return 4;
-    case Scalar::Float64: return 8;
+    case Scalar::int8:
+    case Scalar::uint8: return 1;
+    case Scalar::int16:
+    case Scalar::uint16: return 2;
+    case Scalar::int32:
+    case Scalar::uint32:
+    case Scalar::float32: return 4;
+    case Scalar::float64: return 8;
   }
   return 0;
+}
+
+template <class T>
+bool whole_in_range(double v) {
+  return v >= double(std::numeric_limits<T>::lowest()) && v <= double(std::numeric_limits<T>::max()) &&
+         v == std::floor(v);
+}
+
+// v as a property of `type` holds it: rounded to float, or, for an integer type, only when
+// whole and in range. Binary data always fits; ASCII text and values set in code may not.
+std::optional<double> as_type(double v, Scalar type) {
+  bool fits = true;
+  switch (type) {
+    case Scalar::float32: return double(float(v));
+    case Scalar::float64: return v;
+    case Scalar::int8: fits = whole_in_range<std::int8_t>(v); break;
+    case Scalar::uint8: fits = whole_in_range<std::uint8_t>(v); break;
+    case Scalar::int16: fits = whole_in_range<std::int16_t>(v); break;
+    case Scalar::uint16: fits = whole_in_range<std::uint16_t>(v); break;
+    case Scalar::int32: fits = whole_in_range<std::int32_t>(v); break;
+    case Scalar::uint32: fits = whole_in_range<std::uint32_t>(v); break;
+  }
+  return fits ? std::optional(v) : std::nullopt;
+}
+
+std::string text_of(double v) {
+  char text[32];
+  return std::string(text, std::to_chars(text, text + sizeof text, v).ptr);
 }
 
 struct Property {
@@ -196,14 +233,14 @@ class BinaryCursor {
   double value(Scalar type) {
     const char* p = take(size_of(type));
     switch (type) {
-      case Scalar::Int8: return load<std::int8_t>(p, swap_);
-      case Scalar::UInt8: return load<std::uint8_t>(p, swap_);
-      case Scalar::Int16: return load<std::int16_t>(p, swap_);
-      case Scalar::UInt16: return load<std::uint16_t>(p, swap_);
-      case Scalar::Int32: return load<std::int32_t>(p, swap_);
-      case Scalar::UInt32: return load<std::uint32_t>(p, swap_);
-      case Scalar::Float32: return load<float>(p, swap_);
-      case Scalar::Float64: return load<double>(p, swap_);
+      case Scalar::int8: return load<std::int8_t>(p, swap_);
+      case Scalar::uint8: return load<std::uint8_t>(p, swap_);
+      case Scalar::int16: return load<std::int16_t>(p, swap_);
+      case Scalar::uint16: return load<std::uint16_t>(p, swap_);
+      case Scalar::int32: return load<std::int32_t>(p, swap_);
+      case Scalar::uint32: return load<std::uint32_t>(p, swap_);
+      case Scalar::float32: return load<float>(p, swap_);
+      case Scalar::float64: return load<double>(p, swap_);
     }
     return 0;
   }
@@ -230,10 +267,7 @@ class BinaryCursor {
 template <class Cursor>
 void skip_list(Cursor& in, const Property& list) {
   const double n = in.value(*list.count);
-  if (!(n >= 0 && n <= 4294967295.0 && n == std::floor(n))) {
-    char text[32];
-    in.fail("malformed list count " + std::string(text, std::to_chars(text, text + 32, n).ptr));
-  }
+  if (!whole_in_range<std::uint32_t>(n)) in.fail("malformed list count " + text_of(n));
   in.skip(list.type, static_cast<std::uint64_t>(n));
 }
 
@@ -256,9 +290,13 @@ void for_each_record(const fs::path& path, const Element& element, ReadRecord re
 }
 
 // The vertex properties read, by slot: x y z, nx ny nz, red green blue (or MeshLab's older
-// diffuse_red ...).
+// diffuse_red ...), then the other scalars kept (PointCloud::scalars) from slot kSlots on.
 constexpr std::string_view kVertexNames[] = {"x", "y", "z", "nx", "ny", "nz", "red", "green", "blue"};
 constexpr int kNormal = 3, kColor = 6, kSlots = 9;
+// The most other scalars kept; later ones are skipped like lists. Real files carry a few (the
+// bunny's confidence and intensity, a label), and a header naming thousands of properties
+// should not make every output record carry them.
+constexpr std::size_t kMaxScalars = 64;
 
 bool names_slot(std::string_view name, int k) {
   return name == kVertexNames[k] ||
@@ -266,14 +304,26 @@ bool names_slot(std::string_view name, int k) {
 }
 
 // Which slot each vertex property fills (-1: skipped). Normals and colours count only when
-// all three of their properties are present.
+// all three of their properties are present. A scalar is kept when no slot has its name
+// (a second 'x', or an 'nx' without 'nz', is skipped) and no earlier kept scalar has it, so
+// that an output never names a property twice.
 std::vector<int> vertex_slots(const fs::path& path, const Element& vertex) {
   std::vector<int> slots(vertex.properties.size(), -1);
   std::array<bool, kSlots> found{};
+  std::vector<std::string_view> kept;
   for (std::size_t i = 0; i < slots.size(); ++i) {
-    if (vertex.properties[i].count) continue;
-    for (int k = 0; k < kSlots; ++k)
-      if (!found[k] && names_slot(vertex.properties[i].name, k)) slots[i] = k, found[k] = true;
+    const Property& p = vertex.properties[i];
+    if (p.count) continue;
+    bool named = false;
+    for (int k = 0; k < kSlots; ++k) {
+      if (!names_slot(p.name, k)) continue;
+      named = true;
+      if (!found[k]) slots[i] = k, found[k] = true;
+    }
+    if (!named && kept.size() < kMaxScalars && std::find(kept.begin(), kept.end(), p.name) == kept.end()) {
+      slots[i] = kSlots + int(kept.size());
+      kept.push_back(p.name);
+    }
   }
   for (int k = 0; k < kNormal; ++k)
     if (!found[k])
@@ -288,12 +338,22 @@ std::vector<int> vertex_slots(const fs::path& path, const Element& vertex) {
 // others as 0..255 values (clamped).
 std::uint8_t color_channel(double v, Scalar type) {
   switch (type) {
-    case Scalar::Float32:
-    case Scalar::Float64: return io::channel_from_unit(v);
-    case Scalar::Int16:
-    case Scalar::UInt16: return io::channel_from_16bit(v > 0 ? std::uint32_t(v) : 0);
+    case Scalar::float32:
+    case Scalar::float64: return io::channel_from_unit(v);
+    case Scalar::int16:
+    case Scalar::uint16: return io::channel_from_16bit(v > 0 ? std::uint32_t(v) : 0);
     default: return static_cast<std::uint8_t>(std::clamp(v, 0.0, 255.0));
   }
+}
+
+// A kept scalar's value, refused when it does not fit its type (ASCII "3.5" for an int).
+template <class Cursor>
+double scalar_value(Cursor& in, const Property& p) {
+  const double v = in.value(p.type);
+  const std::optional<double> kept = as_type(v, p.type);
+  if (!kept)
+    in.fail("value " + text_of(v) + " of " + quote(p.name) + " does not fit its type " + std::string(name_of(p.type)));
+  return *kept;
 }
 
 // The most records of an element the remaining bytes could hold. Reserving no more than
@@ -325,17 +385,24 @@ PointCloud read_data(const fs::path& path, const Header& header, Cursor in) {
   const bool colors = std::find(slots.begin(), slots.end(), kColor) != slots.end();
   std::array<Scalar, 3> color_types{};
   for (std::size_t j = 0; j < slots.size(); ++j)
-    if (slots[j] >= kColor) color_types[slots[j] - kColor] = vertex->properties[j].type;
+    if (slots[j] >= kColor && slots[j] < kSlots) color_types[slots[j] - kColor] = vertex->properties[j].type;
   PointCloud cloud;
   const std::uint64_t capacity = std::min(vertex->count, max_records(in, *vertex));
   cloud.positions.reserve(capacity);
   if (normals) cloud.normals.reserve(capacity);
   if (colors) cloud.colors.reserve(capacity);
+  for (std::size_t j = 0; j < slots.size(); ++j) {
+    if (slots[j] < kSlots) continue;
+    const Property& p = vertex->properties[j];
+    cloud.scalars.push_back({p.name, p.type, {}});
+    cloud.scalars.back().values.reserve(capacity);
+  }
   for_each_record(path, *vertex, [&](std::uint64_t i) {
     double v[kSlots] = {};
     for (std::size_t j = 0; j < slots.size(); ++j) {
       const Property& p = vertex->properties[j];
       if (p.count) skip_list(in, p);
+      else if (slots[j] >= kSlots) cloud.scalars[slots[j] - kSlots].values.push_back(scalar_value(in, p));
       else if (slots[j] >= 0) v[slots[j]] = in.value(p.type);
       else in.skip(p.type);
     }
@@ -364,6 +431,55 @@ char* store_little_endian(char* out, T value) {
   return std::copy(raw.begin(), raw.end(), out);
 }
 
+// A scalar's value in its type (as_type has checked that it fits).
+char* store_scalar(char* out, double v, Scalar type) {
+  switch (type) {
+    case Scalar::int8: return store_little_endian(out, std::int8_t(v));
+    case Scalar::uint8: return store_little_endian(out, std::uint8_t(v));
+    case Scalar::int16: return store_little_endian(out, std::int16_t(v));
+    case Scalar::uint16: return store_little_endian(out, std::uint16_t(v));
+    case Scalar::int32: return store_little_endian(out, std::int32_t(v));
+    case Scalar::uint32: return store_little_endian(out, std::uint32_t(v));
+    case Scalar::float32: return store_little_endian(out, float(v));
+    case Scalar::float64: return store_little_endian(out, v);
+  }
+  return out;
+}
+
+// The names the scalars are written under. One that an extra property also has (an input's
+// own 'status' beside pss project's) becomes input_NAME, prefixed again while taken, so that
+// no reader has to choose between two properties of one name.
+std::vector<std::string> scalar_names(const PointCloud& cloud, std::span<const PlyIntProperty> extra) {
+  const auto in_extra = [&](const std::string& name) {
+    return std::any_of(extra.begin(), extra.end(), [&](const PlyIntProperty& p) { return p.name == name; });
+  };
+  const auto in_scalars = [&](const std::string& name) {
+    return std::any_of(cloud.scalars.begin(), cloud.scalars.end(),
+                       [&](const ScalarProperty& s) { return s.name == name; });
+  };
+  std::vector<std::string> names;
+  for (const ScalarProperty& s : cloud.scalars) {
+    std::string name = s.name;
+    if (in_extra(name)) {
+      name = "input_" + name;
+      while (in_extra(name) || in_scalars(name)) name = "input_" + name;
+    }
+    names.push_back(std::move(name));
+  }
+  return names;
+}
+
+// Every property name of the header, once each and without blanks (which would split the
+// header line into other words).
+void check_names(const fs::path& path, const std::vector<std::string_view>& names) {
+  for (auto name = names.begin(); name != names.end(); ++name) {
+    if (name->empty() || std::any_of(name->begin(), name->end(), [](unsigned char c) { return c <= ' ' || c >= 127; }))
+      throw file_error(path, "cannot write: invalid property name " + quote(*name));
+    if (std::find(names.begin(), name, *name) != name)
+      throw file_error(path, "cannot write: two properties named " + quote(*name));
+  }
+}
+
 }  // namespace
 
 PointCloud read_ply(const fs::path& path) {
@@ -388,15 +504,26 @@ void write_ply(const fs::path& path, const PointCloud& cloud, std::span<const Pl
   if (cloud.has_colors() && cloud.colors.size() != n)
     throw file_error(path, "cannot write: " + std::to_string(n) + " positions but " +
                                std::to_string(cloud.colors.size()) + " colours");
-  for (const PlyIntProperty& p : extra) {
-    if (p.values.size() != n)
-      throw file_error(path, "cannot write: " + std::to_string(n) + " positions but " +
-                                 std::to_string(p.values.size()) + " values of " + quote(p.name));
-    // A name with blanks would split into extra words and corrupt the header.
-    if (p.name.empty() || std::any_of(p.name.begin(), p.name.end(),
-                                      [](unsigned char c) { return c <= ' ' || c >= 127; }))
-      throw file_error(path, "cannot write: invalid property name " + quote(p.name));
+  const auto check_size = [&](std::size_t values, const std::string& name) {
+    if (values != n)
+      throw file_error(path, "cannot write: " + std::to_string(n) + " positions but " + std::to_string(values) +
+                                 " values of " + quote(name));
+  };
+  for (const ScalarProperty& s : cloud.scalars) {
+    check_size(s.values.size(), s.name);
+    for (const double v : s.values)
+      if (!as_type(v, s.type))
+        throw file_error(path, "cannot write: value " + text_of(v) + " of " + quote(s.name) +
+                                   " does not fit its type " + std::string(name_of(s.type)));
   }
+  for (const PlyIntProperty& p : extra) check_size(p.values.size(), p.name);
+  const std::vector<std::string> scalars = scalar_names(cloud, extra);
+  std::vector<std::string_view> names = {"x", "y", "z"};
+  if (cloud.has_normals()) names.insert(names.end(), {"nx", "ny", "nz"});
+  if (cloud.has_colors()) names.insert(names.end(), {"red", "green", "blue"});
+  names.insert(names.end(), scalars.begin(), scalars.end());
+  for (const PlyIntProperty& p : extra) names.push_back(p.name);
+  check_names(path, names);
 
   OutputFile file(path);
   std::ostream& out = file.stream();
@@ -404,11 +531,14 @@ void write_ply(const fs::path& path, const PointCloud& cloud, std::span<const Pl
       << "\nproperty float x\nproperty float y\nproperty float z\n";
   if (cloud.has_normals()) out << "property float nx\nproperty float ny\nproperty float nz\n";
   if (cloud.has_colors()) out << "property uchar red\nproperty uchar green\nproperty uchar blue\n";
+  for (std::size_t k = 0; k < scalars.size(); ++k)
+    out << "property " << name_of(cloud.scalars[k].type) << " " << scalars[k] << "\n";
   for (const PlyIntProperty& p : extra) out << "property int " << p.name << "\n";
   out << "end_header\n";
 
   // Records go out in chunks: one write per chunk, without a second copy of a large cloud.
-  const std::size_t stride = (cloud.has_normals() ? 24 : 12) + (cloud.has_colors() ? 3 : 0) + 4 * extra.size();
+  std::size_t stride = (cloud.has_normals() ? 24 : 12) + (cloud.has_colors() ? 3 : 0) + 4 * extra.size();
+  for (const ScalarProperty& s : cloud.scalars) stride += size_of(s.type);
   constexpr std::size_t kChunk = 1 << 16;
   std::vector<char> buffer(std::min(n, kChunk) * stride);
   for (std::size_t begin = 0; begin < n; begin += kChunk) {
@@ -420,6 +550,7 @@ void write_ply(const fs::path& path, const PointCloud& cloud, std::span<const Pl
         for (int k = 0; k < 3; ++k) o = store_little_endian(o, cloud.normals[i][k]);
       if (cloud.has_colors())
         for (int k = 0; k < 3; ++k) o = store_little_endian(o, cloud.colors[i][k]);
+      for (const ScalarProperty& s : cloud.scalars) o = store_scalar(o, s.values[i], s.type);
       for (const PlyIntProperty& p : extra) o = store_little_endian(o, p.values[i]);
     }
     out.write(buffer.data(), o - buffer.data());

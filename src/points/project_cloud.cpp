@@ -84,7 +84,9 @@ CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& p
   out.cloud.positions.resize(n);
   out.cloud.normals.resize(n);
   out.status.resize(n);
-  out.cloud.colors = input.colors;  // the projections keep the input's order
+  // The projections keep the input's order, so its per-point values stay with them.
+  out.cloud.colors = input.colors;
+  out.cloud.scalars = input.scalars;
   for (std::size_t i = 0; i < n; ++i) {
     out.cloud.positions[i] = projected[i].point;
     out.cloud.normals[i] = projected[i].normal;

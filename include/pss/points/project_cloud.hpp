@@ -30,7 +30,7 @@ struct StatusCounts {
 };
 
 struct CloudProjection {
-  PointCloud cloud;  // projected points, with normals, and the input's colours when it has them
+  PointCloud cloud;  // projected points, with normals, and the input's colours and scalars
   std::vector<ProjectionStatus> status;  // one per point
   StatusCounts counts;
 };
