@@ -2,6 +2,7 @@
 // nothing when off; and `--progress` on the CLI, whose summary times the whole run.
 #include <fcntl.h>
 #include <pty.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <regex>
@@ -242,6 +243,42 @@ TEST_F(ProgressCli, NeverAndTheDefaultOffATerminalWriteNothingToStderr) {
   }
   expect_clean_failure("project " + cloud + " -o " + path("q.ply") + " --progress sometimes", "--progress",
                        path("q.ply"));
+}
+
+// What `pss ARGS` writes to stderr when stderr is a terminal (a pseudo-terminal), stdout
+// discarded; empty when no pseudo-terminal can be opened.
+std::string stderr_on_a_terminal(const std::vector<std::string>& args) {
+  int master = -1, slave = -1;
+  if (openpty(&master, &slave, nullptr, nullptr, nullptr) != 0) return {};
+  const pid_t child = fork();
+  if (child == 0) {
+    dup2(slave, STDERR_FILENO);
+    const int null = open("/dev/null", O_WRONLY);
+    dup2(null, STDOUT_FILENO);
+    std::vector<char*> argv{const_cast<char*>(PSS_CLI)};
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execv(PSS_CLI, argv.data());
+    _exit(127);
+  }
+  close(slave);
+  std::string text;
+  char buffer[4096];
+  for (ssize_t n; (n = ::read(master, buffer, sizeof buffer)) > 0;) text.append(buffer, std::size_t(n));  // EIO at the end
+  int status = 0;
+  waitpid(child, &status, 0);
+  close(master);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << text;
+  return text;
+}
+
+TEST_F(ProgressCli, OnATerminalTheDefaultDrawsABarAndNeverDrawsNothing) {
+  const std::string cloud = PSS_SOURCE_DIR "/data/bun_zipper.ply";
+  const std::string bar = stderr_on_a_terminal({"project", cloud, "-o", path("p.ply")});
+  if (bar.empty()) GTEST_SKIP() << "no pseudo-terminal here";
+  EXPECT_NE(bar.find("\r"), std::string::npos) << bar;
+  EXPECT_NE(bar.find("projecting"), std::string::npos) << bar;
+  EXPECT_EQ(stderr_on_a_terminal({"project", cloud, "-o", path("p.ply"), "--progress", "never"}), "");
 }
 
 }  // namespace
