@@ -352,10 +352,12 @@ std::string las_header(const LasHeader& h) {
   return b.str();
 }
 
-// A LAS 1.2 format 2 record: X Y Z, intensity, flags, class, angle, user, source, RGB.
+// A LAS 1.2 format 2 record: X Y Z, intensity, flags, class (6, building, under the flag
+// bits 5-7: synthetic and withheld), angle, user, source, RGB.
 std::string las_record_2(std::int32_t x, std::int32_t y, std::int32_t z, std::array<std::uint16_t, 3> rgb) {
   Bytes b;
-  b.put(x).put(y).put(z).put(std::uint16_t(100)).zeros(4).put(std::uint16_t(7));
+  b.put(x).put(y).put(z).put(std::uint16_t(100)).put(std::uint8_t(0)).put(std::uint8_t(0b1010'0110)).zeros(2);
+  b.put(std::uint16_t(7));
   for (std::uint16_t c : rgb) b.put(c);
   return b.str();
 }
@@ -372,6 +374,13 @@ TEST_F(FormatTest, Las12Format2ScaleOffsetAndEightBitColours) {
   EXPECT_EQ(cloud.positions, (std::vector<vec3>{{110, -201.5f, 1002}, {99.5f, -198, 1000}}));
   EXPECT_EQ(cloud.colors, (std::vector<Rgb8>{{255, 128, 0}, {1, 2, 3}})) << "8-bit values stored as 16-bit";
   EXPECT_FALSE(cloud.has_normals());
+  ASSERT_EQ(cloud.scalars.size(), 2u);
+  EXPECT_EQ(cloud.scalars[0].name, "intensity");
+  EXPECT_EQ(cloud.scalars[0].type, pss::ScalarType::uint16);
+  EXPECT_EQ(cloud.scalars[0].values, (std::vector<double>{100, 100}));
+  EXPECT_EQ(cloud.scalars[1].name, "classification");
+  EXPECT_EQ(cloud.scalars[1].type, pss::ScalarType::uint8);
+  EXPECT_EQ(cloud.scalars[1].values, (std::vector<double>{6, 6})) << "the class without its flag bits";
 }
 
 TEST_F(FormatTest, Las14Format7ExtraBytesAnd16BitColours) {
@@ -384,7 +393,9 @@ TEST_F(FormatTest, Las14Format7ExtraBytesAnd16BitColours) {
   h.offset = {-5, 0, 0.5};
   const auto record = [](std::int32_t x, std::int32_t y, std::int32_t z, std::array<std::uint16_t, 3> rgb) {
     Bytes b;
-    b.put(x).put(y).put(z).put(std::uint16_t(9)).zeros(4).put(std::int16_t(0)).put(std::uint16_t(3)).put(1.5);
+    // intensity, return bits, class flags (withheld), class 2 (ground), user data, angle, source, time
+    b.put(x).put(y).put(z).put(std::uint16_t(9)).put(std::uint8_t(0)).put(std::uint8_t(0b100)).put(std::uint8_t(2));
+    b.zeros(1).put(std::int16_t(0)).put(std::uint16_t(3)).put(1.5);
     for (std::uint16_t c : rgb) b.put(c);
     return b.str() + "XTRA";
   };
@@ -392,6 +403,9 @@ TEST_F(FormatTest, Las14Format7ExtraBytesAnd16BitColours) {
   const PointCloud cloud = pss::read_las(write("b.las", file));
   EXPECT_EQ(cloud.positions, (std::vector<vec3>{{0, 0.25f, 0}, {-5, -1, 0.5f}}));
   EXPECT_EQ(cloud.colors, (std::vector<Rgb8>{{255, 1, 0}, {128, 0, 254}}));
+  ASSERT_EQ(cloud.scalars.size(), 2u);
+  EXPECT_EQ(cloud.scalars[0].values, (std::vector<double>{9, 9}));
+  EXPECT_EQ(cloud.scalars[1].values, (std::vector<double>{2, 2})) << "formats 6-10 keep the class in byte 16";
 }
 
 TEST_F(FormatTest, LasWithoutColoursAndTheLegacyCountIn14) {

@@ -32,6 +32,22 @@ T get(const std::string& file, std::uint64_t at) {
   return io::load<T>(file.data() + at, kSwap);
 }
 
+// The attributes every record format has, kept as scalar properties for outputs to carry:
+// the intensity (bytes 12-13) and the ASPRS class, bits 0-4 of byte 15 in formats 0-5 (its
+// upper bits are flags) and byte 16 in formats 6-10.
+template <class RecordAt>
+std::vector<ScalarProperty> record_attributes(const std::string& file, std::uint64_t points, unsigned format,
+                                              RecordAt record_at) {
+  ScalarProperty intensity{"intensity", ScalarType::uint16, std::vector<double>(points)};
+  ScalarProperty classification{"classification", ScalarType::uint8, std::vector<double>(points)};
+  for (std::uint64_t i = 0; i < points; ++i) {
+    const std::uint64_t r = record_at(i);
+    intensity.values[i] = get<std::uint16_t>(file, r + 12);
+    classification.values[i] = format <= 5 ? get<std::uint8_t>(file, r + 15) & 0x1F : get<std::uint8_t>(file, r + 16);
+  }
+  return {std::move(intensity), std::move(classification)};
+}
+
 }  // namespace
 
 PointCloud read_las(const std::filesystem::path& path) {
@@ -96,6 +112,7 @@ PointCloud read_las(const std::filesystem::path& path) {
       throw file_error(path, "point " + std::to_string(i) + " lies beyond float's range");
     cloud.positions.push_back(position);
   }
+  cloud.scalars = record_attributes(file, points, format, record_at);
   if (record.rgb != 0) {
     const auto channel = [&](std::uint64_t i, int c) {
       return get<std::uint16_t>(file, record_at(i) + record.rgb + 2 * std::uint64_t(c));
