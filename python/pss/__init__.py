@@ -186,4 +186,6 @@ Volume.__doc__ = """Volume(values, spacing=(1, 1, 1), origin=(0, 0, 0)): a scala
     uniform grid. values: a 3-D array indexed [z, y, x] (x fastest, as SimpleITK and VTK give
     them), copied once as float32; voxel (i, j, k) sits at origin + (i sx, j sy, k sz).
     Properties: values (read-only float32 view), spacing, origin, source (the file it was
-    read from, or '')."""
+    read from, or ''). A render or extract prepares the volume for its surface settings
+    (gradients, weights: about five times the values' memory) and keeps that preparation for
+    the next call with the same settings, so that views after the first cost only their rays."""

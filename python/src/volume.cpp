@@ -2,6 +2,8 @@
 
 #include <cfloat>
 #include <cmath>
+#include <memory>
+#include <mutex>
 #include <string>
 #include <utility>
 
@@ -18,11 +20,16 @@ namespace pss::python {
 
 namespace {
 
-// pss.Volume: the values (owned, float32, x fastest) and, when read from a file, its name,
-// which the errors about the data then begin with, as the CLI's do.
+// pss.Volume: the values (owned, float32, x fastest, read-only from Python) and, when read
+// from a file, its name, which the errors about the data then begin with, as the CLI's do.
 struct PyVolume {
   Volume volume;
   std::string source;
+  // The last preparation and its settings: a volume drawn from many views, or extracted
+  // after it was drawn, is prepared once. The lock serialises the threads that share it.
+  std::shared_ptr<const PreparedVolume> prepared;
+  VolumeSettings prepared_for;
+  std::unique_ptr<std::mutex> lock = std::make_unique<std::mutex>();
 };
 
 PyVolume volume_of(const py::handle& values, const py::handle& spacing, const py::handle& origin) {
@@ -65,17 +72,23 @@ VolumeSettings settings_of(const py::dict& o) {
 }
 
 // Gradients, weights, surface cells and bricks of a copy of the values (prepare_volume
-// owns what it computes from); the data's problems name the volume's file, as the CLI's do.
-PreparedVolume prepare(const PyVolume& v, const VolumeSettings& settings, Stats& stats) {
+// owns what it computes from), or the last ones when the settings are the same; the data's
+// problems name the volume's file, as the CLI's do.
+std::shared_ptr<const PreparedVolume> prepare(PyVolume& v, const VolumeSettings& settings, Stats& stats) {
+  const std::lock_guard<std::mutex> hold(*v.lock);
+  if (v.prepared && v.prepared_for == settings) return v.prepared;
+  v.prepared.reset();  // its memory back before the next is made
   try {
-    return prepare_volume(Volume(v.volume), settings, stats);
+    v.prepared = std::make_shared<const PreparedVolume>(prepare_volume(Volume(v.volume), settings, stats));
   } catch (const Error& e) {
     if (v.source.empty()) throw;
     throw file_error(v.source, e.what());
   }
+  v.prepared_for = settings;
+  return v.prepared;
 }
 
-py::object render(const PyVolume& v, const py::dict& o) {
+py::object render(PyVolume& v, const py::dict& o) {
   const VolumeSettings settings = settings_of(o);
   const Backend backend = backend_of(o);
   const FrameRequest request = frame_request(o);
@@ -83,16 +96,16 @@ py::object render(const PyVolume& v, const py::dict& o) {
   RenderedFrame frame;
   {
     py::gil_scoped_release release;
-    const PreparedVolume prepared = prepare(v, settings, stats);
-    const Camera camera = make_camera(request, prepared.surface_bounds());
-    const SceneMirror scene(backend, prepared);
+    const std::shared_ptr<const PreparedVolume> prepared = prepare(v, settings, stats);
+    const Camera camera = make_camera(request, prepared->surface_bounds());
+    const SceneMirror scene(backend, *prepared);
     frame = render_volume(scene, camera, trace_settings(request, camera), backend, stats);
   }
   stats.values()["backend"] = backend_name(backend);
   return frame_result(std::move(frame), stats, request);
 }
 
-py::object extract(const PyVolume& v, const py::dict& o) {
+py::object extract(PyVolume& v, const py::dict& o) {
   const VolumeSettings settings = settings_of(o);
   const Backend backend = backend_of(o);
   const bool full_output = flag(o, "full_output");
@@ -101,7 +114,7 @@ py::object extract(const PyVolume& v, const py::dict& o) {
   ExtractionCounts counts;
   {
     py::gil_scoped_release release;
-    cloud = extract_surface(prepare(v, settings, stats), backend, stats, counts);
+    cloud = extract_surface(*prepare(v, settings, stats), backend, stats, counts);
   }
   py::tuple points = py::make_tuple(to_numpy(std::move(cloud.positions)), to_numpy(std::move(cloud.normals)));
   if (!full_output) return points;

@@ -70,6 +70,19 @@ def test_render_frames_the_surface_the_cli_frames(fuel, tmp_path):
     assert stats["hits"] == hits["mask"].sum() > 10
 
 
+def test_a_volume_is_prepared_once_for_many_views_and_again_for_other_settings():
+    volume = pss.Volume(np.fromfile(FUEL, np.uint8).reshape(64, 64, 64))
+    first, _, stats = volume.render(iso=60, size=(32, 32), full_output=True)
+    assert "gradients" in stats["seconds"]
+    turned, _, stats = volume.render(iso=60, size=(32, 32), view=(90, 0), full_output=True)
+    assert "gradients" not in stats["seconds"] and not np.array_equal(turned, first)
+    _, _, stats = volume.extract(iso=60, full_output=True)
+    assert "gradients" not in stats["seconds"]
+    again, _, stats = volume.render(iso=61, size=(32, 32), full_output=True)
+    assert "gradients" in stats["seconds"] and not np.array_equal(again, first)
+    assert np.array_equal(volume.render(iso=60, size=(32, 32)), first)
+
+
 def test_errors_about_the_data_name_the_file_as_the_cli_s_do(fuel, tmp_path):
     expected = cli_error("volume", FUEL, *RAW, "--iso", "1000", "-o", tmp_path / "x.png")
     with pytest.raises(pss.Error) as caught:
