@@ -5,6 +5,7 @@
 
 #include "arrays.hpp"
 #include "frame.hpp"
+#include "interruptible.hpp"
 #include "options.hpp"
 #include "pss/core/error.hpp"
 #include "pss/io/point_cloud_file.hpp"
@@ -56,17 +57,16 @@ py::tuple project(const py::handle& points, const py::dict& o) {
   const std::optional<float> h = positive_or_none(o, "h"), rho = positive_or_none(o, "rho");
   const int iterations = integer_in(o, "iterations", 1, 100);
   const Backend backend = backend_of(o);
-  CloudProjection result;
-  {
-    py::gil_scoped_release release;
+  CloudProjection result = run_interruptibly([&] {
     Stats stats;
     ProjectionParams params = ProjectionParams::from_h(
         h ? *h : suggested_h(cloud.positions), method == "wls" ? PlaneFitMethod::wls : PlaneFitMethod::mls);
     if (rho) params.rho = *rho;
     params.max_mls_iterations = iterations;
-    result = project_cloud(cloud, params, backend, stats);
-    check_some_projected(result, params);
-  }
+    CloudProjection projection = project_cloud(cloud, params, backend, stats);
+    check_some_projected(projection, params);
+    return projection;
+  });
   std::vector<std::int32_t> status(result.status.size());
   for (std::size_t i = 0; i < status.size(); ++i) status[i] = std::int32_t(result.status[i]);
   const auto n = py::ssize_t(status.size());
@@ -100,9 +100,7 @@ py::object render(const py::handle& points, const py::dict& o) {
   const TraceSettings settings = trace_settings(request, camera);
 
   Stats stats;
-  RenderedFrame frame;
-  {
-    py::gil_scoped_release while_rendering;
+  RenderedFrame frame = run_interruptibly([&] {
     RayPssParams params = RayPssParams::from_h(
         h ? *h : h_from_spacing(cloud.positions, [](const auto& q) { return default_h(q); }));
     if (rho) params.projection.rho = *rho;
@@ -114,12 +112,12 @@ py::object render(const py::handle& points, const py::dict& o) {
     validate(params);
     const PreparedCloud prepared(cloud, params, backend, stats,
                                  cloud.has_colors() ? SurfaceColor::samples : SurfaceColor::albedo);
-    frame = render_cloud(prepared, camera, settings, backend, stats);
     stats.values()["local_polynomials"] = prepared.locals().size();
     stats.values()["params"] = {{"h", params.projection.h}, {"rho", params.projection.rho}, {"b", params.ball_radius},
                                 {"ball_spacing", params.ball_spacing}, {"epsilon", params.epsilon},
                                 {"iterations", params.max_iterations}};
-  }
+    return render_cloud(prepared, camera, settings, backend, stats);
+  });
   stats.values()["backend"] = backend_name(backend);
   return frame_result(std::move(frame), stats, request);
 }

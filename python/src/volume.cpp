@@ -9,6 +9,7 @@
 
 #include "arrays.hpp"
 #include "frame.hpp"
+#include "interruptible.hpp"
 #include "options.hpp"
 #include "pss/core/error.hpp"
 #include "pss/io/volume_file.hpp"
@@ -78,14 +79,18 @@ std::shared_ptr<const PreparedVolume> prepare(PyVolume& v, const VolumeSettings&
   const std::lock_guard<std::mutex> hold(*v.lock);
   if (v.prepared && v.prepared_for == settings) return v.prepared;
   v.prepared.reset();  // its memory back before the next is made
+  std::shared_ptr<const PreparedVolume> prepared;
   try {
-    v.prepared = std::make_shared<const PreparedVolume>(prepare_volume(Volume(v.volume), settings, stats));
+    prepared = std::make_shared<const PreparedVolume>(prepare_volume(Volume(v.volume), settings, stats));
   } catch (const Error& e) {
     if (v.source.empty()) throw;
     throw file_error(v.source, e.what());
   }
+  const std::atomic<bool>* cancel = cancel_flag();
+  if (cancel && cancel->load()) return prepared;  // cut short by Ctrl-C: not kept
+  v.prepared = prepared;
   v.prepared_for = settings;
-  return v.prepared;
+  return prepared;
 }
 
 py::object render(PyVolume& v, const py::dict& o) {
@@ -93,14 +98,12 @@ py::object render(PyVolume& v, const py::dict& o) {
   const Backend backend = backend_of(o);
   const FrameRequest request = frame_request(o);
   Stats stats;
-  RenderedFrame frame;
-  {
-    py::gil_scoped_release release;
+  RenderedFrame frame = run_interruptibly([&] {
     const std::shared_ptr<const PreparedVolume> prepared = prepare(v, settings, stats);
     const Camera camera = make_camera(request, prepared->surface_bounds());
     const SceneMirror scene(backend, *prepared);
-    frame = render_volume(scene, camera, trace_settings(request, camera), backend, stats);
-  }
+    return render_volume(scene, camera, trace_settings(request, camera), backend, stats);
+  });
   stats.values()["backend"] = backend_name(backend);
   return frame_result(std::move(frame), stats, request);
 }
@@ -110,12 +113,9 @@ py::object extract(PyVolume& v, const py::dict& o) {
   const Backend backend = backend_of(o);
   const bool full_output = flag(o, "full_output");
   Stats stats;
-  PointCloud cloud;
   ExtractionCounts counts;
-  {
-    py::gil_scoped_release release;
-    cloud = extract_surface(*prepare(v, settings, stats), backend, stats, counts);
-  }
+  PointCloud cloud =
+      run_interruptibly([&] { return extract_surface(*prepare(v, settings, stats), backend, stats, counts); });
   py::tuple points = py::make_tuple(to_numpy(std::move(cloud.positions)), to_numpy(std::move(cloud.normals)));
   if (!full_output) return points;
   stats.values()["candidates"] = counts.candidates;
