@@ -46,6 +46,15 @@ TEST(UniformGrid, CapsTheNumberOfCells) {
   EXPECT_EQ(found, 1);
 }
 
+TEST(UniformGrid, CapsCellsFarSmallerThanTheBoxWhoseCountOverflowsAnInteger) {
+  // 1e8 cells per axis: 1e24 in all, beyond long long.
+  const std::vector<vec3> pts{vec3(0.0f), vec3(1.0f)};
+  const UniformGrid grid(pts, 1e-8f, 1 << 20);
+  const ivec3 d = grid.dims();
+  EXPECT_GE(d.x, 1);
+  EXPECT_LE((long long)d.x * d.y * d.z, 1 << 20);
+}
+
 TEST(UniformGrid, EmptyAndSinglePoint) {
   const UniformGrid empty(std::vector<vec3>{}, 1.0f);
   int found = 0;

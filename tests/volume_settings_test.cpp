@@ -65,6 +65,15 @@ TEST(VolumeSettings, RefusesWhatHasNoSurfaceOrNoMeaning) {
   gradient.gradient = true;
   gradient.iso = NAN;  // not used for gradient surfaces
   EXPECT_EQ(refusal(gradient), "");
+
+  // A Volume made in code with a spacing no reader would take (a negative one crashed).
+  VolumeSettings zero;
+  zero.iso = 0;
+  for (const vec3 spacing : {vec3(-1, 1, 1), vec3(1, 0, 1), vec3(1, 1, INFINITY)}) {
+    Volume flipped = sphere_volume(vec3(1.0f));
+    flipped.spacing = spacing;
+    EXPECT_NE(refusal(zero, std::move(flipped)).find("is not three positive numbers"), std::string::npos);
+  }
 }
 
 }  // namespace

@@ -39,7 +39,4 @@ CLI::Validator parsed_by(Parse parse, const std::string& flag, const std::string
       type_name, flag);
 }
 
-// The most CPU threads --threads takes (see compute_options.cpp).
-inline constexpr int kMaxThreads = 1024;
-
 }  // namespace pss::app

@@ -22,7 +22,8 @@ import os as _os
 from . import _pss
 from ._pss import Error, Volume
 
-__all__ = ["Error", "Volume", "estimate_h", "project", "read_points", "read_volume", "render", "set_progress"]
+__all__ = ["Error", "Volume", "estimate_h", "project", "read_points", "read_volume", "render", "set_progress",
+           "set_threads"]
 __version__ = "0.1.0"
 
 
@@ -32,6 +33,19 @@ def set_progress(mode):
     default: a library call prints nothing), 'auto' (a bar while stderr is a terminal) or
     'always' (and lines a log can read elsewhere)."""
     _pss.set_progress(mode)
+
+def _plain(value):
+    """NumPy arrays and scalars in a camera dict, as JSON lists and numbers."""
+    if hasattr(value, "tolist"):
+        return value.tolist()
+    raise Error("camera: %r is not a number or a list of numbers" % (value,))
+
+
+def set_threads(count):
+    """The CPU backend's threads, as `pss --threads`: 0 (the default) uses every core,
+    as OpenMP's OMP_NUM_THREADS says."""
+    _pss.set_threads(count)
+
 
 _CAMERA_ARGS = ("view", "fov", "look_at", "up", "distance", "zoom", "roll")
 
@@ -50,7 +64,7 @@ def _frame_options(size, view, fov, look_at, up, distance, zoom, roll, camera, s
     if isinstance(camera, (str, bytes, _os.PathLike)):
         options["camera_file"] = _os.fsdecode(camera)
     elif camera is not None:
-        options["camera_json"] = _json.dumps(camera)
+        options["camera_json"] = _json.dumps(camera, default=_plain)
     return options
 
 
@@ -58,7 +72,8 @@ _FRAME_DOC = """
     Camera (as `pss render`'s flags; each left at None keeps the default view, which frames
     the object's bounding sphere):
       size=(width, height) in pixels (default {size});
-      view=(azimuth, elevation) in degrees about the look-at point (default (0, 0): from +z);
+      view=(azimuth, elevation) in degrees about the look-at point (default (0, 0): from +z
+        with the default up; with another up, from the side across it, -y for up = +z);
       fov: the vertical field of view in degrees (default {fov:g});
       look_at=(x, y, z): the point orbited (default: the centre of the object's box);
       up=(x, y, z): the world's up (default (0, 1, 0)); distance: of the eye (then fov zooms);
@@ -71,7 +86,8 @@ _FRAME_DOC = """
     Returns the (H, W, 3) uint8 sRGB image, row 0 at the top; with full_output=True the tuple
     (image, hits, stats): hits a dict of per-pixel arrays 'mask' (bool), 'depth' (the primary
     ray's distance, inf where it missed), 'iterations', 'points' (NaN where missed) and
-    'normals' (facing the camera, 0 where missed); stats the dict `pss ... --stats` writes.
+    'normals' (facing the camera, 0 where missed); stats the counts, times and camera that
+    `pss ... --stats` writes.
 """.format(**_pss.frame_defaults)
 
 
@@ -128,11 +144,14 @@ def read_points(path):
     return _pss.read_points(_os.fsdecode(path))
 
 
-def read_volume(path, *, dims=None, type="uint8", spacing=(1, 1, 1), endian="little", skip=0):
-    """A pss.Volume from a file: .nrrd/.nhdr, .mhd/.mha, .nii/.nii.gz, or a raw file described
-    by dims=(nx, ny, nz) (x fastest in the file), type ('int8', 'uint8', 'int16', 'uint16',
-    'int32', 'uint32', 'float32', 'float64'), spacing, endian ('little' or 'big') and skip
-    (header bytes), as `pss volume`'s raw flags. Errors about its data then name the file."""
+def read_volume(path, *, dims=None, type="uint8", spacing=None, endian="little", skip=0):
+    """A pss.Volume from a file: .nrrd/.nhdr, .mhd/.mha, .nii/.nii.gz (whose header gives the
+    spacing and origin), or a raw file described by dims=(nx, ny, nz) (x fastest in the file),
+    type ('int8', 'uint8', 'int16', 'uint16', 'int32', 'uint32', 'float32', 'float64'),
+    spacing (default (1, 1, 1)), endian ('little' or 'big') and skip (header bytes), as
+    `pss volume`'s raw flags. Errors about its data then name the file."""
+    if dims is None and spacing is not None:
+        raise Error("spacing describes a raw file, with dims; a file with a header gives its own")
     return _pss.read_volume(_os.fsdecode(path), {"dims": dims, "type": type, "spacing": spacing,
                                                  "endian": endian, "skip": skip})
 
@@ -143,8 +162,7 @@ _SURFACE_DOC = """
     default 0.5). In voxels u = (sx sy sz)^(1/3): h (default {h:g}), k: the marching step
     b = k h (default {k:g}), radius: the neighbourhood in units of h (default {radius:g}),
     error: epsilon (default {error:g}), smoothing: theta1's width (default {smoothing:g});
-    alpha: alpha1 of the corrector (default {alpha:g}); method: 'predictor-corrector'
-    (default) or 'predictor'.
+    alpha: alpha1 of the corrector (default {alpha:g}).
 """.format(**_pss.volume_defaults)
 
 
@@ -173,18 +191,20 @@ def _volume_extract(self, iso=None, *, gradient=False, h=None, k=None, radius=No
 
 _volume_render.__name__ = "render"
 _volume_render.__doc__ = """Extract and render the volume's point set surface along every
-    primary ray (the paper's section 5.1), as `pss volume`.
+    primary ray (the paper's section 5.1), as `pss volume`. method: 'predictor-corrector'
+    (the default) or 'predictor'.
     """ + _SURFACE_DOC + _FRAME_DOC
 _volume_extract.__name__ = "extract"
 _volume_extract.__doc__ = """The volume's point set surface as an oriented point set, about
     one point per step b (predictor-corrector), as `pss extract`: (points, normals), both
-    (N, 3) float32, normals along the gradient; with full_output=True also the stats dict.
+    (N, 3) float32, normals along the gradient (toward higher values: inward where the
+    object is brighter than its surroundings); with full_output=True also the stats dict.
     """ + _SURFACE_DOC
 Volume.render = _volume_render
 Volume.extract = _volume_extract
 Volume.__doc__ = """Volume(values, spacing=(1, 1, 1), origin=(0, 0, 0)): a scalar volume on a
     uniform grid. values: a 3-D array indexed [z, y, x] (x fastest, as SimpleITK and VTK give
-    them), copied once as float32; voxel (i, j, k) sits at origin + (i sx, j sy, k sz).
+    them), copied once as float32; values[k, j, i] sits at origin + (i sx, j sy, k sz).
     Properties: values (read-only float32 view), spacing, origin, source (the file it was
     read from, or ''). A render or extract prepares the volume for its surface settings
     (gradients, weights: about five times the values' memory) and keeps that preparation for

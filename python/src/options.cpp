@@ -1,7 +1,9 @@
 #include "options.hpp"
 
 #include <cfloat>
+#include <algorithm>
 #include <cmath>
+#include <regex>
 
 #include "pss/core/error.hpp"
 #include "pss/core/text.hpp"
@@ -15,6 +17,20 @@ Error bad(const char* key, const std::string& expected, const py::handle& value)
 }
 
 }  // namespace
+
+std::string argument_names(const std::string& message) {
+  static const std::regex flag(R"((^|[\s'"(,/])--([a-z][a-z0-9-]*))");
+  std::string out;
+  auto last = message.cbegin();
+  for (std::sregex_iterator it(message.begin(), message.end(), flag), end; it != end; ++it) {
+    out.append(last, (*it)[0].first);
+    std::string name = (*it)[2].str();
+    std::replace(name.begin(), name.end(), '-', '_');
+    out += (*it)[1].str() + name;
+    last = (*it)[0].second;
+  }
+  return out.append(last, message.cend());
+}
 
 std::string shown(const py::handle& value) { return printable(py::str(py::repr(value)).cast<std::string>(), 80); }
 

@@ -13,6 +13,10 @@ namespace pss::python {
 
 namespace py = pybind11;
 
+// A library message as Python says it: the CLI's flags it names (--dims, --look-at) as the
+// keyword arguments that set the same (dims, look_at).
+std::string argument_names(const std::string& message);
+
 // A value as a message shows it: its repr, printable and cut to one short line.
 std::string shown(const py::handle& value);
 

@@ -33,10 +33,18 @@ struct PyVolume {
   std::unique_ptr<std::mutex> lock = std::make_unique<std::mutex>();
 };
 
+// Three positive numbers (sx, sy, sz): a spacing of 0 or below has no voxel size.
+vec3 spacing_of(const py::handle& value) {
+  const vec3 s = vec3_of(value, "spacing");
+  if (!(s.x > 0 && s.y > 0 && s.z > 0)) throw Error("spacing: expected three positive numbers (sx, sy, sz)");
+  return s;
+}
+
 PyVolume volume_of(const py::handle& values, const py::handle& spacing, const py::handle& origin) {
   const py::array any = py::array::ensure(values);
   if (!any || any.ndim() != 3 || any.dtype().kind() == 'O' || any.dtype().kind() == 'U' || any.dtype().kind() == 'S')
-    throw Error("values: expected a 3-D array of numbers indexed [z, y, x] (got " + shown(values) + ")");
+    throw Error("values: expected a 3-D array of numbers indexed [z, y, x] (got " +
+                (any ? std::to_string(any.ndim()) + "-D " + std::string(py::str(any.dtype())) : shown(values)) + ")");
   const auto a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(any);
   PyVolume v;
   v.volume.dims = ivec3(int(a.shape(2)), int(a.shape(1)), int(a.shape(0)));
@@ -44,9 +52,7 @@ PyVolume volume_of(const py::handle& values, const py::handle& spacing, const py
   v.volume.values.assign(a.data(), a.data() + a.size());
   for (std::size_t i = 0; i < v.volume.values.size(); ++i)
     if (!std::isfinite(v.volume.values[i])) throw Error("values: voxel " + std::to_string(i) + " is not a finite number");
-  v.volume.spacing = vec3_of(spacing, "spacing");
-  if (!(v.volume.spacing.x > 0 && v.volume.spacing.y > 0 && v.volume.spacing.z > 0))
-    throw Error("spacing: expected three positive numbers (sx, sy, sz)");
+  v.volume.spacing = spacing_of(spacing);
   v.volume.origin = vec3_of(origin, "origin");
   return v;
 }
@@ -136,7 +142,7 @@ PyVolume read(const std::string& path, const py::dict& o) {
     RawVolumeFormat f;
     f.dims = parse_dims(std::to_string(d.at(0)) + "x" + std::to_string(d.at(1)) + "x" + std::to_string(d.at(2)));
     f.type = parse_voxel_type(text(o, "type"));
-    f.spacing = vec3_of(option(o, "spacing"), "spacing");
+    if (is_given(o, "spacing")) f.spacing = spacing_of(option(o, "spacing"));
     f.big_endian = choice(o, "endian", "little|big") == "big";
     f.skip = integer_in(o, "skip", 0, INT32_MAX);
     raw = f;

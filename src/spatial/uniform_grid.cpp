@@ -12,11 +12,13 @@ UniformGrid::UniformGrid(std::span<const vec3> points, float cell_size, long lon
   for (const vec3& p : points) box.grow(p);
   if (box.empty()) box.grow(vec3(0.0f));
   const vec3 extent = box.extent();
-  auto cells_along = [&](float e, float size) { return std::max(1ll, (long long)std::floor(e / size) + 1); };
+  // In double: a cell far smaller than the box (h = 1e-8 on a cloud of size 1) makes a count
+  // beyond long long, whose overflow once passed the test below and sized the grid from garbage.
+  auto cells_along = [&](float e, float size) { return std::max(1.0, std::floor(double(e) / double(size)) + 1); };
   for (;;) {
-    const long long total = cells_along(extent.x, cell_size) * cells_along(extent.y, cell_size) *
-                            cells_along(extent.z, cell_size);
-    if (total <= max_cells) break;
+    const double total = cells_along(extent.x, cell_size) * cells_along(extent.y, cell_size) *
+                         cells_along(extent.z, cell_size);
+    if (total <= double(max_cells)) break;
     cell_size *= 1.25f;
   }
   cell_size_ = cell_size;

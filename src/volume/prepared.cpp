@@ -59,6 +59,12 @@ void validate(const VolumeSettings& s) {
 
 PreparedVolume prepare_volume(Volume volume, const VolumeSettings& s, Stats& stats) {
   validate(s);
+  // The readers refuse it; a Volume made in code may not have been checked (a negative
+  // spacing made every lattice and neighbourhood bound meaningless, and crashed).
+  const vec3 sp = volume.spacing;
+  if (!(sp.x > 0 && sp.y > 0 && sp.z > 0 && std::isfinite(sp.x) && std::isfinite(sp.y) && std::isfinite(sp.z)))
+    throw Error("the voxel spacing " + format_number(sp.x) + "," + format_number(sp.y) + "," + format_number(sp.z) +
+                " is not three positive numbers");
   if (!s.gradient) {
     // An iso-value the data never reaches has no surface: say so, with the range.
     const ValueStats range = value_stats(volume.values);

@@ -72,8 +72,9 @@ def test_a_missing_or_malformed_file_gives_the_cli_s_message(tmp_path):
 
 
 def test_a_cloud_projected_nowhere_is_an_error_not_the_input_unmoved():
-    with pytest.raises(pss.Error, match=r"^no point was projected with h = 1e-06"):
-        pss.project(SOME, 1e-6)
+    for h in (1e-6, 1e-8, 1e-30):  # 1e-8 once sized the grid from an overflowed cell count
+        with pytest.raises(pss.Error, match=r"^no point was projected with h = "):
+            pss.project(SOME, h)
 
 
 @pytest.mark.parametrize("arguments, message", [
@@ -90,8 +91,39 @@ def test_volume_arguments_out_of_range_are_refused_naming_them(arguments, messag
         volume.render(**arguments)
 
 
+def test_a_raw_volume_s_arguments_are_checked_and_named_as_python_names_them(tmp_path):
+    raw = tmp_path / "v.raw"
+    raw.write_bytes(bytes(8))
+    for spacing in ((-1, 1, 1), (0, 1, 1)):  # a negative spacing once crashed the render
+        with pytest.raises(pss.Error, match=r"^spacing: expected three positive numbers"):
+            pss.read_volume(raw, dims=(2, 2, 2), spacing=spacing)
+    with pytest.raises(pss.Error, match=r"^dims '-2x2x2': expected XxYxZ"):
+        pss.read_volume(raw, dims=(-2, 2, 2))
+    with pytest.raises(pss.Error, match=r"^type 'u1': "):
+        pss.read_volume(raw, dims=(2, 2, 2), type="u1")
+    with pytest.raises(pss.Error, match=r"needs dims"):
+        pss.read_volume(raw)
+    with pytest.raises(pss.Error, match=r"^spacing describes a raw file"):
+        pss.read_volume(raw, spacing=(2, 2, 2))
+
+
+def test_threads_are_a_count():
+    with pytest.raises(pss.Error, match=r"^threads: expected a count from 0 \(every core\) to 1024$"):
+        pss.set_threads(-1)
+    pss.set_threads(1)
+    one = pss.render(SOME, size=(16, 16))
+    pss.set_threads(0)
+    assert np.array_equal(pss.render(SOME, size=(16, 16)), one)
+
+
+def test_a_camera_dict_may_hold_numpy_arrays():
+    _, _, stats = pss.render(SOME, size=(16, 16), view=(20, 10), full_output=True)
+    camera = {key: np.array(value) for key, value in stats["camera"].items()}
+    assert np.array_equal(pss.render(SOME, size=(16, 16), camera=camera), pss.render(SOME, size=(16, 16), view=(20, 10)))
+
+
 @pytest.mark.parametrize("values, spacing, message", [
-    (np.zeros((4, 4)), (1, 1, 1), r"^values: expected a 3-D array of numbers indexed \[z, y, x\]"),
+    (np.zeros((4, 4)), (1, 1, 1), r"^values: expected a 3-D array of numbers indexed \[z, y, x\] \(got 2-D float64\)$"),
     (np.full((2, 2, 2), np.nan), (1, 1, 1), r"^values: voxel 0 is not a finite number$"),
     (np.zeros((0, 2, 2)), (1, 1, 1), r"^values: the array is empty$"),
     (np.zeros((2, 2, 2)), (1, 0, 1), r"^spacing: expected three positive numbers"),

@@ -14,6 +14,11 @@ enum class Backend { cpu, cuda };
 Backend select_backend(std::string_view choice);
 const char* backend_name(Backend backend);
 
+// The most threads set_cpu_threads takes. Each OpenMP thread is a system thread with its own
+// stack: 100000 of them exhaust libgomp's stacks and crash. More threads than cores only add
+// overhead, and 1024 is more than the cores of any one shared-memory machine pss runs on.
+inline constexpr int kMaxCpuThreads = 1024;
+
 // Threads of the CPU backend; 0 keeps OpenMP's default (all cores).
 void set_cpu_threads(int threads);
 int cpu_threads();
