@@ -81,6 +81,12 @@ py::dict stats_dict(const Stats& stats) {
 }
 
 py::object frame_result(RenderedFrame&& frame, Stats& stats, const FrameRequest& r) {
+  // An image of background alone looks like a result; the CLI prints its count of hits.
+  if (summarize(frame).hits == 0 &&
+      PyErr_WarnEx(PyExc_RuntimeWarning,
+                   "no ray hit the surface: the image is background alone (h too small for the samples' spacing, "
+                   "an iso-value the data barely reach, or a camera turned away?)", 1) != 0)
+    throw py::error_already_set();
   const py::ssize_t w = frame.camera.width, h = frame.camera.height;
   const py::ssize_t channels = r.transparent ? 4 : 3;
   py::array image = to_numpy<std::uint8_t>(frame_srgb8(frame, r.transparent), {h, w, channels});

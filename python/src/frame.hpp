@@ -33,7 +33,8 @@ FrameRequest frame_request(const py::dict& options);
 Camera make_camera(const FrameRequest& request, const Aabb& bounds);
 TraceSettings trace_settings(const FrameRequest& request, const Camera& camera);
 
-// The (H, W, 3) or, transparent, (H, W, 4) uint8 image; with full_output the tuple
+// The (H, W, 3) or, transparent, (H, W, 4) uint8 image, with a RuntimeWarning when no ray
+// hit; with full_output the tuple
 // (image, hits, stats): hits a dict of (H, W) arrays 'mask', 'depth' (inf where missed),
 // 'iterations' and (H, W, 3) 'points' (NaN where missed) and 'normals' (facing the camera,
 // 0 where missed); stats the dict --stats writes.

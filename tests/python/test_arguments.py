@@ -1,5 +1,7 @@
 # Bad arguments: a pss.Error (a ValueError) with one line naming the argument, before any
 # work, as the CLI's flags are refused.
+import warnings
+
 import numpy as np
 import pytest
 
@@ -69,6 +71,15 @@ def test_a_missing_or_malformed_file_gives_the_cli_s_message(tmp_path):
     with pytest.raises(pss.Error) as caught:
         pss.render(SOME, camera=bad)
     assert str(caught.value) == expected
+
+
+def test_an_image_of_background_alone_comes_with_a_warning():
+    with pytest.warns(RuntimeWarning, match=r"^no ray hit the surface"):
+        _, hits, _ = pss.render(SOME, h=1e-6, size=(8, 8), full_output=True)
+    assert not hits["mask"].any()
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        pss.render(SOME, size=(8, 8))
 
 
 def test_a_cloud_projected_nowhere_is_an_error_not_the_input_unmoved():
