@@ -371,7 +371,9 @@ TEST_F(FormatTest, Las12Format2ScaleOffsetAndEightBitColours) {
   const std::string file = las_header(h) + std::string(54, 'v') + las_record_2(1000, -3, 8, {255, 128, 0}) +
                            las_record_2(-50, 4, 0, {1, 2, 3});
   const PointCloud cloud = pss::read_las(write("a.las", file));
-  EXPECT_EQ(cloud.positions, (std::vector<vec3>{{110, -201.5f, 1002}, {99.5f, -198, 1000}}));
+  ASSERT_EQ(cloud.size(), 2u);
+  EXPECT_EQ(cloud.world(0), glm::dvec3(110, -201.5, 1002));
+  EXPECT_EQ(cloud.world(1), glm::dvec3(99.5, -198, 1000));
   EXPECT_EQ(cloud.colors, (std::vector<Rgb8>{{255, 128, 0}, {1, 2, 3}})) << "8-bit values stored as 16-bit";
   EXPECT_FALSE(cloud.has_normals());
   ASSERT_EQ(cloud.scalars.size(), 2u);
@@ -381,6 +383,23 @@ TEST_F(FormatTest, Las12Format2ScaleOffsetAndEightBitColours) {
   EXPECT_EQ(cloud.scalars[1].name, "classification");
   EXPECT_EQ(cloud.scalars[1].type, pss::ScalarType::uint8);
   EXPECT_EQ(cloud.scalars[1].values, (std::vector<double>{6, 6})) << "the class without its flag bits";
+}
+
+// Airborne scans are stored in millimetres about a projected (UTM) offset: the positions keep
+// them, where floats at 4·10⁶ m would round to half metres (cloud.hpp).
+TEST_F(FormatTest, LasFarFromTheOriginKeepsItsMillimetres) {
+  LasHeader h;
+  h.legacy_points = 3;
+  h.scale = {0.001, 0.001, 0.001};
+  h.offset = {500000, 4000000, 0};
+  const PointCloud cloud = pss::read_las(write("utm.las", las_header(h) + las_record_2(123456, 789012, 45678, {}) +
+                                                          las_record_2(123457, 789011, 45679, {}) +
+                                                          las_record_2(124000, 788000, 46000, {})));
+  ASSERT_EQ(cloud.size(), 3u);
+  const glm::dvec3 expected[] = {{500123.456, 4000789.012, 45.678}, {500123.457, 4000789.011, 45.679},
+                                 {500124, 4000788, 46}};
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(cloud.world(i)[k], expected[i][k], 1e-6) << i << k;
 }
 
 TEST_F(FormatTest, Las14Format7ExtraBytesAnd16BitColours) {

@@ -25,8 +25,9 @@ void print_cloud(const std::string& path) {
   const char* extras = cloud.has_normals() ? (cloud.has_colors() ? " (with normals and colours)" : " (with normals)")
                                            : (cloud.has_colors() ? " (with colours)" : "");
   std::printf("points          %zu%s\n", cloud.size(), extras);
-  std::printf("bounds          [%g, %g] x [%g, %g] x [%g, %g]\n", box.lo.x, box.hi.x, box.lo.y, box.hi.y, box.lo.z,
-              box.hi.z);
+  // In world coordinates: a georeferenced cloud's need more than %g's six digits.
+  const glm::dvec3 lo = cloud.origin + glm::dvec3(box.lo), hi = cloud.origin + glm::dvec3(box.hi);
+  std::printf("bounds          [%.10g, %.10g] x [%.10g, %.10g] x [%.10g, %.10g]\n", lo.x, hi.x, lo.y, hi.y, lo.z, hi.z);
   std::printf("size            %g x %g x %g (diagonal %g)\n", size.x, size.y, size.z, glm::length(size));
   if (cloud.size() >= 2) {
     const SpacingEstimate s = estimate_spacing_of(cloud, path);

@@ -78,6 +78,7 @@ void run_project(const ProjectOptions& o) {
     v["input"] = o.input;
     v["output"] = o.output;
     v["points"] = cloud.size();
+    v["origin"] = {cloud.origin.x, cloud.origin.y, cloud.origin.z};  // written positions include it
     v["backend"] = backend_name(backend);
     v["threads"] = cpu_threads();
     v["params"] = {{"h", params.h}, {"rho", params.rho}, {"plane_fit", o.method},

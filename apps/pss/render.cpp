@@ -61,7 +61,7 @@ void run_render(const RenderCloudOptions& o) {
   params.secondary = o.secondary == "paper" ? SecondaryMode::paper : SecondaryMode::full;
   validate(params);
 
-  const Camera camera = make_camera(o.render, cloud.bounds());
+  const Camera camera = make_camera(o.render, cloud.bounds(), cloud.origin);
   const TraceSettings settings = trace_settings(o.render, camera);
   const PreparedCloud prepared(cloud, params, backend, stats, o.color ? SurfaceColor::samples : SurfaceColor::albedo);
   const RenderedFrame frame =

@@ -160,14 +160,16 @@ void check_render_options(const RenderOptions& o) {
                                                     " is a JPEG, which has no alpha; name it .png or .exr");
 }
 
-Camera make_camera(const RenderOptions& o, const Aabb& bounds) {
+Camera make_camera(const RenderOptions& o, const Aabb& bounds, const glm::dvec3& origin) {
   if (!o.camera_file.empty()) return read_camera_file(o.camera_file, o.camera.width, o.camera.height);
   try {
     validate(o.camera);  // each flag is checked; together the view must not look along --up
   } catch (const Error& e) {
     throw Error(std::string("--view, --up: ") + e.what());
   }
-  return Camera::framing(bounds, o.camera);
+  CameraSettings settings = o.camera;
+  if (settings.has_look_at) settings.look_at = vec3(glm::dvec3(settings.look_at) - origin);
+  return Camera::framing(bounds, settings);
 }
 
 TraceSettings trace_settings(const RenderOptions& o, const Camera& camera) {

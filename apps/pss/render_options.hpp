@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/ext/vector_double3.hpp>
+
 #include "commands.hpp"
 #include "pss/backend/backend.hpp"
 #include "pss/core/stats.hpp"
@@ -36,7 +38,9 @@ void add_render_options(CLI::App& command, RenderOptions& options);
 void check_render_options(const RenderOptions& options);
 
 // The camera of --camera, or the default view of `bounds` turned by --view and --fov.
-Camera make_camera(const RenderOptions& options, const Aabb& bounds);
+// --look-at is in world coordinates; bounds and the camera are relative to `origin` (a point
+// cloud's, cloud.hpp). A camera file is taken as it is: --stats writes it relative to origin.
+Camera make_camera(const RenderOptions& options, const Aabb& bounds, const glm::dvec3& origin);
 
 // The shading and secondary-ray settings of the options for this camera.
 TraceSettings trace_settings(const RenderOptions& options, const Camera& camera);

@@ -27,7 +27,7 @@ void run_volume(const VolumeCommandOptions& o) {
   Stats stats;
   PreparedVolume volume = load_volume(o.volume, stats);
   volume.params.debug_projection = o.debug_projection;
-  const Camera camera = make_camera(o.render, volume.surface_bounds());
+  const Camera camera = make_camera(o.render, volume.surface_bounds(), glm::dvec3(0.0));
   const TraceSettings settings = trace_settings(o.render, camera);
   const SceneMirror scene(backend, volume);  // uploaded once for all --frames
   RenderedFrame frame =

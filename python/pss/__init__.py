@@ -11,8 +11,11 @@ The moving-least-squares surface of a point cloud or a volume (Schmitt et al.,
 
 Arrays come in as any array-like of numbers and are converted once to float32 (the
 surface's grid reorders them anyway); results are NumPy arrays that own the library's
-memory, without a copy. The work runs without the GIL. Every problem raises pss.Error (a
-ValueError) with the one-line message the `pss` command prints. Units are the data's:
+memory, without a copy. Points far from zero for their extent (a georeferenced scan at
+4e6 m) are taken about an origin near their centre, in double, so that float32 keeps
+their detail: positions then come back as float64 world coordinates. The work runs
+without the GIL. Every problem raises pss.Error (a ValueError) with the one-line message
+the `pss` command prints. Units are the data's:
 h, rho, b and epsilon of point clouds in its coordinates; the volume's h and error in voxels.
 """
 
@@ -85,7 +88,8 @@ _FRAME_DOC = """
     backend: 'auto' (the GPU when this build has one and a device is present), 'cpu' or 'cuda'.
     Returns the (H, W, 3) uint8 sRGB image, row 0 at the top; with full_output=True the tuple
     (image, hits, stats): hits a dict of per-pixel arrays 'mask' (bool), 'depth' (the primary
-    ray's distance, inf where it missed), 'iterations', 'points' (NaN where missed) and
+    ray's distance, inf where it missed), 'iterations', 'points' (NaN where missed; float64
+    world coordinates for a cloud far from zero) and
     'normals' (facing the camera, 0 where missed); stats the counts, times and camera that
     `pss ... --stats` writes.
 """.format(**_pss.frame_defaults)
@@ -105,7 +109,8 @@ def project(points, h=None, *, normals=None, method="mls", rho=None, iterations=
     iterations: the most MLS alternations; normals: (N, 3) hints of the side each point's
     normal faces (without them the normals are oriented consistently over the cloud).
 
-    Returns (points, normals, status): (N, 3) float32, (N, 3) float32 unit normals, and (N,)
+    Returns (points, normals, status): (N, 3) float32 (float64 for points far from zero, see
+    above), (N, 3) float32 unit normals, and (N,)
     int32 status: 0 converged, 1 not converged within `iterations`, 2 too few neighbours
     within rho (point and normal unchanged), 3 degenerate normal (neighbours on a line).
     """
@@ -139,8 +144,9 @@ render.__doc__ += _FRAME_DOC
 
 def read_points(path):
     """The point cloud of a file (.ply, .xyz/.txt/.pts, .obj, .stl, .pcd, .las), as the CLI
-    reads it: (points, normals, colors) with (N, 3) float32 points, (N, 3) float32 normals or
-    None, (N, 3) uint8 colours or None."""
+    reads it: (points, normals, colors) with (N, 3) float32 points (float64 world coordinates
+    for a cloud far from zero, see above), (N, 3) float32 normals or None, (N, 3) uint8
+    colours or None."""
     return _pss.read_points(_os.fsdecode(path))
 
 

@@ -38,20 +38,39 @@ py::array_t<T, py::array::c_style | py::array::forcecast> rows_of_three(const py
 
 }  // namespace
 
-std::vector<vec3> vec3_rows(const py::handle& array, const char* name) {
-  // Read as double, so that a value beyond float's range is refused rather than cast to inf.
+std::vector<glm::dvec3> world_rows(const py::handle& array, const char* name) {
+  // Read as double: a value beyond float's range is refused rather than cast to inf, and a
+  // georeferenced cloud keeps its digits until it is taken about its origin.
   const auto a = rows_of_three<double>(array, name);
-  std::vector<vec3> out(std::size_t(a.shape(0)));
+  std::vector<glm::dvec3> out(std::size_t(a.shape(0)));
   const double* v = a.data();
   for (std::size_t i = 0; i < out.size(); ++i) {
     for (int c = 0; c < 3; ++c) {
       const double x = v[3 * i + c];
       if (!(std::abs(x) <= FLT_MAX))
         throw Error(std::string(name) + ": row " + std::to_string(i) + " is not three finite numbers (that fit a float)");
-      out[i][c] = float(x);
+      out[i][c] = x;
     }
   }
   return out;
+}
+
+std::vector<vec3> vec3_rows(const py::handle& array, const char* name) {
+  const std::vector<glm::dvec3> rows = world_rows(array, name);
+  return {rows.begin(), rows.end()};
+}
+
+PointCloud cloud_of_rows(const py::handle& array, const char* name) {
+  PointCloud cloud;
+  set_world_positions(cloud, world_rows(array, name));
+  return cloud;
+}
+
+py::array world_numpy(std::vector<vec3>&& local, const glm::dvec3& origin, std::vector<py::ssize_t> shape) {
+  if (origin == glm::dvec3(0.0)) return to_numpy<float>(std::move(local), std::move(shape));
+  std::vector<glm::dvec3> world(local.size());
+  for (std::size_t i = 0; i < local.size(); ++i) world[i] = origin + glm::dvec3(local[i]);
+  return to_numpy<double>(std::move(world), std::move(shape));
 }
 
 std::vector<Rgb8> rgb8_rows(const py::handle& array, const char* name) {

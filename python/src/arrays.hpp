@@ -19,7 +19,11 @@ namespace pss::python {
 namespace py = pybind11;
 
 // An (N, 3) array of finite numbers as points; a one-line pss::Error naming `name` otherwise.
+std::vector<glm::dvec3> world_rows(const py::handle& array, const char* name);
+// The same as floats (normals).
 std::vector<vec3> vec3_rows(const py::handle& array, const char* name);
+// The same as a cloud's positions about its origin (cloud.hpp: set_world_positions).
+PointCloud cloud_of_rows(const py::handle& array, const char* name);
 
 // An (N, 3) array of colours, 0..255 integers or 0..1 floats, as 8-bit sRGB.
 std::vector<Rgb8> rgb8_rows(const py::handle& array, const char* name);
@@ -36,6 +40,10 @@ py::array_t<Scalar> to_numpy(std::vector<Element>&& data, std::vector<py::ssize_
   const py::capsule owner(owned, [](void* p) { delete static_cast<std::vector<Element>*>(p); });
   return py::array_t<Scalar>(std::move(shape), reinterpret_cast<const Scalar*>(owned->data()), owner);
 }
+
+// Points relative to `origin` as world positions: float32 where the origin is zero, else
+// float64 (the digits a georeferenced cloud needs).
+py::array world_numpy(std::vector<vec3>&& local, const glm::dvec3& origin, std::vector<py::ssize_t> shape);
 
 // Points (N, 3) float32, colours (N, 3) uint8.
 inline py::array_t<float> to_numpy(std::vector<vec3>&& v) {

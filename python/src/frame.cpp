@@ -110,7 +110,7 @@ py::object frame_result(RenderedFrame&& frame, Stats& stats, const FrameRequest&
   hits["mask"] = to_numpy<std::uint8_t>(std::move(mask), {h, w}).attr("astype")("bool");
   hits["depth"] = to_numpy<float>(std::move(depth), {h, w});
   hits["iterations"] = to_numpy<std::int32_t>(std::move(iterations), {h, w});
-  hits["points"] = to_numpy<float>(std::move(points), {h, w, 3});
+  hits["points"] = world_numpy(std::move(points), frame.origin, {h, w, 3});
   hits["normals"] = to_numpy<float>(std::move(normals), {h, w, 3});
   record_frame(stats, frame);
   return py::make_tuple(image, hits, stats_dict(stats));

@@ -19,8 +19,7 @@ namespace {
 
 // The points, and normals when given (their count the points'); colours are the caller's.
 PointCloud cloud_of(const py::handle& points, const py::object& normals) {
-  PointCloud cloud;
-  cloud.positions = vec3_rows(points, "points");
+  PointCloud cloud = cloud_of_rows(points, "points");
   if (!normals.is_none()) {
     cloud.normals = vec3_rows(normals, "normals");
     if (cloud.normals.size() != cloud.positions.size())
@@ -46,9 +45,9 @@ float suggested_h(const std::vector<vec3>& p) {
 }
 
 float estimate_h(const py::handle& points) {
-  const std::vector<vec3> p = vec3_rows(points, "points");
+  const PointCloud cloud = cloud_of_rows(points, "points");
   py::gil_scoped_release release;
-  return suggested_h(p);
+  return suggested_h(cloud.positions);
 }
 
 py::tuple project(const py::handle& points, const py::dict& o) {
@@ -70,7 +69,9 @@ py::tuple project(const py::handle& points, const py::dict& o) {
   std::vector<std::int32_t> status(result.status.size());
   for (std::size_t i = 0; i < status.size(); ++i) status[i] = std::int32_t(result.status[i]);
   const auto n = py::ssize_t(status.size());
-  return py::make_tuple(to_numpy(std::move(result.cloud.positions)), to_numpy(std::move(result.cloud.normals)),
+  const auto points_out = py::ssize_t(result.cloud.size());
+  return py::make_tuple(world_numpy(std::move(result.cloud.positions), cloud.origin, {points_out, 3}),
+                        to_numpy(std::move(result.cloud.normals)),
                         to_numpy<std::int32_t>(std::move(status), {n}));
 }
 
@@ -95,7 +96,9 @@ py::object render(const py::handle& points, const py::dict& o) {
                                            ? std::optional<float>(float(number_in(o, "ball_spacing", 0, 1e30)))
                                            : std::nullopt;
   const Backend backend = backend_of(o);
-  const FrameRequest request = frame_request(o);
+  FrameRequest request = frame_request(o);
+  // look_at is in world coordinates, the camera about the cloud's origin.
+  if (request.camera.has_look_at) request.camera.look_at = vec3(glm::dvec3(request.camera.look_at) - cloud.origin);
   const Camera camera = make_camera(request, cloud.bounds());
   const TraceSettings settings = trace_settings(request, camera);
 
@@ -131,7 +134,8 @@ py::tuple read_points(const std::string& path) {
   py::object normals = py::none(), colors = py::none();
   if (cloud.has_normals()) normals = to_numpy(std::move(cloud.normals));
   if (cloud.has_colors()) colors = to_numpy(std::move(cloud.colors));
-  return py::make_tuple(to_numpy(std::move(cloud.positions)), normals, colors);
+  const auto n = py::ssize_t(cloud.size());
+  return py::make_tuple(world_numpy(std::move(cloud.positions), cloud.origin, {n, 3}), normals, colors);
 }
 
 }  // namespace

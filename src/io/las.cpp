@@ -103,15 +103,16 @@ PointCloud read_las(const std::filesystem::path& path) {
   }
   const auto record_at = [&](std::uint64_t i) { return data_offset + i * record_length; };
   PointCloud cloud;
-  cloud.positions.reserve(points);
+  std::vector<glm::dvec3> world;
+  world.reserve(points);
   for (std::uint64_t i = 0; i < points; ++i) {
     const std::uint64_t r = record_at(i);
     const glm::dvec3 integer(get<std::int32_t>(file, r), get<std::int32_t>(file, r + 4), get<std::int32_t>(file, r + 8));
-    const vec3 position(integer * scale + offset);
-    if (!is_finite(position))
+    world.push_back(integer * scale + offset);
+    if (!is_finite(vec3(world.back())))
       throw file_error(path, "point " + std::to_string(i) + " lies beyond float's range");
-    cloud.positions.push_back(position);
   }
+  set_world_positions(cloud, world);
   cloud.scalars = record_attributes(file, points, format, record_at);
   if (record.rgb != 0) {
     const auto channel = [&](std::uint64_t i, int c) {

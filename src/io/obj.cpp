@@ -38,6 +38,7 @@ PointCloud read_obj(const std::filesystem::path& path) {
   const std::string file = read_file(path);
   io::Lines lines(file);
   PointCloud cloud;
+  std::vector<glm::dvec3> world;
   bool every_vertex_colored = true;
   std::vector<vec3> normals;    // the vn statements, in order
   std::vector<Corner> corners;  // face corners that name a normal
@@ -60,9 +61,8 @@ PointCloud read_obj(const std::filesystem::path& path) {
                    " numbers");
       double v[6];
       numbers(v);
-      const vec3 position(glm::dvec3(v[0], v[1], v[2]));
-      if (!is_finite(position)) throw fail("non-finite coordinate");
-      cloud.positions.push_back(position);
+      world.emplace_back(v[0], v[1], v[2]);
+      if (!is_finite(vec3(world.back()))) throw fail("non-finite coordinate");
       if (words.size() == 7 && every_vertex_colored) {
         if (!is_finite(vec3(v[3], v[4], v[5]))) throw fail("non-finite colour");
         cloud.colors.emplace_back(io::channel_from_unit(v[3]), io::channel_from_unit(v[4]),
@@ -83,7 +83,7 @@ PointCloud read_obj(const std::filesystem::path& path) {
         const std::size_t first = corner.find('/');
         const std::size_t second = first == std::string_view::npos ? first : corner.find('/', first + 1);
         if (second == std::string_view::npos) continue;
-        const std::optional<std::size_t> vertex = resolve_index(corner.substr(0, first), cloud.size());
+        const std::optional<std::size_t> vertex = resolve_index(corner.substr(0, first), world.size());
         const std::optional<std::size_t> normal = resolve_index(corner.substr(second + 1), normals.size());
         if (!vertex || !normal)
           throw fail("face corner " + quote(corner) + " names a " + (vertex ? "normal" : "vertex") +
@@ -92,7 +92,8 @@ PointCloud read_obj(const std::filesystem::path& path) {
       }
     }
   }
-  if (cloud.positions.empty()) throw file_error(path, "no vertices");
+  if (world.empty()) throw file_error(path, "no vertices");
+  set_world_positions(cloud, world);
   if (!corners.empty()) {
     // Zero where no face gives one: tidy_normals' "no direction".
     cloud.normals.assign(cloud.size(), vec3(0.0f));

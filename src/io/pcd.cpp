@@ -196,7 +196,7 @@ class CloudBuilder {
  public:
   CloudBuilder(const fs::path& path, const Wanted& wanted, std::uint64_t capacity)
       : path_(path), normals_(wanted[kNormal].has_value()), colors_(wanted[kColor].has_value()) {
-    cloud_.positions.reserve(capacity);
+    world_.reserve(capacity);
     if (normals_) cloud_.normals.reserve(capacity);
     if (colors_) cloud_.colors.reserve(capacity);
   }
@@ -204,17 +204,17 @@ class CloudBuilder {
   void add(std::uint64_t index, const PointValues& p) {
     if (std::isnan(p.v[0]) || std::isnan(p.v[1]) || std::isnan(p.v[2])) return;
     // Infinite, or a double beyond float's range: not PCL's invalid point, a broken one.
-    const vec3 position(glm::dvec3(p.v[0], p.v[1], p.v[2]));
-    if (!is_finite(position))
+    world_.emplace_back(p.v[0], p.v[1], p.v[2]);
+    if (!is_finite(vec3(world_.back())))
       throw file_error(path_, "point " + std::to_string(index) + " has an infinite coordinate");
-    cloud_.positions.push_back(position);
     if (normals_) cloud_.normals.emplace_back(glm::dvec3(p.v[3], p.v[4], p.v[5]));
     if (colors_) cloud_.colors.emplace_back(p.rgb >> 16 & 255, p.rgb >> 8 & 255, p.rgb & 255);
   }
 
   PointCloud take(std::uint64_t points) {
-    if (cloud_.positions.empty())
+    if (world_.empty())
       throw file_error(path_, "no points: all " + std::to_string(points) + " have a NaN coordinate");
+    set_world_positions(cloud_, world_);
     tidy_normals(cloud_);
     return std::move(cloud_);
   }
@@ -222,6 +222,7 @@ class CloudBuilder {
  private:
   const fs::path& path_;
   bool normals_, colors_;
+  std::vector<glm::dvec3> world_;
   PointCloud cloud_;
 };
 

@@ -318,8 +318,9 @@ PointCloud read_data(const fs::path& path, const Header& header, Cursor in) {
   for (std::size_t j = 0; j < slots.size(); ++j)
     if (slots[j] >= kColor && slots[j] < kSlots) color_types[slots[j] - kColor] = vertex->properties[j].type;
   PointCloud cloud;
+  std::vector<glm::dvec3> world;
   const std::uint64_t capacity = std::min(vertex->count, max_records(in, *vertex));
-  cloud.positions.reserve(capacity);
+  world.reserve(capacity);
   if (normals) cloud.normals.reserve(capacity);
   if (colors) cloud.colors.reserve(capacity);
   for (std::size_t j = 0; j < slots.size(); ++j) {
@@ -338,10 +339,9 @@ PointCloud read_data(const fs::path& path, const Header& header, Cursor in) {
       else in.skip(p.type);
     }
     // A double beyond float range becomes infinite here, and is refused with the NaNs.
-    const vec3 position(glm::dvec3(v[0], v[1], v[2]));
-    if (!is_finite(position))
+    world.emplace_back(v[0], v[1], v[2]);
+    if (!is_finite(vec3(world.back())))
       throw file_error(path, "vertex " + std::to_string(i) + " has a non-finite coordinate");
-    cloud.positions.push_back(position);
     if (normals) cloud.normals.push_back(vec3(glm::dvec3(v[3], v[4], v[5])));
     if (colors) {
       if (!std::isfinite(v[6]) || !std::isfinite(v[7]) || !std::isfinite(v[8]))
@@ -351,6 +351,7 @@ PointCloud read_data(const fs::path& path, const Header& header, Cursor in) {
     }
   });
   // Elements after the vertices are not read: nothing there is needed.
+  set_world_positions(cloud, world);
   tidy_normals(cloud);
   return cloud;
 }

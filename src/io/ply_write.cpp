@@ -105,10 +105,12 @@ void write_ply(const fs::path& path, const PointCloud& cloud, std::span<const Pl
   for (const PlyIntProperty& p : extra) names.push_back(p.name);
   check_names(path, names);
 
+  // A cloud away from the world's origin (cloud.hpp) is written in double, the origin added.
+  const bool recentred = cloud.origin != glm::dvec3(0.0);
   OutputFile file(path);
   std::ostream& out = file.stream();
-  out << "ply\nformat binary_little_endian 1.0\ncomment written by pss\nelement vertex " << n
-      << "\nproperty float x\nproperty float y\nproperty float z\n";
+  out << "ply\nformat binary_little_endian 1.0\ncomment written by pss\nelement vertex " << n << "\n";
+  for (const char* axis : {"x", "y", "z"}) out << "property " << (recentred ? "double " : "float ") << axis << "\n";
   if (cloud.has_normals()) out << "property float nx\nproperty float ny\nproperty float nz\n";
   if (cloud.has_colors()) out << "property uchar red\nproperty uchar green\nproperty uchar blue\n";
   for (std::size_t k = 0; k < scalars.size(); ++k)
@@ -117,7 +119,8 @@ void write_ply(const fs::path& path, const PointCloud& cloud, std::span<const Pl
   out << "end_header\n";
 
   // Records go out in chunks: one write per chunk, without a second copy of a large cloud.
-  std::size_t stride = (cloud.has_normals() ? 24 : 12) + (cloud.has_colors() ? 3 : 0) + 4 * extra.size();
+  std::size_t stride =
+      (recentred ? 24 : 12) + (cloud.has_normals() ? 12 : 0) + (cloud.has_colors() ? 3 : 0) + 4 * extra.size();
   for (const ScalarProperty& s : cloud.scalars) stride += size_of(s.type);
   constexpr std::size_t kChunk = 1 << 16;
   std::vector<char> buffer(std::min(n, kChunk) * stride);
@@ -125,7 +128,10 @@ void write_ply(const fs::path& path, const PointCloud& cloud, std::span<const Pl
     const std::size_t end = std::min(n, begin + kChunk);
     char* o = buffer.data();
     for (std::size_t i = begin; i < end; ++i) {
-      for (int k = 0; k < 3; ++k) o = store_little_endian(o, cloud.positions[i][k]);
+      if (recentred)
+        for (int k = 0; k < 3; ++k) o = store_little_endian(o, cloud.world(i)[k]);
+      else
+        for (int k = 0; k < 3; ++k) o = store_little_endian(o, cloud.positions[i][k]);
       if (cloud.has_normals())
         for (int k = 0; k < 3; ++k) o = store_little_endian(o, cloud.normals[i][k]);
       if (cloud.has_colors())

@@ -1,6 +1,7 @@
 #include "pss/io/xyz.hpp"
 
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <string_view>
@@ -20,6 +21,7 @@ PointCloud read_xyz(const std::filesystem::path& path) {
   const std::string file = read_file(path);
   const std::string_view text = file;
   PointCloud cloud;
+  std::vector<glm::dvec3> world;
   std::size_t columns = 0;  // fixed by the first point line
   int first_point_line = 0;
   int line_number = 0;
@@ -32,7 +34,7 @@ PointCloud read_xyz(const std::filesystem::path& path) {
       return file_error(path, "line " + std::to_string(line_number) + ": " + problem);
     };
 
-    float v[6];
+    double v[6];  // read in double: a georeferenced cloud's digits (cloud.hpp)
     std::size_t count = 0;
     for (std::size_t i = 0; i < line.size();) {
       if (is_separator(line[i])) {
@@ -47,7 +49,7 @@ PointCloud read_xyz(const std::filesystem::path& path) {
       if (count == 6) throw fail("more than 6 numbers");
       if (token.size() > 1 && token[0] == '+') token.remove_prefix(1);  // from_chars rejects '+'
       const auto [stop, ec] = std::from_chars(token.data(), token.data() + token.size(), v[count]);
-      if (ec == std::errc::result_out_of_range)
+      if (ec == std::errc::result_out_of_range || (std::isinf(float(v[count])) && !std::isinf(v[count])))
         throw fail("number out of range " + quote(token, 40));
       if (ec != std::errc() || stop != token.data() + token.size())
         throw fail("malformed number " + quote(token, 40));
@@ -63,12 +65,12 @@ PointCloud read_xyz(const std::filesystem::path& path) {
       throw fail("found " + std::to_string(count) + " numbers, but line " +
                  std::to_string(first_point_line) + " has " + std::to_string(columns));
     }
-    const vec3 position(v[0], v[1], v[2]);
-    if (!is_finite(position)) throw fail("non-finite coordinate");
-    cloud.positions.push_back(position);
+    world.emplace_back(v[0], v[1], v[2]);
+    if (!is_finite(vec3(world.back()))) throw fail("non-finite coordinate");
     if (columns == 6) cloud.normals.emplace_back(v[3], v[4], v[5]);
   }
-  if (cloud.positions.empty()) throw file_error(path, "no points");
+  if (world.empty()) throw file_error(path, "no points");
+  set_world_positions(cloud, world);
   tidy_normals(cloud);
   return cloud;
 }
@@ -79,15 +81,20 @@ void write_xyz(const std::filesystem::path& path, const PointCloud& cloud) {
                                std::to_string(cloud.normals.size()) + " normals");
   OutputFile file(path);
   std::string lines;
-  char line[128];  // six %.9g floats take at most 6 * 16 bytes
+  // Floats in %.9g, which reads back exactly; a cloud away from the world's origin
+  // (cloud.hpp) in %.17g, its world positions being doubles.
+  const bool recentred = cloud.origin != glm::dvec3(0.0);
+  const int digits = recentred ? 17 : 9;
+  char line[160];  // three %.17g and three %.9g numbers take at most 3 * 25 + 3 * 16 bytes
   for (std::size_t i = 0; i < cloud.size(); ++i) {
-    const vec3 p = cloud.positions[i];
+    const glm::dvec3 p = recentred ? cloud.world(i) : glm::dvec3(cloud.positions[i]);  // keeps −0
     int length = 0;
     if (cloud.has_normals()) {
       const vec3 n = cloud.normals[i];
-      length = std::snprintf(line, sizeof line, "%.9g %.9g %.9g %.9g %.9g %.9g\n", p.x, p.y, p.z, n.x, n.y, n.z);
+      length = std::snprintf(line, sizeof line, "%.*g %.*g %.*g %.9g %.9g %.9g\n", digits, p.x, digits, p.y, digits,
+                             p.z, n.x, n.y, n.z);
     } else {
-      length = std::snprintf(line, sizeof line, "%.9g %.9g %.9g\n", p.x, p.y, p.z);
+      length = std::snprintf(line, sizeof line, "%.*g %.*g %.*g\n", digits, p.x, digits, p.y, digits, p.z);
     }
     lines.append(line, std::size_t(length));
     if (lines.size() > (1u << 20)) {  // one write a megabyte, without a copy of a large cloud

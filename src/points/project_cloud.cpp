@@ -85,6 +85,7 @@ CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& p
   out.cloud.normals.resize(n);
   out.status.resize(n);
   // The projections keep the input's order, so its per-point values stay with them.
+  out.cloud.origin = input.origin;
   out.cloud.colors = input.colors;
   out.cloud.scalars = input.scalars;
   for (std::size_t i = 0; i < n; ++i) {

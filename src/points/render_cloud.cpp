@@ -118,7 +118,8 @@ struct PreparedCloud::DeviceCopy {
 
 PreparedCloud::PreparedCloud(const PointCloud& cloud, const RayPssParams& params, Backend backend, Stats& stats,
                              SurfaceColor color)
-    : params_((validate(params), params)),
+    : origin_(cloud.origin),
+      params_((validate(params), params)),
       grid_(timed_grid(cloud, params.projection, stats)),
       bvh_(std::span<const Aabb>{}) {
   {
@@ -171,7 +172,9 @@ PointSurfaceView PreparedCloud::view_on(Backend backend) const {
 
 RenderedFrame render_cloud(const PreparedCloud& cloud, const Camera& camera, const TraceSettings& settings, Backend backend,
                    Stats& stats) {
-  return render_frame(backend, PointFinder{cloud.view_on(backend)}, camera, settings, stats);
+  RenderedFrame frame = render_frame(backend, PointFinder{cloud.view_on(backend)}, camera, settings, stats);
+  frame.origin = cloud.origin();
+  return frame;
 }
 
 }  // namespace pss

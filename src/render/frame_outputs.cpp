@@ -83,6 +83,7 @@ void write_frame_image(const std::filesystem::path& path, const RenderedFrame& f
 
 void write_hits(const std::filesystem::path& path, const RenderedFrame& frame) {
   PointCloud cloud;
+  cloud.origin = frame.origin;
   std::vector<std::int32_t> px, py;
   const int width = frame.camera.width;
   for (std::size_t i = 0; i < frame.hits.size(); ++i) {
@@ -111,7 +112,8 @@ void record_frame(Stats& stats, const RenderedFrame& frame) {
   v["hits_capped"] = s.capped;
   v["width"] = c.width;
   v["height"] = c.height;
-  v["camera"] = camera_to_json(c);
+  v["camera"] = camera_to_json(c);  // relative to origin
+  v["origin"] = {frame.origin.x, frame.origin.y, frame.origin.z};
 }
 
 }  // namespace pss

@@ -132,3 +132,32 @@ def test_progress_is_silent_by_default_and_shown_when_asked(bunny, capfd):
         assert "preprocess: done in" in err and "primary rays: done in" in err
     finally:
         pss.set_progress("never")
+
+
+def _far_sphere(n=4000, centre=(500123.25, 4000456.5, 310.75), radius=5.0):
+    """A Fibonacci sphere at UTM-like coordinates, where float32's step (0.5 m) exceeds its
+    spacing (0.28 m): in float32 it would collapse onto a lattice."""
+    i = np.arange(n) + 0.5
+    z = 1 - 2 * i / n
+    r, a = np.sqrt(1 - z * z), np.pi * (3 - np.sqrt(5)) * np.arange(n)
+    return np.array(centre) + radius * np.stack([r * np.cos(a), r * np.sin(a), z], 1), np.array(centre), radius
+
+
+def test_a_cloud_far_from_zero_keeps_its_digits(tmp_path):
+    points, centre, radius = _far_sphere()
+    projected, _, status = pss.project(points)
+    assert projected.dtype == np.float64 and np.all(status == 0)
+    assert np.abs(np.linalg.norm(projected - centre, axis=1) - radius).max() < 1e-3
+
+    np.savetxt(tmp_path / "far.xyz", points, fmt="%.17g")
+    read, _, _ = pss.read_points(tmp_path / "far.xyz")
+    assert read.dtype == np.float64 and np.abs(read - points).max() < 1e-6
+
+    # The same image as the sphere about zero, and look_at in world coordinates.
+    near = pss.render(points - centre, size=(96, 96), look_at=(0, 0, 0))
+    far, hits, stats = pss.render(points, size=(96, 96), look_at=tuple(centre), full_output=True)
+    assert np.count_nonzero(np.abs(near.astype(int) - far.astype(int)).max(axis=2) > 2) < 20
+    hit = hits["points"][hits["mask"]]
+    assert hit.dtype == np.float64 and len(hit) > 1000
+    assert np.abs(np.linalg.norm(hit - centre, axis=1) - radius).max() < 1e-3
+    assert np.allclose(stats["origin"], centre, atol=8)  # the centre to a multiple of 16 m ≥ its extent

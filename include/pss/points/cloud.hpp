@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/ext/vector_double3.hpp>
 #include <glm/ext/vector_uint3_sized.hpp>
 
 #include "pss/core/types.hpp"
@@ -28,8 +29,13 @@ struct ScalarProperty {
   std::vector<double> values;  // one per position
 };
 
+// Positions are floats, as every kernel takes them, but floats keep about 7 digits: a
+// georeferenced scan at 4·10⁶ m would be rounded to half-metre steps. So a cloud stores its
+// positions as offsets from an origin that the readers choose in double (local_origin): the
+// world position of point i is origin + positions[i], and outputs add the origin back.
 struct PointCloud {
-  std::vector<vec3> positions;
+  glm::dvec3 origin{0.0};
+  std::vector<vec3> positions;  // from origin
   std::vector<vec3> normals;            // empty, or one per position
   std::vector<Rgb8> colors;             // empty, or one per position
   std::vector<ScalarProperty> scalars;  // in the file's order
@@ -42,6 +48,17 @@ struct PointCloud {
     for (const vec3& p : positions) box.grow(p);
     return box;
   }
+  glm::dvec3 world(std::size_t i) const { return origin + glm::dvec3(positions[i]); }
 };
+
+// The origin for world positions within [lo, hi]: zero where floats already resolve them to
+// within a few bits of what the cloud's size allows (every coordinate within 4 extents of
+// zero, or all positions equal), else the box's centre rounded to a multiple of a power of two at least the extent,
+// so that a float position minus the origin is exact (a float file reads back unchanged).
+glm::dvec3 local_origin(const glm::dvec3& lo, const glm::dvec3& hi);
+
+// Sets the cloud's origin and its positions from world positions, finite and within float's
+// range (the readers refuse others, naming the point).
+void set_world_positions(PointCloud& cloud, const std::vector<glm::dvec3>& world);
 
 }  // namespace pss

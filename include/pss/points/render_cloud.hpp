@@ -62,8 +62,10 @@ class PreparedCloud {
   std::span<const LocalPolynomial> locals() const { return locals_; }  // those kept, in BVH order
   std::int64_t left_out() const { return left_out_; }  // samples with < 3 neighbours
   const Bvh& bvh() const { return bvh_; }
+  const glm::dvec3& origin() const { return origin_; }  // the cloud's (cloud.hpp)
 
  private:
+  glm::dvec3 origin_;
   RayPssParams params_;
   UniformGrid grid_;
   std::vector<LocalPolynomial> locals_;

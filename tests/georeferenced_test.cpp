@@ -1,0 +1,133 @@
+// Clouds far from the world's origin (cloud.hpp): a sphere of radius 5 m at UTM-like
+// coordinates (4·10⁶ m, where a float's step is 0.5 m, more than the samples' spacing) must
+// read, project and render as it does at the origin. The truth is the analytic sphere.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <glm/ext/vector_double3.hpp>
+#include <glm/geometric.hpp>
+
+#include "pss/io/ply.hpp"
+#include "pss/io/point_cloud_file.hpp"
+#include "pss/io/xyz.hpp"
+#include "pss/points/cloud.hpp"
+#include "support/cli.hpp"
+
+namespace {
+
+using glm::dvec3;
+using pss::PointCloud;
+using pss::vec3;
+using GeoTest = pss::test::CliTest;
+
+const dvec3 kCentre(500123.25, 4000456.5, 310.75);
+constexpr double kRadius = 5.0;
+
+// A Fibonacci sphere: about 0.4 m between neighbours.
+std::vector<dvec3> sphere(int n) {
+  std::vector<dvec3> p;
+  const double golden = M_PI * (3.0 - std::sqrt(5.0));
+  for (int i = 0; i < n; ++i) {
+    const double z = 1.0 - 2.0 * (i + 0.5) / n, r = std::sqrt(1.0 - z * z), a = golden * i;
+    p.push_back(kCentre + kRadius * dvec3(r * std::cos(a), r * std::sin(a), z));
+  }
+  return p;
+}
+
+std::string text_of(const std::vector<dvec3>& points, const char* prefix) {
+  std::string s;
+  char line[128];
+  for (const dvec3& p : points) {
+    std::snprintf(line, sizeof line, "%s%.17g %.17g %.17g\n", prefix, p.x, p.y, p.z);
+    s += line;
+  }
+  return s;
+}
+
+// The largest distance of the cloud's world positions from `expected`, point by point.
+double largest_error(const PointCloud& cloud, const std::vector<dvec3>& expected) {
+  EXPECT_EQ(cloud.size(), expected.size());
+  double worst = 0;
+  for (std::size_t i = 0; i < cloud.size() && i < expected.size(); ++i)
+    worst = std::max(worst, glm::length(cloud.world(i) - expected[i]));
+  return worst;
+}
+
+// The largest distance of the cloud's world positions from the sphere.
+double largest_distance_from_sphere(const PointCloud& cloud) {
+  double worst = 0;
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    worst = std::max(worst, std::abs(glm::length(cloud.world(i) - kCentre) - kRadius));
+  return worst;
+}
+
+TEST(LocalOrigin, ZeroNearTheOriginElseAPowerOfTwoGridPointNearTheCentre) {
+  EXPECT_EQ(pss::local_origin(dvec3(-1, 0, 2), dvec3(3, 1, 4)), dvec3(0.0));
+  EXPECT_EQ(pss::local_origin(dvec3(5, 5, 5), dvec3(8, 7, 6)), dvec3(0.0));  // within 4 extents
+  const dvec3 o = pss::local_origin(dvec3(500100, 4000400, 300), dvec3(500105, 4000410, 303));
+  EXPECT_EQ(o, dvec3(500096, 4000400, 304));  // the centre rounded to multiples of 16 ≥ 10
+  EXPECT_EQ(pss::local_origin(dvec3(7e6, 0, 0), dvec3(7e6, 0, 0)), dvec3(0.0));  // one position
+}
+
+TEST(LocalOrigin, FloatPositionsComeBackExactly) {
+  // A float file far from the origin: position minus origin is exact, so a float written
+  // back equals the one read.
+  std::vector<dvec3> world;
+  for (int i = 0; i < 1000; ++i)
+    world.emplace_back(dvec3(vec3(dvec3(4e6 + 0.37 * i, -2.5e5 - 0.11 * i, 1234.5 + 0.013 * i))));
+  PointCloud cloud;
+  pss::set_world_positions(cloud, world);
+  EXPECT_NE(cloud.origin, dvec3(0.0));
+  for (std::size_t i = 0; i < world.size(); ++i) ASSERT_EQ(vec3(cloud.world(i)), vec3(world[i])) << i;
+}
+
+TEST_F(GeoTest, EveryReaderKeepsTheDigitsAndTheWritersPutThemBack) {
+  const std::vector<dvec3> points = sphere(400);
+  // Well below a float's 0.5 m step at 4·10⁶ m (the error before the origin was kept).
+  constexpr double kTolerance = 1e-6;
+  const std::string pcd = "VERSION 0.7\nFIELDS x y z\nSIZE 8 8 8\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 400\nHEIGHT 1\n"
+                          "POINTS 400\nDATA ascii\n";
+  for (const auto& [name, bytes] : {std::pair<std::string, std::string>{"a.xyz", text_of(points, "")},
+                                    {"a.obj", text_of(points, "v ")},
+                                    {"a.pcd", pcd + text_of(points, "")}}) {
+    const PointCloud cloud = pss::read_point_cloud(write(name, bytes));
+    EXPECT_LT(largest_error(cloud, points), kTolerance) << name;
+  }
+  const PointCloud cloud = pss::read_point_cloud(path("a.xyz"));
+  pss::write_ply(path("b.ply"), cloud);
+  EXPECT_NE(read(path("b.ply")).find("property double x"), std::string::npos);
+  EXPECT_LT(largest_error(pss::read_point_cloud(path("b.ply")), points), kTolerance);
+  pss::write_xyz(path("b.xyz"), cloud);
+  EXPECT_LT(largest_error(pss::read_point_cloud(path("b.xyz")), points), kTolerance);
+}
+
+TEST_F(GeoTest, ProjectAndRenderOnTheSphere) {
+  write("s.xyz", text_of(sphere(4000), ""));
+  const pss::test::CliResult project = pss::test::run_pss("project " + path("s.xyz") + " -o " + path("p.ply"));
+  ASSERT_EQ(project.exit_code, 0) << project.err;
+  // The PSS of a sampled sphere lies on it, to the sampling's smoothing (at the origin: 4e-5 m).
+  EXPECT_LT(largest_distance_from_sphere(pss::read_point_cloud(path("p.ply"))), 1e-3);
+
+  // --look-at is in world coordinates: looking at the centre from the side puts the sphere
+  // in the middle of the image.
+  const std::string look = std::to_string(kCentre.x) + "," + std::to_string(kCentre.y) + "," +
+                           std::to_string(kCentre.z);
+  const pss::test::CliResult render = pss::test::run_pss("render " + path("s.xyz") + " --size 64x64 --look-at " + look +
+                                                         " -o " + path("r.png") + " --hits " + path("h.ply"));
+  ASSERT_EQ(render.exit_code, 0) << render.err;
+  const PointCloud hits = pss::read_point_cloud(path("h.ply"));
+  ASSERT_GT(hits.size(), 500u);
+  EXPECT_LT(largest_distance_from_sphere(hits), 1e-3);
+  // The hits' pixels are centred: PLY properties px, py are read back as scalars.
+  double mean_x = 0, mean_y = 0;
+  for (const pss::ScalarProperty& s : hits.scalars)
+    for (double v : s.values) (s.name == "px" ? mean_x : mean_y) += v / double(hits.size());
+  EXPECT_NEAR(mean_x, 31.5, 1.0);
+  EXPECT_NEAR(mean_y, 31.5, 1.0);
+}
+
+}  // namespace
