@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "pss/io/output_file.hpp"
@@ -178,14 +179,17 @@ void scaling(const Options& o, json& rows) {
 
 int main(int argc, char** argv) {
   Options o;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string flag = argv[i], value = argv[i + 1];
-    if (flag == "--runs") o.runs = std::max(1, std::stoi(value));
-    else if (flag == "--backend") o.backend = value;
-    else if (flag == "--frames") o.frames = std::max(1, std::stoi(value));
-    else if (flag == "--json") o.json_path = value;
-    else if (flag == "--only") o.only = value;
-  }
+  CLI::App app{"The paper's Tables 1 and 2 and the scaling runs, through the pss CLI"};
+  app.add_option("--runs", o.runs, "runs per row (the median is reported)")
+      ->check(CLI::Range(1, 100))->capture_default_str();
+  app.add_option("--frames", o.frames, "frames per run (pss --frames)")
+      ->check(CLI::Range(1, 100))->capture_default_str();
+  app.add_option("--backend", o.backend)
+      ->check(CLI::IsMember({"cpu", "cuda", "auto"}))->capture_default_str();
+  app.add_option("--json", o.json_path, "the rows as JSON")->capture_default_str();
+  app.add_option("--only", o.only, "one part")
+      ->check(CLI::IsMember({"table1", "table2", "scaling"}));
+  CLI11_PARSE(app, argc, argv);
   o.scratch = fs::temp_directory_path() / ("pss-bench-" + std::to_string(::getpid()));
   fs::create_directories(o.scratch);
   json rows = json::array();

@@ -4,9 +4,10 @@
 //   build/bench/bench_project [--runs 5] [--large] [--json out/bench/project.json]
 #include <algorithm>
 #include <cstdio>
-#include <cstring>
 #include <string>
 #include <vector>
+
+#include <CLI/CLI.hpp>
 
 #include "pss/backend/backend.hpp"
 #include "pss/io/output_file.hpp"
@@ -21,11 +22,12 @@ int main(int argc, char** argv) {
   int runs = 5;
   std::string json_path = "out/bench/project.json";
   bool large = false;
-  for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--large")) large = true;
-    else if (i + 1 < argc && !std::strcmp(argv[i], "--runs")) runs = std::max(1, std::atoi(argv[++i]));
-    else if (i + 1 < argc && !std::strcmp(argv[i], "--json")) json_path = argv[++i];
-  }
+  CLI::App app{"pss project's throughput on the bunny and sampled tori"};
+  app.add_option("--runs", runs, "runs per row (the median is reported)")
+      ->check(CLI::Range(1, 100))->capture_default_str();
+  app.add_option("--json", json_path, "the rows as JSON")->capture_default_str();
+  app.add_flag("--large", large, "add a torus of 10^7 points");
+  CLI11_PARSE(app, argc, argv);
   struct Dataset {
     std::string name;
     PointCloud cloud;

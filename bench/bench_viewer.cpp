@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "pss/io/output_file.hpp"
@@ -35,13 +36,14 @@ double median(std::vector<double> v) {
 int main(int argc, char** argv) {
   int turns = 8;
   std::string size = "512x512", backend = "cpu", json_path = "bench-viewer.json";
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string flag = argv[i], value = argv[i + 1];
-    if (flag == "--turns") turns = std::max(2, std::stoi(value));
-    else if (flag == "--size") size = value;
-    else if (flag == "--backend") backend = value;
-    else if (flag == "--json") json_path = value;
-  }
+  CLI::App app{"pss view's frame times as the camera turns (under xvfb-run)"};
+  app.add_option("--turns", turns, "camera turns (medians over the second on)")
+      ->check(CLI::Range(2, 1000))->capture_default_str();
+  app.add_option("--size", size, "the window, WxH")->capture_default_str();
+  app.add_option("--backend", backend)
+      ->check(CLI::IsMember({"cpu", "cuda", "auto"}))->capture_default_str();
+  app.add_option("--json", json_path, "the rows as JSON")->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
   if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) {
     std::fprintf(stderr, "bench_viewer: xvfb-run is not installed (apt-get install xvfb)\n");
     return 1;

@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <cstring>
 #include <functional>
 #include <optional>
 
@@ -58,10 +57,11 @@ double median_seconds(int runs, F&& f) {
 int main(int argc, char** argv) {
   int runs = 5;
   std::string json_path = "out/bench/peer_pcl_mls.json";
-  for (int i = 1; i + 1 < argc; i += 2) {
-    if (!std::strcmp(argv[i], "--runs")) runs = std::max(1, std::atoi(argv[i + 1]));
-    if (!std::strcmp(argv[i], "--json")) json_path = argv[i + 1];
-  }
+  CLI::App app{"pss project against PCL's MovingLeastSquares, side by side"};
+  app.add_option("--runs", runs, "runs per row (the median is reported)")
+      ->check(CLI::Range(1, 100))->capture_default_str();
+  app.add_option("--json", json_path, "the rows as JSON")->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
   const int threads = cpu_threads();
   struct Dataset {
     std::string name;

@@ -11,12 +11,12 @@
 // surface or is a voxel behind it) side by side.
 #include <chrono>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "pss/io/output_file.hpp"
@@ -46,12 +46,12 @@ int main(int argc, char** argv) {
   std::string json_path = "out/bench/volume_vs_reference.json", images;
   int size = 256;
   std::string only;  // one dataset by name
-  for (int i = 1; i + 1 < argc; i += 2) {
-    if (!std::strcmp(argv[i], "--json")) json_path = argv[i + 1];
-    if (!std::strcmp(argv[i], "--write-images")) images = argv[i + 1];
-    if (!std::strcmp(argv[i], "--size")) size = std::max(8, std::atoi(argv[i + 1]));
-    if (!std::strcmp(argv[i], "--only")) only = argv[i + 1];
-  }
+  CLI::App app{"pss volume against the trilinear iso-surface reference on the real scans"};
+  app.add_option("--json", json_path, "the rows as JSON")->capture_default_str();
+  app.add_option("--write-images", images, "a folder for the images side by side");
+  app.add_option("--size", size, "image side")->check(CLI::Range(8, 4096))->capture_default_str();
+  app.add_option("--only", only, "one dataset by name (tooth, engine, fuel, bucky, ...)");
+  CLI11_PARSE(app, argc, argv);
   if (!images.empty()) std::filesystem::create_directories(images);
   const std::vector<Dataset> datasets = {
       {"tooth", "tooth_103x94x161_uint8.raw", test::uint8_raw(ivec3(103, 94, 161)), {60, 110}},
