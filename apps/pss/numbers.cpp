@@ -12,12 +12,7 @@
 namespace pss::app {
 
 CLI::Validator finite_range(double lo, double hi, bool lo_open) {
-  const bool unbounded = hi == double(FLT_MAX);
-  const std::string range = unbounded && lo == -double(FLT_MAX) ? "a finite number"
-                            : unbounded && lo_open            ? "a finite number > " + format_number(lo)
-                            : unbounded                       ? "a finite number >= " + format_number(lo)
-                            : (lo_open ? "a finite number > " + format_number(lo) + " and <= "
-                                       : "a finite number from " + format_number(lo) + " to ") + format_number(hi);
+  const std::string range = range_text(lo, hi, lo_open);
   return CLI::Validator(
       [lo, hi, lo_open, range](std::string& text) -> std::string {
         const char* begin = text.c_str();

@@ -67,7 +67,10 @@ def _frame_options(size, view, fov, look_at, up, distance, zoom, roll, camera, s
     if isinstance(camera, (str, bytes, _os.PathLike)):
         options["camera_file"] = _os.fsdecode(camera)
     elif camera is not None:
-        options["camera_json"] = _json.dumps(camera, default=_plain)
+        try:
+            options["camera_json"] = _json.dumps(camera, default=_plain, allow_nan=False)
+        except ValueError:  # JSON has no NaN: said here, not as "not a JSON object" after
+            raise Error("camera: holds a number that is not finite (NaN or infinity)") from None
     return options
 
 

@@ -74,9 +74,9 @@ py::array world_numpy(std::vector<vec3>&& local, const glm::dvec3& origin, std::
 }
 
 std::vector<Rgb8> rgb8_rows(const py::handle& array, const char* name) {
-  const py::array any = py::array::ensure(array);
+  const py::array any = py::array::ensure(array);  // converted once, and its kind kept
   const bool floats = any && any.dtype().kind() == 'f';
-  const auto a = rows_of_three<double>(array, name);
+  const auto a = rows_of_three<double>(any ? py::handle(any) : array, name);
   const double scale = floats ? 255.0 : 1.0;
   std::vector<Rgb8> out(std::size_t(a.shape(0)));
   const double* v = a.data();

@@ -1,7 +1,7 @@
 #include "options.hpp"
 
-#include <cfloat>
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <regex>
 
@@ -43,10 +43,7 @@ bool is_given(const py::dict& options, const char* key) { return !option(options
 
 double number_in(const py::dict& options, const char* key, double lo, double hi, bool lo_open) {
   const py::object value = option(options, key);
-  const std::string range = hi == double(FLT_MAX) && lo == -double(FLT_MAX) ? std::string("a finite number")
-                            : hi == double(FLT_MAX) ? (lo_open ? "a finite number > " : "a finite number >= ") + format_number(lo)
-                            : lo_open ? "a finite number > " + format_number(lo) + " and <= " + format_number(hi)
-                                      : "a finite number from " + format_number(lo) + " to " + format_number(hi);
+  const std::string range = range_text(lo, hi, lo_open);
   if (py::isinstance<py::bool_>(value) || !(py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value) ||
                                            py::hasattr(value, "__float__")))
     throw bad(key, range, value);
@@ -86,22 +83,17 @@ std::string text(const py::dict& options, const char* key) {
   return value.cast<std::string>();
 }
 
-std::string choice(const py::dict& options, const char* key, const std::string& choices) {
+std::string choice(const py::dict& options, const char* key, std::initializer_list<std::string_view> choices) {
   const py::object value = option(options, key);
   if (py::isinstance<py::str>(value)) {
     const std::string s = value.cast<std::string>();
-    std::size_t start = 0;
-    while (start <= choices.size()) {
-      const std::size_t end = std::min(choices.find('|', start), choices.size());
-      if (choices.compare(start, end - start, s) == 0 && !s.empty() && s.size() == end - start) return s;
-      start = end + 1;
-    }
+    if (std::find(choices.begin(), choices.end(), s) != choices.end()) return s;
   }
   std::string listed;
-  for (char c : choices) listed += c == '|' ? std::string("', '") : std::string(1, c);
-  throw bad(key, "one of '" + listed + "'", value);
+  for (std::string_view c : choices) listed += (listed.empty() ? "'" : ", '") + std::string(c) + "'";
+  throw bad(key, "one of " + listed, value);
 }
 
-Backend backend_of(const py::dict& options) { return select_backend(choice(options, "backend", "auto|cpu|cuda")); }
+Backend backend_of(const py::dict& options) { return select_backend(choice(options, "backend", {"auto", "cpu", "cuda"})); }
 
 }  // namespace pss::python

@@ -2,8 +2,10 @@
 // name (a finite number in its range, or a one-line pss::Error naming the argument).
 #pragma once
 
+#include <initializer_list>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include <pybind11/pybind11.h>
 
@@ -33,8 +35,8 @@ std::optional<float> positive_or_none(const py::dict& options, const char* key);
 int integer_in(const py::dict& options, const char* key, int lo, int hi);
 bool flag(const py::dict& options, const char* key);
 std::string text(const py::dict& options, const char* key);
-// One of `choices` ("a|b|c").
-std::string choice(const py::dict& options, const char* key, const std::string& choices);
+// One of `choices`.
+std::string choice(const py::dict& options, const char* key, std::initializer_list<std::string_view> choices);
 
 Backend backend_of(const py::dict& options);  // "backend": auto, cpu or cuda
 

@@ -52,7 +52,7 @@ float estimate_h(const py::handle& points) {
 
 py::tuple project(const py::handle& points, const py::dict& o) {
   const PointCloud cloud = cloud_of(points, option(o, "normals"));
-  const std::string method = choice(o, "method", "mls|wls");
+  const std::string method = choice(o, "method", {"mls", "wls"});
   const std::optional<float> h = positive_or_none(o, "h"), rho = positive_or_none(o, "rho");
   const int iterations = integer_in(o, "iterations", 1, 100);
   const Backend backend = backend_of(o);
@@ -91,7 +91,7 @@ py::object render(const py::handle& points, const py::dict& o) {
                                  ? kAutoIterations
                                  : integer_in(o, "iterations", 1, kAutoIterations);
   const SecondaryMode secondary =
-      choice(o, "secondary", "full|paper") == "paper" ? SecondaryMode::paper : SecondaryMode::full;
+      choice(o, "secondary", {"full", "paper"}) == "paper" ? SecondaryMode::paper : SecondaryMode::full;
   const std::optional<float> spacing = is_given(o, "ball_spacing")
                                            ? std::optional<float>(float(number_in(o, "ball_spacing", 0, 1e30)))
                                            : std::nullopt;

@@ -50,8 +50,11 @@ PyVolume volume_of(const py::handle& values, const py::handle& spacing, const py
   v.volume.dims = ivec3(int(a.shape(2)), int(a.shape(1)), int(a.shape(0)));
   if (v.volume.dims.x < 1 || v.volume.dims.y < 1 || v.volume.dims.z < 1) throw Error("values: the array is empty");
   v.volume.values.assign(a.data(), a.data() + a.size());
+  const auto nx = std::size_t(v.volume.dims.x), ny = std::size_t(v.volume.dims.y);
   for (std::size_t i = 0; i < v.volume.values.size(); ++i)
-    if (!std::isfinite(v.volume.values[i])) throw Error("values: voxel " + std::to_string(i) + " is not a finite number");
+    if (!std::isfinite(v.volume.values[i]))  // named by its NumPy index [z, y, x]
+      throw Error("values[" + std::to_string(i / (nx * ny)) + ", " + std::to_string(i / nx % ny) + ", " +
+                  std::to_string(i % nx) + "] is not a finite number");
   v.volume.spacing = spacing_of(spacing);
   v.volume.origin = vec3_of(origin, "origin");
   return v;
@@ -62,7 +65,7 @@ VolumeSettings settings_of(const py::dict& o) {
   s.gradient = flag(o, "gradient");
   if (is_given(o, "iso") == s.gradient) throw Error("choose the surface: iso=V or gradient=True");
   if (!s.gradient) s.iso = float(number_in(o, "iso", -FLT_MAX, FLT_MAX));
-  s.method = choice(o, "method", "predictor|predictor-corrector") == "predictor" ? VolumeMethod::predictor
+  s.method = choice(o, "method", {"predictor", "predictor-corrector"}) == "predictor" ? VolumeMethod::predictor
                                                                                 : VolumeMethod::predictor_corrector;
   s.h = float(number_or(o, "h", s.h, kMinVolumeH, FLT_MAX));
   s.k = float(number_or(o, "k", s.k, kMinStepK, kMaxStepK));
@@ -143,7 +146,7 @@ PyVolume read(const std::string& path, const py::dict& o) {
     f.dims = parse_dims(std::to_string(d.at(0)) + "x" + std::to_string(d.at(1)) + "x" + std::to_string(d.at(2)));
     f.type = parse_voxel_type(text(o, "type"));
     if (is_given(o, "spacing")) f.spacing = spacing_of(option(o, "spacing"));
-    f.big_endian = choice(o, "endian", "little|big") == "big";
+    f.big_endian = choice(o, "endian", {"little", "big"}) == "big";
     f.skip = integer_in(o, "skip", 0, INT32_MAX);
     raw = f;
   }
@@ -165,7 +168,14 @@ py::array values_of(const py::object& self) {
 
 py::tuple triple(vec3 v) { return py::make_tuple(v.x, v.y, v.z); }
 
-}  // namespace
+// pss.Volume(shape (z, y, x), spacing, origin[, source]): what the values are and where.
+std::string repr(const PyVolume& v) {
+  const Volume& volume = v.volume;
+  std::string text = py::str("pss.Volume(shape={}, spacing={}, origin={}").format(
+      py::make_tuple(volume.dims.z, volume.dims.y, volume.dims.x), triple(volume.spacing), triple(volume.origin));
+  if (!v.source.empty()) text += ", source=" + py::repr(py::str(v.source)).cast<std::string>();
+  return text + ")";
+}
 
 py::dict default_settings() {
   const VolumeSettings s;
@@ -179,6 +189,8 @@ py::dict default_settings() {
   return d;
 }
 
+}  // namespace
+
 void bind_volume(py::module_& m) {
   m.attr("volume_defaults") = default_settings();
   py::class_<PyVolume>(m, "Volume")
@@ -188,6 +200,7 @@ void bind_volume(py::module_& m) {
       .def_property_readonly("spacing", [](const PyVolume& v) { return triple(v.volume.spacing); })
       .def_property_readonly("origin", [](const PyVolume& v) { return triple(v.volume.origin); })
       .def_property_readonly("source", [](const PyVolume& v) { return v.source; })
+      .def("__repr__", &repr)
       .def("_render", &render, py::arg("options"))  // with their signatures in __init__.py
       .def("_extract", &extract, py::arg("options"));
   m.def("read_volume", &read, py::arg("path"), py::arg("options"));

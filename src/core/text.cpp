@@ -1,5 +1,6 @@
 #include "pss/core/text.hpp"
 
+#include <cfloat>
 #include <cstdio>
 
 namespace pss {
@@ -29,6 +30,15 @@ std::string format_number(double x) {
   char text[32];
   std::snprintf(text, sizeof text, "%g", x);
   return text;
+}
+
+std::string range_text(double lo, double hi, bool lo_open) {
+  const bool no_lo = lo == -double(FLT_MAX), no_hi = hi == double(FLT_MAX);
+  if (no_lo && no_hi) return "a finite number";
+  if (no_hi) return (lo_open ? "a finite number > " : "a finite number >= ") + format_number(lo);
+  if (no_lo) return "a finite number <= " + format_number(hi);
+  return lo_open ? "a finite number > " + format_number(lo) + " and <= " + format_number(hi)
+                 : "a finite number from " + format_number(lo) + " to " + format_number(hi);
 }
 
 std::string quote(std::string_view text, std::size_t max_bytes) {

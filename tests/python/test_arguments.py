@@ -49,6 +49,7 @@ def test_points_that_are_not_finite_rows_of_three_are_refused(points, message):
     ({"shadows": 1}, r"^shadows: expected True or False \(got 1\)$"),
     ({"camera": {"eye": [0, 0, 1]}}, r"^camera: camera field \"forward\" is missing$"),
     ({"camera": {"eye": [0, 0, 1]}, "fov": 20}, r"^camera excludes fov"),
+    ({"camera": {"eye": [0, float("nan"), 1]}}, r"^camera: holds a number that is not finite \(NaN or infinity\)$"),
     ({"normals": np.zeros((3, 3))}, r"^normals: expected one per point \(300\), got 3$"),
     ({"colors": np.zeros((3, 3))}, r"^colors: expected one per point \(300\), got 3$"),
     ({"colors": np.full((300, 3), 256)}, r"^colors: row 0 is not a colour \(integers from 0 to 255\)$"),
@@ -135,7 +136,8 @@ def test_a_camera_dict_may_hold_numpy_arrays():
 
 @pytest.mark.parametrize("values, spacing, message", [
     (np.zeros((4, 4)), (1, 1, 1), r"^values: expected a 3-D array of numbers indexed \[z, y, x\] \(got 2-D float64\)$"),
-    (np.full((2, 2, 2), np.nan), (1, 1, 1), r"^values: voxel 0 is not a finite number$"),
+    (np.full((2, 2, 2), np.nan), (1, 1, 1), r"^values\[0, 0, 0\] is not a finite number$"),
+    (np.pad(np.full((1, 1, 1), np.inf), ((2, 0), (1, 2), (3, 0))), (1, 1, 1), r"^values\[2, 1, 3\] is not a finite number$"),
     (np.zeros((0, 2, 2)), (1, 1, 1), r"^values: the array is empty$"),
     (np.zeros((2, 2, 2)), (1, 0, 1), r"^spacing: expected three positive numbers"),
     (np.zeros((2, 2, 2)), (1, 1), r"^spacing: expected three numbers"),

@@ -18,7 +18,14 @@ def test_read_volume_gives_the_file_s_voxels_indexed_z_y_x(fuel):
     expected = np.fromfile(FUEL, np.uint8).reshape(64, 64, 64).astype(np.float32)
     assert np.array_equal(fuel.values, expected)
     assert fuel.spacing == (1, 1, 1) and fuel.origin == (0, 0, 0) and fuel.source == FUEL
+    assert repr(fuel) == "pss.Volume(shape=(64, 64, 64), spacing=(1.0, 1.0, 1.0), origin=(0.0, 0.0, 0.0), " \
+        "source=%r)" % FUEL
     assert not fuel.values.flags.writeable  # a view of the volume's own values
+
+
+def test_a_volume_says_its_shape_spacing_and_origin():
+    v = pss.Volume(np.zeros((4, 5, 6)), spacing=(1, 2, 0.5), origin=(-1, 0, 3))
+    assert repr(v) == "pss.Volume(shape=(4, 5, 6), spacing=(1.0, 2.0, 0.5), origin=(-1.0, 0.0, 3.0))"
 
 
 @pytest.mark.parametrize("method", ["predictor", "predictor-corrector"])

@@ -20,6 +20,11 @@ std::string printable(std::string_view text, std::size_t max_bytes = kQuotedByte
 // x as messages print it (%g).
 std::string format_number(double x);
 
+// The numbers a value must be, as messages name them ("a finite number > 0"): from lo (or
+// above it, lo_open) to hi, where ±FLT_MAX leaves that side unbounded. The CLI's flags and
+// the Python module's arguments say it the same way.
+std::string range_text(double lo, double hi, bool lo_open);
+
 // printable(text) between single quotes: 'text'.
 std::string quote(std::string_view text, std::size_t max_bytes = kQuotedBytes);
 
