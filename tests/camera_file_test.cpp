@@ -23,6 +23,19 @@ namespace fs = std::filesystem;
 
 using CameraFile = test::CliTest;
 
+// The eye is written as a world position: a camera saved about one cloud's origin (a
+// georeferenced tile, points/cloud.hpp) places the same eye about another's.
+TEST_F(CameraFile, TheEyeIsAWorldPositionAcrossOrigins) {
+  Camera c = Camera::framing(Aabb{vec3(-1.0f), vec3(1.0f)}, CameraSettings{});
+  c.eye = vec3(1.5f, -2.25f, 3.0f);
+  const glm::dvec3 a(500000, 4000000, 0), b(500016, 4000032, 16);
+  const nlohmann::json json = camera_to_json(c, a);
+  EXPECT_EQ(json["eye"], nlohmann::json({500001.5, 3999997.75, 3.0}));
+  const std::string file = write("camera.json", json.dump());
+  EXPECT_EQ(read_camera_file(file, 4, 4, b).eye, vec3(-14.5f, -34.25f, -13.0f));
+  EXPECT_EQ(read_camera_file(file, 4, 4, a).eye, c.eye);
+}
+
 TEST_F(CameraFile, ACameraPssWroteLoadsBitForBit) {
   for (const auto& [az, el] : {std::pair{0.0f, 0.0f}, {30.0f, 20.0f}, {-123.4f, 89.0f}, {200.0f, -90.0f}}) {
     CameraSettings s;
@@ -30,8 +43,8 @@ TEST_F(CameraFile, ACameraPssWroteLoadsBitForBit) {
     s.elevation_deg = el;
     s.fov_deg = 27.5f;
     const Camera c = Camera::framing(Aabb{vec3(-1.0f, 2.0f, 3.0f), vec3(4.0f, 5.5f, 6.0f)}, s);
-    const std::string file = write("camera.json", nlohmann::json{{"camera", camera_to_json(c)}}.dump());
-    const Camera back = read_camera_file(file, 7, 9);
+    const std::string file = write("camera.json", nlohmann::json{{"camera", camera_to_json(c, glm::dvec3(0.0))}}.dump());
+    const Camera back = read_camera_file(file, 7, 9, glm::dvec3(0.0));
     EXPECT_EQ(back.eye, c.eye) << az << ", " << el;
     EXPECT_EQ(back.forward, c.forward);
     EXPECT_EQ(back.right, c.right);
@@ -46,7 +59,7 @@ TEST_F(CameraFile, AHandWrittenCameraIsMadeOrthonormal) {
   // Looking along −x from (10, 0, 0), up tilted toward the view and twice too long.
   const std::string file = write("hand.json", R"({"eye": [10, 0, 0], "forward": [-3, 0, 0], "up": [1, 2, 0],
                                                   "tan_half_fov": 0.5})");
-  const Camera c = read_camera_file(file, 4, 4);
+  const Camera c = read_camera_file(file, 4, 4, glm::dvec3(0.0));
   EXPECT_EQ(c.eye, vec3(10, 0, 0));
   EXPECT_NEAR(glm::length(c.forward - vec3(-1, 0, 0)), 0.0f, 1e-6f);
   EXPECT_NEAR(glm::length(c.up - vec3(0, 1, 0)), 0.0f, 1e-6f);
@@ -76,13 +89,13 @@ TEST_F(CameraFile, WhatIsNotACameraIsRefusedNamingTheFile) {
   };
   for (const std::string& text : cases) {
     const std::string file = write("bad camera.json", text);
-    const std::string message = test::error_of([&] { read_camera_file(file, 4, 4); });
+    const std::string message = test::error_of([&] { read_camera_file(file, 4, 4, glm::dvec3(0.0)); });
     EXPECT_NE(message.find("bad camera.json"), std::string::npos) << text << " → " << message;
   }
-  EXPECT_NE(test::error_of([&] { read_camera_file(path("missing.json"), 4, 4); }).find("missing.json"),
+  EXPECT_NE(test::error_of([&] { read_camera_file(path("missing.json"), 4, 4, glm::dvec3(0.0)); }).find("missing.json"),
             std::string::npos);
   std::ofstream(path("huge.json")) << std::string(2 << 20, ' ');
-  EXPECT_NE(test::error_of([&] { read_camera_file(path("huge.json"), 4, 4); }).find("too large"), std::string::npos);
+  EXPECT_NE(test::error_of([&] { read_camera_file(path("huge.json"), 4, 4, glm::dvec3(0.0)); }).find("too large"), std::string::npos);
 }
 
 TEST_F(CameraFile, RenderAcceptsItsOwnStatsAsTheCamera) {

@@ -99,15 +99,16 @@ TEST(Camera, DegenerateBoxIsFramedAsAUnitSphere) {
 TEST(Camera, LooksAtAPointFromADistance) {
   CameraSettings s;
   s.has_look_at = true;
-  s.look_at = vec3(5, -2, 1);
+  const vec3 target(5, -2, 1);
+  s.look_at = target;
   s.distance = 8;
   s.zoom = 2;
   s.azimuth_deg = 30;
   s.elevation_deg = 20;
   const Camera c = Camera::framing(box(), s);
-  EXPECT_NEAR(glm::length(c.eye - s.look_at), 4.0f, 1e-5f);
-  EXPECT_NEAR(glm::dot(glm::normalize(s.look_at - c.eye), c.forward), 1.0f, 1e-6f);
-  const vec2 centre = project(c, s.look_at);
+  EXPECT_NEAR(glm::length(c.eye - target), 4.0f, 1e-5f);
+  EXPECT_NEAR(glm::dot(glm::normalize(target - c.eye), c.forward), 1.0f, 1e-6f);
+  const vec2 centre = project(c, target);
   EXPECT_NEAR(centre.x, 256.0f, 1e-2f);
   EXPECT_NEAR(centre.y, 256.0f, 1e-2f);
   s.fov_deg = 10;

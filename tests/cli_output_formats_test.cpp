@@ -67,7 +67,7 @@ TEST_F(CliOutputFormats, ExrDepthIsTheDistanceToTheHit) {
   expect_runs(render("-o " + path("o.exr") + " --hits " + path("h.ply") + " --stats " + path("s.json")));
   const test::ExrImage exr = test::read_exr(path("o.exr"));
   const test::PlyColumns hits = test::read_ply_columns(path("h.ply"));
-  const vec3 eye = read_camera_file(path("s.json"), 32, 32).eye;
+  const vec3 eye = read_camera_file(path("s.json"), 32, 32, glm::dvec3(0.0)).eye;
   const std::size_t n = hits.columns.at("px").size();
   ASSERT_GT(n, 100u);
   for (std::size_t i = 0; i < n; ++i) {

@@ -1,15 +1,17 @@
 // Clouds far from the world's origin (cloud.hpp): a sphere of radius 5 m at UTM-like
-// coordinates (4·10⁶ m, where a float's step is 0.5 m, more than the samples' spacing) must
+// coordinates (4·10⁶ m, where a float's step is 0.25 m, about the samples' spacing) must
 // read, project and render as it does at the origin. The truth is the analytic sphere.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <glm/ext/vector_double3.hpp>
 #include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
 
 #include "pss/io/ply.hpp"
 #include "pss/io/point_cloud_file.hpp"
@@ -27,7 +29,7 @@ using GeoTest = pss::test::CliTest;
 const dvec3 kCentre(500123.25, 4000456.5, 310.75);
 constexpr double kRadius = 5.0;
 
-// A Fibonacci sphere: about 0.4 m between neighbours.
+// A Fibonacci sphere of n points: 0.28 m between neighbours for n = 4000.
 std::vector<dvec3> sphere(int n) {
   std::vector<dvec3> p;
   const double golden = M_PI * (3.0 - std::sqrt(5.0));
@@ -70,24 +72,30 @@ TEST(LocalOrigin, ZeroNearTheOriginElseAPowerOfTwoGridPointNearTheCentre) {
   EXPECT_EQ(pss::local_origin(dvec3(5, 5, 5), dvec3(8, 7, 6)), dvec3(0.0));  // within 4 extents
   const dvec3 o = pss::local_origin(dvec3(500100, 4000400, 300), dvec3(500105, 4000410, 303));
   EXPECT_EQ(o, dvec3(500096, 4000400, 304));  // the centre rounded to multiples of 16 ≥ 10
+  // Axis by axis: only z is far for its extent.
+  EXPECT_EQ(pss::local_origin(dvec3(0.3, 0, 100), dvec3(1.2, 1, 101)), dvec3(0, 0, 101));
   EXPECT_EQ(pss::local_origin(dvec3(7e6, 0, 0), dvec3(7e6, 0, 0)), dvec3(0.0));  // one position
 }
 
 TEST(LocalOrigin, FloatPositionsComeBackExactly) {
   // A float file far from the origin: position minus origin is exact, so a float written
   // back equals the one read.
-  std::vector<dvec3> world;
-  for (int i = 0; i < 1000; ++i)
-    world.emplace_back(dvec3(vec3(dvec3(4e6 + 0.37 * i, -2.5e5 - 0.11 * i, 1234.5 + 0.013 * i))));
-  PointCloud cloud;
-  pss::set_world_positions(cloud, world);
-  EXPECT_NE(cloud.origin, dvec3(0.0));
-  for (std::size_t i = 0; i < world.size(); ++i) ASSERT_EQ(vec3(cloud.world(i)), vec3(world[i])) << i;
+  // Far on every axis, and far on one only (near axes whose values are small beside the
+  // rounding step would not come back so if they were shifted too).
+  for (const dvec3 far : {dvec3(4e6, -2.5e5, 1234.5), dvec3(0, 0, 100)}) {
+    std::vector<dvec3> world;
+    for (int i = 0; i < 1000; ++i)
+      world.emplace_back(dvec3(vec3(far + dvec3(0.0037 * i, 0.0011 * i, 0.0013 * i) + dvec3(0.3, 0, 0))));
+    PointCloud cloud;
+    pss::set_world_positions(cloud, world);
+    EXPECT_NE(cloud.origin, dvec3(0.0));
+    for (std::size_t i = 0; i < world.size(); ++i) ASSERT_EQ(vec3(cloud.world(i)), vec3(world[i])) << i;
+  }
 }
 
 TEST_F(GeoTest, EveryReaderKeepsTheDigitsAndTheWritersPutThemBack) {
   const std::vector<dvec3> points = sphere(400);
-  // Well below a float's 0.5 m step at 4·10⁶ m (the error before the origin was kept).
+  // Well below a float's 0.25 m step at 4·10⁶ m (the error before the origin was kept).
   constexpr double kTolerance = 1e-6;
   const std::string pcd = "VERSION 0.7\nFIELDS x y z\nSIZE 8 8 8\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 400\nHEIGHT 1\n"
                           "POINTS 400\nDATA ascii\n";
@@ -97,6 +105,15 @@ TEST_F(GeoTest, EveryReaderKeepsTheDigitsAndTheWritersPutThemBack) {
     const PointCloud cloud = pss::read_point_cloud(write(name, bytes));
     EXPECT_LT(largest_error(cloud, points), kTolerance) << name;
   }
+  // ASCII STL: facets of three consecutive points, each vertex once.
+  std::string stl = "solid sphere\n";
+  for (std::size_t i = 0; i + 2 < points.size(); i += 3)
+    stl += "facet normal 0 0 1\nouter loop\n" + text_of({points[i], points[i + 1], points[i + 2]}, "vertex ") +
+           "endloop\nendfacet\n";
+  EXPECT_LT(largest_error(pss::read_point_cloud(write("a.stl", stl + "endsolid sphere\n")),
+                          std::vector<dvec3>(points.begin(), points.begin() + 399)),
+            kTolerance);
+
   const PointCloud cloud = pss::read_point_cloud(path("a.xyz"));
   pss::write_ply(path("b.ply"), cloud);
   EXPECT_NE(read(path("b.ply")).find("property double x"), std::string::npos);
@@ -128,6 +145,30 @@ TEST_F(GeoTest, ProjectAndRenderOnTheSphere) {
     for (double v : s.values) (s.name == "px" ? mean_x : mean_y) += v / double(hits.size());
   EXPECT_NEAR(mean_x, 31.5, 1.0);
   EXPECT_NEAR(mean_y, 31.5, 1.0);
+}
+
+// The ray through the image's centre passes through --look-at: a world point (0.1 m apart
+// here, where a float has 0.25 m steps) and the eye --stats writes is a world position.
+TEST_F(GeoTest, LookAtAndTheStatsEyeAreWorldPositions) {
+  write("s.xyz", text_of(sphere(4000), ""));
+  const dvec3 look = kCentre + dvec3(1.3, 2.1, 0.1);
+  char text[128];
+  std::snprintf(text, sizeof text, "%.17g,%.17g,%.17g", look.x, look.y, look.z);
+  const pss::test::CliResult render =
+      pss::test::run_pss("render " + path("s.xyz") + " --size 65x65 --zoom 4 --look-at " + text + " --stats " +
+                         path("s.json") + " -o " + path("r.png") + " --hits " + path("h.ply"));
+  ASSERT_EQ(render.exit_code, 0) << render.err;
+  const nlohmann::json stats = nlohmann::json::parse(read(path("s.json")));
+  const dvec3 eye(stats["camera"]["eye"][0].get<double>(), stats["camera"]["eye"][1].get<double>(),
+                  stats["camera"]["eye"][2].get<double>());
+  const PointCloud hits = pss::read_point_cloud(path("h.ply"));
+  std::optional<dvec3> centre_hit;
+  for (std::size_t i = 0; i < hits.size(); ++i)
+    if (hits.scalars[0].values[i] == 32 && hits.scalars[1].values[i] == 32) centre_hit = hits.world(i);
+  ASSERT_TRUE(centre_hit);
+  const dvec3 along = glm::normalize(look - eye);
+  const dvec3 off = *centre_hit - eye - glm::dot(*centre_hit - eye, along) * along;
+  EXPECT_LT(glm::length(off), 0.01);
 }
 
 }  // namespace

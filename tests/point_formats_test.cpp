@@ -386,7 +386,7 @@ TEST_F(FormatTest, Las12Format2ScaleOffsetAndEightBitColours) {
 }
 
 // Airborne scans are stored in millimetres about a projected (UTM) offset: the positions keep
-// them, where floats at 4·10⁶ m would round to half metres (cloud.hpp).
+// them, where floats at 4·10⁶ m would round to quarter metres (cloud.hpp).
 TEST_F(FormatTest, LasFarFromTheOriginKeepsItsMillimetres) {
   LasHeader h;
   h.legacy_points = 3;

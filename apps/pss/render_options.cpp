@@ -40,15 +40,16 @@ std::string check_size(const std::string& text) {
   return {};
 }
 
-// "X,Y,Z" as three finite numbers, the whole text consumed.
-std::optional<vec3> parse_triple(const std::string& text) {
+// "X,Y,Z" as three finite numbers, the whole text consumed; in double, so that a world
+// point far from zero keeps its digits (--look-at on a georeferenced cloud).
+std::optional<glm::dvec3> parse_triple(const std::string& text) {
   const auto first = text.find(',');
   if (first == std::string::npos) return std::nullopt;
-  const auto yz = parse_pair<float>(text.substr(first + 1), ',');
-  const auto x = parse_pair<float>(text.substr(0, first) + ",0", ',');
-  if (!x || !yz || !std::isfinite(x->first) || !std::isfinite(yz->first) || !std::isfinite(yz->second)) return std::nullopt;
-  const vec3 v(x->first, yz->first, yz->second);
-  if (!(glm::length(v) < 1e30f)) return std::nullopt;
+  const auto yz = parse_pair<double>(text.substr(first + 1), ',');
+  const auto x = parse_pair<double>(text.substr(0, first) + ",0", ',');
+  if (!x || !yz) return std::nullopt;
+  const glm::dvec3 v(x->first, yz->first, yz->second);
+  if (!(glm::length(v) < 1e30)) return std::nullopt;  // false for NaN and infinity too
   return v;
 }
 
@@ -120,7 +121,7 @@ void add_render_options(CLI::App& command, RenderOptions& o) {
                       ->check(triple(false));
   auto* up = command
                  .add_option_function<std::string>(
-                     "--up", [&o](const std::string& text) { o.camera.up = *parse_triple(text); },
+                     "--up", [&o](const std::string& text) { o.camera.up = vec3(*parse_triple(text)); },
                      "the world's up direction, which --view's elevation is measured from (default 0,1,0)")
                  ->check(triple(true));
   auto* distance = command.add_option("--distance", o.camera.distance,
@@ -161,14 +162,14 @@ void check_render_options(const RenderOptions& o) {
 }
 
 Camera make_camera(const RenderOptions& o, const Aabb& bounds, const glm::dvec3& origin) {
-  if (!o.camera_file.empty()) return read_camera_file(o.camera_file, o.camera.width, o.camera.height);
+  if (!o.camera_file.empty()) return read_camera_file(o.camera_file, o.camera.width, o.camera.height, origin);
   try {
     validate(o.camera);  // each flag is checked; together the view must not look along --up
   } catch (const Error& e) {
     throw Error(std::string("--view, --up: ") + e.what());
   }
   CameraSettings settings = o.camera;
-  if (settings.has_look_at) settings.look_at = vec3(glm::dvec3(settings.look_at) - origin);
+  if (settings.has_look_at) settings.look_at -= origin;
   return Camera::framing(bounds, settings);
 }
 

@@ -38,8 +38,8 @@ void add_render_options(CLI::App& command, RenderOptions& options);
 void check_render_options(const RenderOptions& options);
 
 // The camera of --camera, or the default view of `bounds` turned by --view and --fov.
-// --look-at is in world coordinates; bounds and the camera are relative to `origin` (a point
-// cloud's, cloud.hpp). A camera file is taken as it is: --stats writes it relative to origin.
+// --look-at and a camera file's eye are in world coordinates; bounds and the camera are
+// relative to `origin` (a point cloud's, cloud.hpp).
 Camera make_camera(const RenderOptions& options, const Aabb& bounds, const glm::dvec3& origin);
 
 // The shading and secondary-ray settings of the options for this camera.

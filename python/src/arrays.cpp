@@ -91,14 +91,17 @@ std::vector<Rgb8> rgb8_rows(const py::handle& array, const char* name) {
   return out;
 }
 
-vec3 vec3_of(const py::handle& value, const char* name) {
-  const auto a = numbers<float>(value, name);
+glm::dvec3 dvec3_of(const py::handle& value, const char* name) {
+  const auto a = numbers<double>(value, name);
   if (a.ndim() != 1 || a.shape(0) != 3)
     throw Error(std::string(name) + ": expected three numbers (got shape " + shape_text(a) + ")");
-  const vec3 v(a.at(0), a.at(1), a.at(2));
-  if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
+  const glm::dvec3 v(a.at(0), a.at(1), a.at(2));
+  // Finite as floats too: the library computes in float.
+  if (!(std::abs(v.x) <= FLT_MAX && std::abs(v.y) <= FLT_MAX && std::abs(v.z) <= FLT_MAX))
     throw Error(std::string(name) + ": expected three finite numbers");
   return v;
 }
+
+vec3 vec3_of(const py::handle& value, const char* name) { return vec3(dvec3_of(value, name)); }
 
 }  // namespace pss::python

@@ -28,7 +28,9 @@ PointCloud cloud_of_rows(const py::handle& array, const char* name);
 // An (N, 3) array of colours, 0..255 integers or 0..1 floats, as 8-bit sRGB.
 std::vector<Rgb8> rgb8_rows(const py::handle& array, const char* name);
 
-// Three finite numbers (a tuple, list or array).
+// Three finite numbers (a tuple, list or array); dvec3_of keeps them in double (a world
+// point far from zero).
+glm::dvec3 dvec3_of(const py::handle& value, const char* name);
 vec3 vec3_of(const py::handle& value, const char* name);
 
 // `data` moved into a NumPy array of `shape` (whose product is the element count of

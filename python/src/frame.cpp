@@ -49,7 +49,7 @@ FrameRequest frame_request(const py::dict& o) {
     c.fov_deg = float(number_or(o, "fov", c.fov_deg, kMinFovDeg, kMaxFovDeg));
     if (is_given(o, "look_at")) {
       c.has_look_at = true;
-      c.look_at = vec3_of(option(o, "look_at"), "look_at");
+      c.look_at = dvec3_of(option(o, "look_at"), "look_at");
     }
     if (is_given(o, "up")) c.up = vec3_of(option(o, "up"), "up");
     c.distance = positive_or_none(o, "distance").value_or(0.0f);
@@ -65,11 +65,13 @@ FrameRequest frame_request(const py::dict& o) {
   return r;
 }
 
-Camera make_camera(const FrameRequest& r, const Aabb& bounds) {
+Camera make_camera(const FrameRequest& r, const Aabb& bounds, const glm::dvec3& origin) {
   const int w = r.camera.width, h = r.camera.height;
-  if (!r.camera_file.empty()) return read_camera_file(r.camera_file, w, h);
-  if (r.camera_json) return camera_from_json(*r.camera_json, w, h, "camera");
-  return Camera::framing(bounds, r.camera);
+  if (!r.camera_file.empty()) return read_camera_file(r.camera_file, w, h, origin);
+  if (r.camera_json) return camera_from_json(*r.camera_json, w, h, "camera", origin);
+  CameraSettings settings = r.camera;
+  settings.look_at -= origin;
+  return Camera::framing(bounds, settings);
 }
 
 TraceSettings trace_settings(const FrameRequest& r, const Camera& camera) {

@@ -29,8 +29,10 @@ struct FrameRequest {
 // Reads and checks the arguments (before any work).
 FrameRequest frame_request(const py::dict& options);
 
-// The camera framing `bounds` (or the one given), and its shading; without the GIL.
-Camera make_camera(const FrameRequest& request, const Aabb& bounds);
+// The camera framing `bounds` (or the one given), and its shading; without the GIL. look_at
+// and a given camera's eye are world coordinates, bounds and the result relative to `origin`
+// (a cloud's, points/cloud.hpp).
+Camera make_camera(const FrameRequest& request, const Aabb& bounds, const glm::dvec3& origin);
 TraceSettings trace_settings(const FrameRequest& request, const Camera& camera);
 
 // The (H, W, 3) or, transparent, (H, W, 4) uint8 image, with a RuntimeWarning when no ray

@@ -96,10 +96,8 @@ py::object render(const py::handle& points, const py::dict& o) {
                                            ? std::optional<float>(float(number_in(o, "ball_spacing", 0, 1e30)))
                                            : std::nullopt;
   const Backend backend = backend_of(o);
-  FrameRequest request = frame_request(o);
-  // look_at is in world coordinates, the camera about the cloud's origin.
-  if (request.camera.has_look_at) request.camera.look_at = vec3(glm::dvec3(request.camera.look_at) - cloud.origin);
-  const Camera camera = make_camera(request, cloud.bounds());
+  const FrameRequest request = frame_request(o);
+  const Camera camera = make_camera(request, cloud.bounds(), cloud.origin);
   const TraceSettings settings = trace_settings(request, camera);
 
   Stats stats;

@@ -109,7 +109,7 @@ py::object render(PyVolume& v, const py::dict& o) {
   Stats stats;
   RenderedFrame frame = run_interruptibly([&] {
     const std::shared_ptr<const PreparedVolume> prepared = prepare(v, settings, stats);
-    const Camera camera = make_camera(request, prepared->surface_bounds());
+    const Camera camera = make_camera(request, prepared->surface_bounds(), glm::dvec3(0.0));
     const SceneMirror scene(backend, *prepared);
     return render_volume(scene, camera, trace_settings(request, camera), backend, stats);
   });

@@ -18,29 +18,34 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Collects vertices, each exactly equal position once, in first-seen order.
+// Collects vertices, each exactly equal position once, in first-seen order; in double, so
+// that an ASCII file far from zero keeps its digits (points/cloud.hpp).
 class UniqueVertices {
  public:
-  void add(vec3 p) {
-    p += vec3(0.0f);  // -0 becomes +0: equal positions, one key
-    const Key key{std::bit_cast<std::uint32_t>(p.x), std::bit_cast<std::uint32_t>(p.y),
-                  std::bit_cast<std::uint32_t>(p.z)};
-    if (index_.emplace(key, cloud_.positions.size()).second) cloud_.positions.push_back(p);
+  void add(glm::dvec3 p) {
+    p += glm::dvec3(0.0);  // -0 becomes +0: equal positions, one key
+    const Key key{std::bit_cast<std::uint64_t>(p.x), std::bit_cast<std::uint64_t>(p.y),
+                  std::bit_cast<std::uint64_t>(p.z)};
+    if (index_.emplace(key, world_.size()).second) world_.push_back(p);
   }
-  PointCloud take() { return std::move(cloud_); }
+  PointCloud take() {
+    PointCloud cloud;
+    set_world_positions(cloud, world_);
+    return cloud;
+  }
 
  private:
   struct Key {
-    std::uint32_t x, y, z;
+    std::uint64_t x, y, z;
     bool operator==(const Key&) const = default;
   };
   struct Hash {
     std::size_t operator()(const Key& k) const {
-      return std::hash<std::uint64_t>()((std::uint64_t(k.x) << 32 | k.y) * 0x9E3779B97F4A7C15ull ^ k.z);
+      return std::hash<std::uint64_t>()((k.x * 0x9E3779B97F4A7C15ull ^ k.y) * 0x9E3779B97F4A7C15ull ^ k.z);
     }
   };
   std::unordered_map<Key, std::size_t, Hash> index_;
-  PointCloud cloud_;
+  std::vector<glm::dvec3> world_;
 };
 
 constexpr std::size_t kBinaryHeader = 84, kFacetBytes = 50;
@@ -57,7 +62,7 @@ PointCloud read_binary(const fs::path& path, std::string_view file, std::uint64_
       const char* xyz = facet + 12 * (corner + 1);  // after the facet normal
       const vec3 p(io::load<float>(xyz, kSwap), io::load<float>(xyz + 4, kSwap), io::load<float>(xyz + 8, kSwap));
       if (!is_finite(p)) throw file_error(path, "facet " + std::to_string(f) + " has a non-finite coordinate");
-      vertices.add(p);
+      vertices.add(glm::dvec3(p));
     }
   }
   return vertices.take();
@@ -97,8 +102,8 @@ PointCloud read_ascii(const fs::path& path, std::string_view file) {
       double v[3];
       for (int k = 0; k < 3; ++k)
         if (!io::parse_number(words[k + 1], v[k])) throw fail("malformed number " + quote(words[k + 1]));
-      const vec3 p(glm::dvec3(v[0], v[1], v[2]));
-      if (!is_finite(p)) throw fail("non-finite coordinate");
+      const glm::dvec3 p(v[0], v[1], v[2]);
+      if (!is_finite(vec3(p))) throw fail("non-finite coordinate");
       vertices.add(p);
       ++corners;
     } else {

@@ -8,12 +8,13 @@ namespace pss {
 glm::dvec3 local_origin(const glm::dvec3& lo, const glm::dvec3& hi) {
   const glm::dvec3 size = hi - lo;
   const double extent = std::max({size.x, size.y, size.z});
-  const double reach = std::max({std::abs(lo.x), std::abs(lo.y), std::abs(lo.z), std::abs(hi.x), std::abs(hi.y),
-                                 std::abs(hi.z)});
-  // One position, or all equal: nothing to resolve between them.
-  if (!(extent > 0) || !(reach > 4 * extent)) return glm::dvec3(0.0);
+  if (!(extent > 0)) return glm::dvec3(0.0);  // one position, or all equal: nothing to resolve
   const double step = std::exp2(std::ceil(std::log2(extent)));
-  return glm::round(0.5 * (lo + hi) / step) * step;
+  glm::dvec3 origin(0.0);
+  for (int k = 0; k < 3; ++k)
+    if (std::max(std::abs(lo[k]), std::abs(hi[k])) > 4 * extent)
+      origin[k] = std::round(0.5 * (lo[k] + hi[k]) / step) * step;
+  return origin;
 }
 
 void set_world_positions(PointCloud& cloud, const std::vector<glm::dvec3>& world) {

@@ -34,7 +34,8 @@ void validate(const CameraSettings& s) {
   if (!std::isfinite(s.azimuth_deg)) throw Error("the azimuth must be a finite number of degrees");
   check_range("the elevation", s.elevation_deg, -90, 90);
   check_range("the field of view", s.fov_deg, kMinFovDeg, kMaxFovDeg);
-  if (s.has_look_at && !finite(s.look_at)) throw Error("the look-at point must be three finite numbers");
+  if (s.has_look_at && !(glm::length(s.look_at) < 1e30))  // false for NaN and infinity too
+    throw Error("the look-at point must be three finite numbers");
   if (!finite(s.up) || !(glm::length(s.up) > 0)) throw Error("up must be a non-zero direction of three finite numbers");
   if (!(s.distance >= 0 && std::isfinite(s.distance)))
     throw Error("the distance must be a finite positive number (got " + format_number(s.distance) + ")");
@@ -50,7 +51,7 @@ void validate(const CameraSettings& s) {
 
 Camera Camera::framing(const Aabb& box, const CameraSettings& s) {
   constexpr float degree = std::numbers::pi_v<float> / 180.0f;
-  const vec3 center = s.has_look_at ? s.look_at : box.empty() ? vec3(0.0f) : box.center();
+  const vec3 center = s.has_look_at ? vec3(s.look_at) : box.empty() ? vec3(0.0f) : box.center();
   float radius = box.empty() ? 0.0f : 0.5f * glm::length(box.extent());
   if (!(radius > 0)) radius = 1.0f;
 

@@ -18,7 +18,7 @@ constexpr std::uintmax_t kMaxBytes = 1 << 20;  // a stats file is a few KB
 const float kMinTanHalfFov = std::tan(0.5f * std::numbers::pi_v<float> / 180.0f);
 const float kMaxTanHalfFov = std::tan(85.0f * std::numbers::pi_v<float> / 180.0f);
 
-nlohmann::json vector_json(vec3 v) { return {v.x, v.y, v.z}; }
+nlohmann::json vector_json(glm::dvec3 v) { return {v.x, v.y, v.z}; }
 
 // Rounding of a camera that was orthonormal as floats: such a camera is used as it is.
 constexpr float kOrthonormal = 1e-5f;
@@ -32,13 +32,17 @@ bool orthonormal(vec3 f, vec3 r, vec3 u) {
 
 }  // namespace
 
-nlohmann::json camera_to_json(const Camera& c) {
-  return {{"eye", vector_json(c.eye)},     {"forward", vector_json(c.forward)},
+nlohmann::json camera_to_json(const Camera& c, const glm::dvec3& origin) {
+  return {{"eye", vector_json(origin + glm::dvec3(c.eye))}, {"forward", vector_json(c.forward)},
           {"right", vector_json(c.right)}, {"up", vector_json(c.up)},
           {"tan_half_fov", c.tan_half_fov}};
 }
 
-Camera read_camera_file(const std::filesystem::path& path, int width, int height) {
+Camera read_camera_file(const std::filesystem::path& path, int width, int height, const glm::dvec3& origin) {
+  return camera_from_json(read_camera_json(path), width, height, path.string(), origin);
+}
+
+nlohmann::json read_camera_json(const std::filesystem::path& path) {
   std::error_code ec;
   const std::uintmax_t size = std::filesystem::file_size(path, ec);
   if (ec) throw file_error(path, "cannot read the camera file (" + ec.message() + ")");
@@ -48,10 +52,12 @@ Camera read_camera_file(const std::filesystem::path& path, int width, int height
   if (!in && !in.eof()) throw file_error(path, "cannot read the camera file");
   const nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
   if (doc.is_discarded()) throw file_error(path, "is not a JSON object (expected a camera)");
-  return camera_from_json(doc, width, height, path.string());
+  camera_from_json(doc, 1, 1, path.string(), glm::dvec3(0.0));  // throws for what is not a camera
+  return doc;
 }
 
-Camera camera_from_json(const nlohmann::json& doc, int width, int height, const std::string& source) {
+Camera camera_from_json(const nlohmann::json& doc, int width, int height, const std::string& source,
+                        const glm::dvec3& origin) {
   auto error = [&](const std::string& problem) { return file_error(source, problem); };
   if (!doc.is_object()) throw error("is not a JSON object (expected a camera)");
   const nlohmann::json& cam = doc.contains("camera") ? doc["camera"] : doc;
@@ -60,24 +66,24 @@ Camera camera_from_json(const nlohmann::json& doc, int width, int height, const 
     if (!j.is_number()) throw error("camera field \"" + name + "\" must be a number");
     const double x = j.get<double>();
     if (!std::isfinite(x) || std::abs(x) > 1e30) throw error("camera field \"" + name + "\" is out of range");
-    return float(x);
+    return x;
   };
   auto vector = [&](const std::string& name) {
     if (!cam.contains(name)) throw error("camera field \"" + name + "\" is missing");
     const nlohmann::json& j = cam[name];
     if (!j.is_array() || j.size() != 3) throw error("camera field \"" + name + "\" must be [x, y, z]");
-    return vec3(number(j[0], name), number(j[1], name), number(j[2], name));
+    return glm::dvec3(number(j[0], name), number(j[1], name), number(j[2], name));
   };
   Camera c;
   c.width = width;
   c.height = height;
-  c.eye = vector("eye");
-  const vec3 forward = vector("forward"), up = vector("up");
+  c.eye = vec3(vector("eye") - origin);
+  const vec3 forward(vector("forward")), up(vector("up"));
   if (!cam.contains("tan_half_fov")) throw error("camera field \"tan_half_fov\" is missing");
-  c.tan_half_fov = number(cam["tan_half_fov"], "tan_half_fov");
+  c.tan_half_fov = float(number(cam["tan_half_fov"], "tan_half_fov"));
   if (!(c.tan_half_fov >= kMinTanHalfFov && c.tan_half_fov <= kMaxTanHalfFov))
     throw error("camera field \"tan_half_fov\" must give a field of view from 1 to 170 degrees");
-  const vec3 right = cam.contains("right") ? vector("right") : glm::cross(forward, up);
+  const vec3 right = cam.contains("right") ? vec3(vector("right")) : glm::cross(forward, up);
   if (orthonormal(forward, right, up)) {
     c.forward = forward;
     c.right = right;

@@ -112,8 +112,8 @@ void record_frame(Stats& stats, const RenderedFrame& frame) {
   v["hits_capped"] = s.capped;
   v["width"] = c.width;
   v["height"] = c.height;
-  v["camera"] = camera_to_json(c);  // relative to origin
-  v["origin"] = {frame.origin.x, frame.origin.y, frame.origin.z};
+  v["camera"] = camera_to_json(c, frame.origin);
+  v["origin"] = {frame.origin.x, frame.origin.y, frame.origin.z};  // the cloud's (cloud.hpp)
 }
 
 }  // namespace pss

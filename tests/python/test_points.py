@@ -135,7 +135,7 @@ def test_progress_is_silent_by_default_and_shown_when_asked(bunny, capfd):
 
 
 def _far_sphere(n=4000, centre=(500123.25, 4000456.5, 310.75), radius=5.0):
-    """A Fibonacci sphere at UTM-like coordinates, where float32's step (0.5 m) exceeds its
+    """A Fibonacci sphere at UTM-like coordinates, where float32's step (0.25 m) is about its
     spacing (0.28 m): in float32 it would collapse onto a lattice."""
     i = np.arange(n) + 0.5
     z = 1 - 2 * i / n
@@ -153,10 +153,13 @@ def test_a_cloud_far_from_zero_keeps_its_digits(tmp_path):
     read, _, _ = pss.read_points(tmp_path / "far.xyz")
     assert read.dtype == np.float64 and np.abs(read - points).max() < 1e-6
 
-    # The same image as the sphere about zero, and look_at in world coordinates.
-    near = pss.render(points - centre, size=(96, 96), look_at=(0, 0, 0))
-    far, hits, stats = pss.render(points, size=(96, 96), look_at=tuple(centre), full_output=True)
+    # The same image as the sphere about zero, and look_at a world point: close up on the top
+    # of the silhouette, which 0.1 m (a float's rounding of y here) would move by 5 pixels.
+    top = np.array([0.13, 4.9, 0.07])
+    near = pss.render(points - centre, size=(96, 96), look_at=tuple(top), zoom=8)
+    far = pss.render(points, size=(96, 96), look_at=tuple(centre + top), zoom=8)
     assert np.count_nonzero(np.abs(near.astype(int) - far.astype(int)).max(axis=2) > 2) < 20
+    _, hits, stats = pss.render(points, size=(96, 96), look_at=tuple(centre), full_output=True)
     hit = hits["points"][hits["mask"]]
     assert hit.dtype == np.float64 and len(hit) > 1000
     assert np.abs(np.linalg.norm(hit - centre, axis=1) - radius).max() < 1e-3

@@ -28,6 +28,7 @@ class CloudScene : public Scene {
       throw file_error(path, e.what());
     }
     info_.description = std::to_string(cloud_.size()) + " points";
+    info_.origin = cloud_.origin;
     if (settings.h == 0) settings.h = info_.default_h;
     if (settings.epsilon == 0) settings.epsilon = RayPssParams::from_h(settings.h).epsilon;
   }

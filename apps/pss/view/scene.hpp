@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/ext/vector_double3.hpp>
+
 #include "pss/backend/backend.hpp"
 #include "pss/core/stats.hpp"
 #include "pss/render/camera.hpp"
@@ -45,6 +47,7 @@ struct SceneInfo {
   float value_min = 0, value_max = 0;  // volumes: the data's range (the iso slider's)
   std::vector<float> histogram;        // volumes: counts per bin, log scale
   float default_h = 0;                 // clouds: the h that pss render would choose
+  glm::dvec3 origin{0.0};              // clouds: the world position of their zero (points/cloud.hpp)
 };
 
 class Scene {

@@ -91,7 +91,7 @@ class Viewer {
  public:
   // The script and the camera file are read first (run_viewer), so that a bad one is refused
   // before any window opens.
-  Viewer(const ViewerOptions& o, GLFWwindow* window, std::vector<Step> steps, std::optional<Camera> camera)
+  Viewer(const ViewerOptions& o, GLFWwindow* window, std::vector<Step> steps, std::optional<nlohmann::json> camera)
       : o_(o), window_(window), settings_(o.settings), orbit_(o.orbit), fixed_camera_(camera), steps_(std::move(steps)) {
     open(o.file.input);
   }
@@ -149,17 +149,16 @@ class Viewer {
     std::snprintf(path_, sizeof path_, "%s", path.c_str());
   }
 
+  // The open scene's (a cloud's, points/cloud.hpp): camera files hold world positions.
+  glm::dvec3 origin() const { return renderer_ ? renderer_->info().origin : glm::dvec3(0.0); }
+
   Camera camera() const {
     int w = 0, h = 0;
     glfwGetFramebufferSize(window_, &w, &h);
     w = std::max(w, 1);
     h = std::max(h, 1);
-    if (fixed_camera_) {
-      Camera c = *fixed_camera_;
-      c.width = w;
-      c.height = h;
-      return c;
-    }
+    // A camera file's eye is a world position, placed about the scene's origin (checked on loading).
+    if (fixed_camera_) return camera_from_json(*fixed_camera_, w, h, "camera", origin());
     return orbit_.camera(renderer_ ? renderer_->bounds() : Aabb{}, w, h);
   }
 
@@ -319,7 +318,7 @@ class Viewer {
   void save_camera(const std::string& path) {
     try {
       OutputSet outputs({}, {path});
-      write_text_file(path, nlohmann::json{{"camera", camera_to_json(camera())}}.dump(2) + "\n");
+      write_text_file(path, nlohmann::json{{"camera", camera_to_json(camera(), origin())}}.dump(2) + "\n");
       outputs.commit();
       view_message_ = "wrote " + path;
     } catch (const Error& e) {
@@ -329,7 +328,7 @@ class Viewer {
 
   void load_camera(const std::string& path) {
     try {
-      fixed_camera_ = read_camera_file(path, 1, 1);
+      fixed_camera_ = read_camera_json(path);
       dirty_ = true;
       view_message_ = "loaded " + path;
     } catch (const Error& e) {
@@ -399,7 +398,7 @@ class Viewer {
         orbit_.fov = number_of(s, 0, o_.script);
         moved();
       } else if (s.verb == "camera") {
-        fixed_camera_ = read_camera_file(s.args[0], 1, 1);
+        fixed_camera_ = read_camera_json(s.args[0]);
         dirty_ = true;
       } else if (s.verb == "set") {
         set_value(settings_, s, o_.script);
@@ -455,7 +454,7 @@ class Viewer {
   GLFWwindow* window_;
   ViewSettings settings_;
   Orbit orbit_;
-  std::optional<Camera> fixed_camera_;
+  std::optional<nlohmann::json> fixed_camera_;  // a camera file's (render/camera_file.hpp)
   std::unique_ptr<RenderThread> renderer_;
   std::uint64_t request_ = 0;
   bool dirty_ = false;
@@ -480,10 +479,10 @@ class Viewer {
 
 int run_viewer(const ViewerOptions& options) {
   std::vector<Step> steps;
-  std::optional<Camera> camera;
+  std::optional<nlohmann::json> camera;
   try {
     if (!options.script.empty()) steps = read_script(options.script);
-    if (!options.camera_file.empty()) camera = read_camera_file(options.camera_file, options.width, options.height);
+    if (!options.camera_file.empty()) camera = read_camera_json(options.camera_file);
   } catch (const Error& e) {
     std::fprintf(stderr, "pss view: error: %s\n", one_line(e.what()).c_str());
     return 1;

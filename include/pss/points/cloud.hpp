@@ -30,7 +30,7 @@ struct ScalarProperty {
 };
 
 // Positions are floats, as every kernel takes them, but floats keep about 7 digits: a
-// georeferenced scan at 4·10⁶ m would be rounded to half-metre steps. So a cloud stores its
+// georeferenced scan at 4·10⁶ m would be rounded to quarter-metre steps. So a cloud stores its
 // positions as offsets from an origin that the readers choose in double (local_origin): the
 // world position of point i is origin + positions[i], and outputs add the origin back.
 struct PointCloud {
@@ -51,10 +51,13 @@ struct PointCloud {
   glm::dvec3 world(std::size_t i) const { return origin + glm::dvec3(positions[i]); }
 };
 
-// The origin for world positions within [lo, hi]: zero where floats already resolve them to
-// within a few bits of what the cloud's size allows (every coordinate within 4 extents of
-// zero, or all positions equal), else the box's centre rounded to a multiple of a power of two at least the extent,
-// so that a float position minus the origin is exact (a float file reads back unchanged).
+// The origin for world positions within [lo, hi], axis by axis: zero where floats already
+// resolve the coordinates to within a few bits of what the cloud's size allows (within 4
+// extents of zero; all of them when the positions are all equal), else the box's centre
+// rounded to a multiple of a power of two at least the extent, so that a float coordinate
+// minus the origin is exact (a float file reads back unchanged). The extent is the box's
+// longest side: a scan whose box spans 4·10⁶ m (a stray point at zero) keeps a float's
+// steps at that scale.
 glm::dvec3 local_origin(const glm::dvec3& lo, const glm::dvec3& hi);
 
 // Sets the cloud's origin and its positions from world positions, finite and within float's

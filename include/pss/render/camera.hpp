@@ -9,6 +9,8 @@
 // with another up u, azimuth 0 looks from +z's part across u (from −y's when u is near ±z).
 #pragma once
 
+#include <glm/ext/vector_double3.hpp>
+
 #include "pss/core/types.hpp"
 
 namespace pss {
@@ -21,7 +23,8 @@ struct CameraSettings {
   float fov_deg = 35;       // vertical, in (0, 180)
   // Beyond the default view (each left at its default keeps it):
   bool has_look_at = false;
-  vec3 look_at{0.0f};    // the point orbited and looked at, instead of the box's centre
+  glm::dvec3 look_at{0.0};  // the point orbited and looked at, instead of the box's centre (double:
+                            // a world point far from zero, until a cloud's origin is taken off)
   vec3 up{0, 1, 0};      // the world's up: elevation is measured from the plane across it
   float distance = 0;    // of the eye from look_at (0: what frames the box at fov_deg)
   float zoom = 1;        // the distance divided by this
