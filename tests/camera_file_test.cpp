@@ -43,7 +43,8 @@ TEST_F(CameraFile, ACameraPssWroteLoadsBitForBit) {
     s.elevation_deg = el;
     s.fov_deg = 27.5f;
     const Camera c = Camera::framing(Aabb{vec3(-1.0f, 2.0f, 3.0f), vec3(4.0f, 5.5f, 6.0f)}, s);
-    const std::string file = write("camera.json", nlohmann::json{{"camera", camera_to_json(c, glm::dvec3(0.0))}}.dump());
+    const std::string file =
+        write("camera.json", nlohmann::json{{"camera", camera_to_json(c, glm::dvec3(0.0))}}.dump());
     const Camera back = read_camera_file(file, 7, 9, glm::dvec3(0.0));
     EXPECT_EQ(back.eye, c.eye) << az << ", " << el;
     EXPECT_EQ(back.forward, c.forward);
@@ -95,7 +96,8 @@ TEST_F(CameraFile, WhatIsNotACameraIsRefusedNamingTheFile) {
   EXPECT_NE(test::error_of([&] { read_camera_file(path("missing.json"), 4, 4, glm::dvec3(0.0)); }).find("missing.json"),
             std::string::npos);
   std::ofstream(path("huge.json")) << std::string(2 << 20, ' ');
-  EXPECT_NE(test::error_of([&] { read_camera_file(path("huge.json"), 4, 4, glm::dvec3(0.0)); }).find("too large"), std::string::npos);
+  EXPECT_NE(test::error_of([&] { read_camera_file(path("huge.json"), 4, 4, glm::dvec3(0.0)); }).find("too large"),
+            std::string::npos);
 }
 
 TEST_F(CameraFile, RenderAcceptsItsOwnStatsAsTheCamera) {
