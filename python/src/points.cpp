@@ -69,8 +69,7 @@ py::tuple project(const py::handle& points, const py::dict& o) {
   std::vector<std::int32_t> status(result.status.size());
   for (std::size_t i = 0; i < status.size(); ++i) status[i] = std::int32_t(result.status[i]);
   const auto n = py::ssize_t(status.size());
-  const auto points_out = py::ssize_t(result.cloud.size());
-  return py::make_tuple(world_numpy(std::move(result.cloud.positions), cloud.origin, {points_out, 3}),
+  return py::make_tuple(world_numpy(std::move(result.cloud.positions), cloud.origin, {n, 3}),
                         to_numpy(std::move(result.cloud.normals)),
                         to_numpy<std::int32_t>(std::move(status), {n}));
 }

@@ -106,7 +106,7 @@ void write_ply(const fs::path& path, const PointCloud& cloud, std::span<const Pl
   check_names(path, names);
 
   // A cloud away from the world's origin (cloud.hpp) is written in double, the origin added.
-  const bool recentred = cloud.origin != glm::dvec3(0.0);
+  const bool recentred = cloud.has_origin();
   OutputFile file(path);
   std::ostream& out = file.stream();
   out << "ply\nformat binary_little_endian 1.0\ncomment written by pss\nelement vertex " << n << "\n";
@@ -128,10 +128,12 @@ void write_ply(const fs::path& path, const PointCloud& cloud, std::span<const Pl
     const std::size_t end = std::min(n, begin + kChunk);
     char* o = buffer.data();
     for (std::size_t i = begin; i < end; ++i) {
-      if (recentred)
-        for (int k = 0; k < 3; ++k) o = store_little_endian(o, cloud.world(i)[k]);
-      else
+      if (recentred) {
+        const glm::dvec3 p = cloud.world(i);
+        for (int k = 0; k < 3; ++k) o = store_little_endian(o, p[k]);
+      } else {
         for (int k = 0; k < 3; ++k) o = store_little_endian(o, cloud.positions[i][k]);
+      }
       if (cloud.has_normals())
         for (int k = 0; k < 3; ++k) o = store_little_endian(o, cloud.normals[i][k]);
       if (cloud.has_colors())

@@ -83,7 +83,7 @@ void write_xyz(const std::filesystem::path& path, const PointCloud& cloud) {
   std::string lines;
   // Floats in %.9g, which reads back exactly; a cloud away from the world's origin
   // (cloud.hpp) in %.17g, its world positions being doubles.
-  const bool recentred = cloud.origin != glm::dvec3(0.0);
+  const bool recentred = cloud.has_origin();
   const int digits = recentred ? 17 : 9;
   char line[160];  // three %.17g and three %.9g numbers take at most 3 * 25 + 3 * 16 bytes
   for (std::size_t i = 0; i < cloud.size(); ++i) {

@@ -30,19 +30,8 @@ bool orthonormal(vec3 f, vec3 r, vec3 u) {
          glm::dot(glm::cross(r, u), -f) > 0;  // right-handed: right × up = backward
 }
 
-}  // namespace
-
-nlohmann::json camera_to_json(const Camera& c, const glm::dvec3& origin) {
-  return {{"eye", vector_json(origin + glm::dvec3(c.eye))}, {"forward", vector_json(c.forward)},
-          {"right", vector_json(c.right)}, {"up", vector_json(c.up)},
-          {"tan_half_fov", c.tan_half_fov}};
-}
-
-Camera read_camera_file(const std::filesystem::path& path, int width, int height, const glm::dvec3& origin) {
-  return camera_from_json(read_camera_json(path), width, height, path.string(), origin);
-}
-
-nlohmann::json read_camera_json(const std::filesystem::path& path) {
+// The file's JSON document, bounded in size; whether it holds a camera is camera_from_json's.
+nlohmann::json parsed_camera_file(const std::filesystem::path& path) {
   std::error_code ec;
   const std::uintmax_t size = std::filesystem::file_size(path, ec);
   if (ec) throw file_error(path, "cannot read the camera file (" + ec.message() + ")");
@@ -52,6 +41,23 @@ nlohmann::json read_camera_json(const std::filesystem::path& path) {
   if (!in && !in.eof()) throw file_error(path, "cannot read the camera file");
   const nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
   if (doc.is_discarded()) throw file_error(path, "is not a JSON object (expected a camera)");
+  return doc;
+}
+
+}  // namespace
+
+nlohmann::json camera_to_json(const Camera& c, const glm::dvec3& origin) {
+  return {{"eye", vector_json(origin + glm::dvec3(c.eye))}, {"forward", vector_json(c.forward)},
+          {"right", vector_json(c.right)}, {"up", vector_json(c.up)},
+          {"tan_half_fov", c.tan_half_fov}};
+}
+
+Camera read_camera_file(const std::filesystem::path& path, int width, int height, const glm::dvec3& origin) {
+  return camera_from_json(parsed_camera_file(path), width, height, path.string(), origin);
+}
+
+nlohmann::json read_camera_json(const std::filesystem::path& path) {
+  nlohmann::json doc = parsed_camera_file(path);
   camera_from_json(doc, 1, 1, path.string(), glm::dvec3(0.0));  // throws for what is not a camera
   return doc;
 }

@@ -43,6 +43,7 @@ struct PointCloud {
   std::size_t size() const { return positions.size(); }
   bool has_normals() const { return !normals.empty(); }
   bool has_colors() const { return !colors.empty(); }
+  bool has_origin() const { return origin != glm::dvec3(0.0); }  // positions taken about one
   Aabb bounds() const {
     Aabb box;
     for (const vec3& p : positions) box.grow(p);
