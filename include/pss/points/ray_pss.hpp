@@ -87,17 +87,21 @@ PSS_INLINE bool local_hit_before(const LocalPolynomial& lp, float b, const Ray& 
   float lo = t0 > t_min ? t0 : t_min;
   float hi = t1 < t_best ? t1 : t_best;
   if (!(lo < hi)) return false;
-  // Clip to the slab |z| ≤ height that holds the graph inside the ball.
-  const float z0 = glm::dot(ray.origin - lp.origin, lp.normal);
+  // Clip to the slab |z| ≤ height that holds the graph inside the ball, widened by the
+  // rounding of z0 (~1e-7 of the ray origin's distance): a plane's slab is otherwise no thicker
+  // than that, and whether the rounded ray enters it is chance (an FMA decides otherwise).
+  const vec3 r = ray.origin - lp.origin;
+  const float z0 = glm::dot(r, lp.normal);
   const float dz = glm::dot(ray.dir, lp.normal);
+  const float height = lp.height + 1e-6f * (abs(r.x) + abs(r.y) + abs(r.z));
   if (dz != 0) {
     const float inv_dz = 1.0f / dz;
-    const float ta = (-lp.height - z0) * inv_dz, tb = (lp.height - z0) * inv_dz;
+    const float ta = (-height - z0) * inv_dz, tb = (height - z0) * inv_dz;
     const float enter = ta < tb ? ta : tb, exit = ta < tb ? tb : ta;
     lo = enter > lo ? enter : lo;
     hi = exit < hi ? exit : hi;
     if (!(lo <= hi)) return false;
-  } else if (abs(z0) > lp.height) {
+  } else if (abs(z0) > height) {
     return false;
   }
   // Intersect from the ball's entry point, in the sample's frame: coordinates of order b
