@@ -65,8 +65,8 @@ TEST(VolumeTheta, ExponentialFormRecoversTheIsoSurfacePrintedFormDoesNot) {
 
   const auto with_weights = [&](auto theta) {
     VolumeFields w = base;
-    w.weights.resize(w.volume.values.size());
-    for (std::size_t i = 0; i < w.weights.size(); ++i) w.weights[i] = theta(w.volume.values[i]);
+    set_feature(w, gradient_feature());  // the gradients' directions
+    for (std::size_t i = 0; i < w.features.size(); ++i) w.features[i].weight = theta(w.volume.values[i]);
     return w;
   };
   const VolumeFields exp_form = with_weights([&](float v) { return std::exp(-(v * v) / (k * k)); });

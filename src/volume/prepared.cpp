@@ -86,13 +86,13 @@ PreparedVolume prepare_volume(Volume volume, const VolumeSettings& s, Stats& sta
 SceneMirror::SceneMirror(Backend backend, const PreparedVolume& volume)
     : values_(backend, volume.fields.volume.values),
       gradients_(backend, volume.fields.gradients),
-      weights_(backend, volume.fields.weights),
+      features_(backend, volume.fields.features),
       occupied_(backend, volume.bricks.occupied),
       cell_flags_(backend, volume.cells.flags),
       scene_(volume.scene()) {
   scene_.fields.volume.values = values_.data();
   scene_.fields.gradients = gradients_.data();
-  scene_.fields.weights = weights_.data();
+  scene_.fields.features = features_.data();
   scene_.bricks.occupied = occupied_.data();
   scene_.cells.flags = cell_flags_.data();
 }

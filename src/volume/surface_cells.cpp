@@ -76,7 +76,7 @@ SurfaceCells find_surface_cells(const VolumeFields& fields, const FeatureParams&
       float lo = kInfinity, hi = -kInfinity;
       for (int c = 0; c < 8; ++c) {
         const std::int64_t index = corner(i + (c & 1), j + ((c >> 1) & 1), k + (c >> 2));
-        const float x = iso ? v.values[index] : fields.weights[std::size_t(index)];
+        const float x = iso ? v.values[index] : fields.features[std::size_t(index)].weight;
         lo = std::min(lo, x);
         hi = std::max(hi, x);
       }

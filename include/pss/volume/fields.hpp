@@ -21,12 +21,20 @@ struct FeatureParams {
   float threshold = 0;
 };
 
+// What a neighbourhood gather reads of one voxel, in one 16-byte load: its θ1 or θ2 and the
+// direction of its gradient (0 where ∇f = 0), which the facing test of N(x) needs
+// (projection.hpp) and which would otherwise cost a square root and a division per voxel.
+struct FeatureVoxel {
+  float weight;
+  vec3 direction;
+};
+
 // The volume with its gradients and feature weights, as kernels see it.
 struct FieldView {
   VolumeView volume;
-  const vec3* gradients = nullptr;  // ∇f per voxel, in value per world unit
-  const float* weights = nullptr;   // θ1 or θ2 per voxel, for the FeatureParams in use
-  float inv_max_gradient2 = 0;      // 1 / max|∇f|²
+  const vec3* gradients = nullptr;         // ∇f per voxel, in value per world unit
+  const FeatureVoxel* features = nullptr;  // θ1 or θ2 and ∇f/|∇f| per voxel, for the FeatureParams in use
+  float inv_max_gradient2 = 0;             // 1 / max|∇f|²
 
   PSS_HOST_DEVICE vec3 gradient_at(vec3 p) const {
     return trilinear(gradients, volume.dims, TrilinearCell::at(volume.dims, volume.to_grid(p)));
@@ -65,11 +73,11 @@ PSS_INLINE float feature_weight(const VolumeView& volume, const vec3* gradients,
 struct VolumeFields {
   Volume volume;
   std::vector<vec3> gradients;
-  std::vector<float> weights;  // empty until set_feature()
+  std::vector<FeatureVoxel> features;  // empty until set_feature()
   float max_gradient = 0;
 
   float inv_max_gradient2() const { return max_gradient > 0 ? 1.0f / (max_gradient * max_gradient) : 0.0f; }
-  FieldView view() const { return {volume.view(), gradients.data(), weights.data(), inv_max_gradient2()}; }
+  FieldView view() const { return {volume.view(), gradients.data(), features.data(), inv_max_gradient2()}; }
 };
 
 // Precomputes every voxel's θ1 or θ2 for `feature` (once per image, not per projection).

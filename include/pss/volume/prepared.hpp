@@ -43,7 +43,7 @@ class SceneMirror {
  private:
   Mirror<float> values_;
   Mirror<vec3> gradients_;
-  Mirror<float> weights_;
+  Mirror<FeatureVoxel> features_;
   Mirror<std::uint8_t> occupied_;
   Mirror<std::uint8_t> cell_flags_;
   VolumeScene scene_;

@@ -116,21 +116,19 @@ struct VoxelWeights {
   bool weighted_only;
 
   // 1 for a gradient within 60° of n, falling linearly to 0 at 90° and beyond: continuous,
-  // so that the fit changes smoothly as n turns.
-  PSS_HOST_DEVICE static float facing(vec3 gradient, vec3 n) {
-    const float g = glm::length(gradient);
-    if (!(g > 0)) return 0.0f;
+  // so that the fit changes smoothly as n turns. `direction` is ∇f/|∇f|, or 0 where ∇f = 0.
+  PSS_HOST_DEVICE static float facing(vec3 direction, vec3 n) {
     // Plain comparisons: clamp's fminf/fmaxf are library calls here, and NaN cannot occur.
-    const float f = 2.0f * glm::dot(gradient, n) / g;
+    const float f = 2.0f * glm::dot(direction, n);
     return f < 0.0f ? 0.0f : (f > 1.0f ? 1.0f : f);
   }
   PSS_HOST_DEVICE bool operator()(const FieldView& fields, vec3 d, std::int64_t index, float& window, float& theta) const {
     const float u = 1.0f - length2(d) * inv_r2;
     window = u * u;
-    const float weighted = window * fields.weights[index];
-    // facing ≤ 1: a voxel the weight alone leaves out needs no gradient read.
-    if (weighted_only && weighted < 1e-5f) return false;
-    theta = weighted * facing(fields.gradients[index], n);
+    const FeatureVoxel voxel = fields.features[index];
+    const float weighted = window * voxel.weight;
+    if (weighted_only && weighted < 1e-5f) return false;  // facing ≤ 1
+    theta = weighted * facing(voxel.direction, n);
     return !(weighted_only && theta < 1e-5f);
   }
 };
@@ -140,7 +138,7 @@ struct VoxelWeights {
 // the CPU). The slots after the last voxel, up to a multiple of the lanes, hold zeros.
 struct VoxelNeighbourhood {
   static constexpr int kSlots = kMaxNeighbours + PSS_SUM_LANES;
-  vec3 center;
+  vec3 center{0.0f};
   int count = 0;
   float dx[kSlots], dy[kSlots], dz[kSlots];  // pᵢ − center
   float window[kSlots];                      // (1 − dᵢ²/ρ²)²
