@@ -257,6 +257,26 @@ INSTANTIATE_TEST_SUITE_P(Secondary, ShadowRays, testing::Values(SecondaryMode::f
                            return info.param == SecondaryMode::full ? "full" : "paper";
                          });
 
+// Rays of `frame` that meet the square centre + x·u + y·v, |x|, |y| ≤ half (u, v orthonormal)
+// (`inside`), and of those the ones that found no surface (`holes`).
+struct SquareCoverage {
+  int inside = 0, holes = 0;
+};
+SquareCoverage cover_square(const RenderedFrame& frame, vec3 centre, vec3 u, vec3 v, float half) {
+  SquareCoverage c;
+  const Camera& camera = frame.camera;
+  const vec3 n = glm::cross(u, v);
+  for (int y = 0; y < camera.height; ++y)
+    for (int x = 0; x < camera.width; ++x) {
+      const Ray ray = camera.primary_ray(x, y);
+      const vec3 p = ray.at(glm::dot(centre - ray.origin, n) / glm::dot(ray.dir, n)) - centre;
+      if (std::max(std::abs(glm::dot(p, u)), std::abs(glm::dot(p, v))) > half) continue;
+      ++c.inside;
+      c.holes += !frame.hits[std::size_t(y) * camera.width + x].found();
+    }
+  return c;
+}
+
 TEST(Render, PlanarCloudIsAFlatSurface) {
   test::SampleOptions o;
   o.count = 4000;
@@ -274,17 +294,30 @@ TEST(Render, PlanarCloudIsAFlatSurface) {
   EXPECT_LT(a.mean_angle_deg, 0.5);
   // And without holes: every ray that meets the square 3h inside its rim hits. (Each local
   // polynomial's slab is as thin as the rounding there; unwidened, a third of them leaked.)
-  int inside = 0, holes = 0;
-  for (int y = 0; y < camera.height; ++y)
-    for (int x = 0; x < camera.width; ++x) {
-      const Ray ray = camera.primary_ray(x, y);
-      const vec3 p = ray.at(-ray.origin.z / ray.dir.z);
-      if (std::max(std::abs(p.x), std::abs(p.y)) > 1.0f - 3 * h) continue;
-      ++inside;
-      holes += !frame.hits[std::size_t(y) * camera.width + x].found();
-    }
-  EXPECT_GT(inside, 1000);
-  EXPECT_EQ(holes, 0);
+  const SquareCoverage c = cover_square(frame, vec3(0.0f), vec3(1, 0, 0), vec3(0, 1, 0), 1.0f - 3 * h);
+  EXPECT_GT(c.inside, 1000);
+  EXPECT_EQ(c.holes, 0);
+}
+
+// The same tilted, away from zero and seen from close by: the rounding that the slabs must
+// take is that of the world coordinates, not of the eye's distance alone.
+TEST(Render, TiltedPlaneAwayFromZeroSeenCloseHasNoHoles) {
+  test::SampleOptions o;
+  o.count = 4000;
+  PointCloud cloud = test::sample_plane(1.0f, o);
+  const vec3 centre(3.0f, 2.0f, 1.0f);  // within 4 extents of zero: not recentred (cloud.hpp)
+  const vec3 u = glm::normalize(vec3(2, 0, -1)), v = glm::normalize(vec3(1, 3, 2));
+  const vec3 w = glm::normalize(glm::cross(u, v)), v_ortho = glm::cross(w, u);
+  for (vec3& p : cloud.positions) p = centre + p.x * u + p.y * v_ortho;
+  const float h = test::suggested_h(cloud);
+  Stats stats;
+  const PreparedCloud prepared(cloud, RayPssParams::from_h(h), Backend::cpu, stats);
+  CameraSettings view = small_view();
+  view.zoom = 40;
+  const RenderedFrame frame = render(prepared, Camera::framing(cloud.bounds(), view), true, true);
+  const SquareCoverage c = cover_square(frame, centre, u, v_ortho, 1.0f - 3 * h);
+  EXPECT_GT(c.inside, 4000);
+  EXPECT_EQ(c.holes, 0);
 }
 
 TEST(Render, ImageDoesNotDependOnThreadCount) {

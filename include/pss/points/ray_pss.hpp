@@ -88,12 +88,14 @@ PSS_INLINE bool local_hit_before(const LocalPolynomial& lp, float b, const Ray& 
   float hi = t1 < t_best ? t1 : t_best;
   if (!(lo < hi)) return false;
   // Clip to the slab |z| ≤ height that holds the graph inside the ball, widened by the
-  // rounding of z0 (~1e-7 of the ray origin's distance): a plane's slab is otherwise no thicker
-  // than that, and whether the rounded ray enters it is chance (an FMA decides otherwise).
+  // rounding of the world coordinates the heights below come from (z0, and ray.at(lo) for
+  // graph_crossed: ~1e-7 of their size): a plane's slab is otherwise no thicker than that,
+  // and whether the rounded ray enters it is chance (an FMA decides otherwise).
   const vec3 r = ray.origin - lp.origin;
   const float z0 = glm::dot(r, lp.normal);
   const float dz = glm::dot(ray.dir, lp.normal);
-  const float height = lp.height + 1e-6f * (abs(r.x) + abs(r.y) + abs(r.z));
+  const float height = lp.height + 1e-6f * (abs(ray.origin.x) + abs(ray.origin.y) + abs(ray.origin.z) +
+                                            abs(lp.origin.x) + abs(lp.origin.y) + abs(lp.origin.z));
   if (dz != 0) {
     const float inv_dz = 1.0f / dz;
     const float ta = (-height - z0) * inv_dz, tb = (height - z0) * inv_dz;

@@ -24,10 +24,11 @@ struct FeatureParams {
 // What a neighbourhood gather reads of one voxel, in one 16-byte load: its θ1 or θ2 and the
 // direction of its gradient (0 where ∇f = 0), which the facing test of N(x) needs
 // (projection.hpp) and which would otherwise cost a square root and a division per voxel.
-struct FeatureVoxel {
+struct alignas(16) FeatureVoxel {
   float weight;
   vec3 direction;
 };
+static_assert(sizeof(FeatureVoxel) == 16);
 
 // The volume with its gradients and feature weights, as kernels see it.
 struct FieldView {
