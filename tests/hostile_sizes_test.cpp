@@ -157,7 +157,9 @@ TEST_F(HostileSizes, ProjectionDoesNotDependOnTheUnits) {
     worst = 0;
     for (std::size_t i = 0; i < out.size(); ++i)
       worst = std::max(worst, double(glm::length(out.positions[i] / s - cli_reference.positions[i])));
-    EXPECT_LT(worst, 1e-5) << "scale " << s << " through the CLI";
+    // The CLI estimates h from the data at each scale, so the iterations stop within their
+    // tolerance (1e-3·h) of each other, not at the same rounding.
+    EXPECT_LT(worst, 1e-3 * h) << "scale " << s << " through the CLI";
   }
 }
 
