@@ -216,5 +216,6 @@ Volume.__doc__ = """Volume(values, spacing=(1, 1, 1), origin=(0, 0, 0)): a scala
     them), copied once as float32; values[k, j, i] sits at origin + (i sx, j sy, k sz).
     Properties: values (read-only float32 view), spacing, origin, source (the file it was
     read from, or ''). A render or extract prepares the volume for its surface settings
-    (gradients, weights and gradient directions: about eight times the values' memory) and keeps that preparation for
-    the next call with the same settings, so that views after the first cost only their rays."""
+    (gradients, weights and gradient directions: about eight times the values' memory) and
+    keeps that preparation for the next call with the same settings, so that views after the
+    first cost only their rays."""
