@@ -299,23 +299,49 @@ TEST(Render, PlanarCloudIsAFlatSurface) {
   EXPECT_EQ(c.holes, 0);
 }
 
+// The plane above, tilted about `centre`.
+struct TiltedPlane {
+  vec3 centre{3.0f, 2.0f, 1.0f};  // within 4 extents of zero: not recentred (cloud.hpp)
+  vec3 u = glm::normalize(vec3(2, 0, -1)), v = glm::cross(glm::normalize(glm::cross(u, glm::normalize(vec3(1, 3, 2)))), u);
+  PointCloud cloud() const {
+    test::SampleOptions o;
+    o.count = 4000;
+    PointCloud c = test::sample_plane(1.0f, o);
+    for (vec3& p : c.positions) p = centre + p.x * u + p.y * v;
+    return c;
+  }
+};
+
 // The same tilted, away from zero and seen from close by: the rounding that the slabs must
 // take is that of the world coordinates, not of the eye's distance alone.
 TEST(Render, TiltedPlaneAwayFromZeroSeenCloseHasNoHoles) {
-  test::SampleOptions o;
-  o.count = 4000;
-  PointCloud cloud = test::sample_plane(1.0f, o);
-  const vec3 centre(3.0f, 2.0f, 1.0f);  // within 4 extents of zero: not recentred (cloud.hpp)
-  const vec3 u = glm::normalize(vec3(2, 0, -1)), v = glm::normalize(vec3(1, 3, 2));
-  const vec3 w = glm::normalize(glm::cross(u, v)), v_ortho = glm::cross(w, u);
-  for (vec3& p : cloud.positions) p = centre + p.x * u + p.y * v_ortho;
+  const TiltedPlane plane;
+  const PointCloud cloud = plane.cloud();
   const float h = test::suggested_h(cloud);
   Stats stats;
   const PreparedCloud prepared(cloud, RayPssParams::from_h(h), Backend::cpu, stats);
   CameraSettings view = small_view();
   view.zoom = 40;
   const RenderedFrame frame = render(prepared, Camera::framing(cloud.bounds(), view), true, true);
-  const SquareCoverage c = cover_square(frame, centre, u, v_ortho, 1.0f - 3 * h);
+  const SquareCoverage c = cover_square(frame, plane.centre, plane.u, plane.v, 1.0f - 3 * h);
+  EXPECT_GT(c.inside, 4000);
+  EXPECT_EQ(c.holes, 0);
+}
+
+// And with the eye at zero: the rounding is then the samples' alone (their slabs carry it).
+TEST(Render, TiltedPlaneSeenFromZeroHasNoHoles) {
+  TiltedPlane plane;
+  CameraSettings view = small_view();
+  view.zoom = 40;
+  Camera camera = Camera::framing(plane.cloud().bounds(), view);
+  plane.centre -= camera.eye;
+  camera.eye = vec3(0.0f);
+  const PointCloud cloud = plane.cloud();
+  const float h = test::suggested_h(cloud);
+  Stats stats;
+  const PreparedCloud prepared(cloud, RayPssParams::from_h(h), Backend::cpu, stats);
+  const RenderedFrame frame = render(prepared, camera, true, true);
+  const SquareCoverage c = cover_square(frame, plane.centre, plane.u, plane.v, 1.0f - 3 * h);
   EXPECT_GT(c.inside, 4000);
   EXPECT_EQ(c.holes, 0);
 }

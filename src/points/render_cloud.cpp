@@ -134,7 +134,7 @@ PreparedCloud::PreparedCloud(const PointCloud& cloud, const RayPssParams& params
   }
   ScopedPhase phase(stats, "acceleration structure");
   locals_ = thin_local_polynomials(locals_, params.ball_spacing, kThinningTolerance * params.projection.h);
-  for (LocalPolynomial& l : locals_) l.height = height_bound(l.g, params.ball_radius);
+  for (LocalPolynomial& l : locals_) l.height = height_bound(l.g, params.ball_radius) + coordinate_rounding(l.origin);
   bvh_ = Bvh(disc_boxes(locals_, params.ball_radius));
   std::vector<LocalPolynomial> ordered(locals_.size());
   for (std::size_t k = 0; k < ordered.size(); ++k) ordered[k] = locals_[bvh_.primitives()[k]];

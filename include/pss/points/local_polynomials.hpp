@@ -17,8 +17,9 @@ namespace pss {
 // that pass the ball and slab tests.
 struct LocalPolynomial {
   vec3 origin;  // p_i
-  // A bound on |g| over the disc x² + y² ≤ b²: the graph inside the ball lies in the slab
-  // |z| ≤ height, a cheap test that spares most rays the quadratic (height_bound).
+  // A bound on |g| over the disc x² + y² ≤ b², plus the rounding of p_i's coordinates: the
+  // graph inside the ball lies in the slab |z| ≤ height, a cheap test that spares most rays
+  // the quadratic (height_bound, coordinate_rounding).
   float height = kInfinity;
   vec3 normal;  // n_i
   Polynomial g;
@@ -31,6 +32,13 @@ struct LocalPolynomial {
 PSS_INLINE float height_bound(const Polynomial& g, float b) {
   return abs(g.d) + (abs(g.a) + abs(g.b) + 0.5f * abs(g.c)) * b * b;
 }
+
+// A bound on the rounding of heights computed from world coordinates of p's size (~1e-7 of
+// |p|₁, with room). The slab |z| ≤ height of a planar sample is otherwise no thicker than
+// that rounding, and whether a rounded ray enters it is chance (an FMA decides otherwise):
+// nearest_local_hit widens each slab by this for the sample (LocalPolynomial::height) and
+// for the ray's origin.
+PSS_INLINE float coordinate_rounding(vec3 p) { return 1e-6f * (abs(p.x) + abs(p.y) + abs(p.z)); }
 
 enum class LocalFitStatus : unsigned char {
   ok,

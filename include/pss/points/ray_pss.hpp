@@ -79,23 +79,21 @@ struct LocalHit {
 
 // The ray's first crossing of the local polynomial g of `lp` inside its ball B(p_i, b), in
 // (t_min, t_best): lowers t_best to it and returns true, or returns false (paper §5.2,
-// "Intersection"). Every search for the nearest local hit runs this one test.
-PSS_INLINE bool local_hit_before(const LocalPolynomial& lp, float b, const Ray& ray, float t_min, float& t_best) {
+// "Intersection"). Every search for the nearest local hit runs this one test. `margin`
+// widens the slab by the rounding of the ray origin's coordinates (coordinate_rounding),
+// which z0 and ray.at(lo) below carry; lp.height holds the sample's part.
+PSS_INLINE bool local_hit_before(const LocalPolynomial& lp, float b, const Ray& ray, float margin, float t_min,
+                                 float& t_best) {
   float t0, t1;
   if (!ray_ball(ray, lp.origin, b, t0, t1)) return false;
   // Plain comparisons: fminf/fmaxf are library calls here, and NaN cannot occur.
   float lo = t0 > t_min ? t0 : t_min;
   float hi = t1 < t_best ? t1 : t_best;
   if (!(lo < hi)) return false;
-  // Clip to the slab |z| ≤ height that holds the graph inside the ball, widened by the
-  // rounding of the world coordinates the heights below come from (z0, and ray.at(lo) for
-  // graph_crossed: ~1e-7 of their size): a plane's slab is otherwise no thicker than that,
-  // and whether the rounded ray enters it is chance (an FMA decides otherwise).
-  const vec3 r = ray.origin - lp.origin;
-  const float z0 = glm::dot(r, lp.normal);
+  // Clip to the slab |z| ≤ height that holds the graph inside the ball.
+  const float z0 = glm::dot(ray.origin - lp.origin, lp.normal);
   const float dz = glm::dot(ray.dir, lp.normal);
-  const float height = lp.height + 1e-6f * (abs(ray.origin.x) + abs(ray.origin.y) + abs(ray.origin.z) +
-                                            abs(lp.origin.x) + abs(lp.origin.y) + abs(lp.origin.z));
+  const float height = lp.height + margin;
   if (dz != 0) {
     const float inv_dz = 1.0f / dz;
     const float ta = (-height - z0) * inv_dz, tb = (height - z0) * inv_dz;
@@ -132,8 +130,9 @@ PSS_INLINE LocalHit nearest_local_hit(const PointSurfaceView& s, const Ray& ray,
   LocalHit best;
   best.t = t_max;
   const float b = s.params.ball_radius;
+  const float margin = coordinate_rounding(ray.origin);
   s.bvh.closest(ray, t_min, best.t, [&](int k, float& t_best) {
-    if (local_hit_before(s.locals[k], b, ray, t_min, t_best)) best.local = k;
+    if (local_hit_before(s.locals[k], b, ray, margin, t_min, t_best)) best.local = k;
   });
   if (best.local < 0) best.t = kInfinity;
   return best;
