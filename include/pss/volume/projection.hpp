@@ -68,6 +68,7 @@ struct VolumeProjection {
   Frame frame;     // of the final polynomial
   Polynomial polynomial;
   VolumeProjectionStatus status;
+  bool steered = false;  // the predictor stopped at steer_beyond (Predictor): not the paper's P(r)
 };
 
 // Calls f(p − x, voxel index) for the voxels p within `radius` of x.
@@ -333,47 +334,76 @@ PSS_HOST_DEVICE VolumeProjection fit_and_project(const Nb& nb, vec3 origin, vec3
 // iteration gathers N(·) once, around the q of the previous iteration, and shifts the
 // moments to the new q; at convergence that is the paper's N(q). The polynomial is fitted
 // with θ in the frame of H(n, q), and P(r) is q's orthogonal projection onto it.
+//
+// Resumable: a caller that needs P(r) only for where the polynomial meets a ray, and only
+// while that is outside a ball, may stop the iterations once q is farther than
+// `steer_beyond` from r (marcher.hpp). The result is then marked `steered`, its polynomial
+// from the last gather; run() again resumes the same iterations where they stopped, so the
+// converged result is the same, bit for bit, as that of one uninterrupted run.
+template <class Nb>
+struct Predictor {
+  vec3 r, n{0, 0, 1};
+  float t = 0;
+  int iteration = 0;
+  bool started = false;  // n is set (∇f(r) ≠ 0)
+
+  PSS_HOST_DEVICE Predictor(const FieldView& fields, vec3 point) : r(point) {
+    const vec3 g = fields.gradient_at(r);
+    started = length2(g) > 0;
+    if (started) n = g / glm::length(g);
+  }
+
+  PSS_HOST_DEVICE VolumeProjection run(const FieldView& fields, const VolumeParams& params, Nb& nb,
+                                       float steer_beyond = kInfinity) {
+    VolumeProjection fail;
+    fail.predicted = fail.point = r;
+    fail.normal = vec3(0, 0, 1);
+    fail.frame = Frame::from_normal(r, fail.normal);
+    fail.status = started ? VolumeProjectionStatus::no_weight : VolumeProjectionStatus::no_gradient;
+    if (!started) return fail;
+    const auto theta_of = [](vec3, float, float theta) { return theta; };
+    bool steered = false;
+    while (iteration < params.max_predictor_iterations) {
+      ++iteration;
+      nb.gather(fields, r + t * n, params.radius, n, true);
+      const WeightedMoments moments = nb.moments(theta_of);
+      const float w = moments.weight_sum;
+      const vec3 m = moments.first;  // Σθ(pᵢ − q)
+      Sym3 c = moments.second;       // Σθ(pᵢ − q)(pᵢ − q)ᵀ
+      if (!(w > 0)) return fail;
+      // Eq. 3 for fixed n: t = Σθ⟨n, pᵢ − r⟩ / Σθ.
+      const float dt = glm::dot(m, n) / w;
+      // C1 about q + δ from the moments about q: C − mδᵀ − δmᵀ + Wδδᵀ.
+      const vec3 delta = dt * n;
+      c.add_outer(delta, w);
+      c.xx -= 2 * m.x * delta.x;
+      c.yy -= 2 * m.y * delta.y;
+      c.zz -= 2 * m.z * delta.z;
+      c.xy -= m.x * delta.y + m.y * delta.x;
+      c.xz -= m.x * delta.z + m.z * delta.x;
+      c.yz -= m.y * delta.z + m.z * delta.y;
+      t += dt;
+      const EigenResult eig = smallest_eigenvector(c.scaled(1.0f / w), n, kEigenIterations);
+      if (eig.status != EigenStatus::invalid) n = eig.vector;
+      if (abs(dt) < params.t_tolerance) {
+        iteration = params.max_predictor_iterations;  // converged: a later run() only refits
+        break;
+      }
+      if (abs(t) > steer_beyond) {
+        steered = true;
+        break;
+      }
+    }
+    VolumeProjection out = detail::fit_and_project(nb, r + t * n, n, params.h, theta_of);
+    out.predicted = out.point;
+    out.steered = steered;
+    return out;
+  }
+};
+
 template <class Nb>
 PSS_HOST_DEVICE VolumeProjection predict(const FieldView& fields, const VolumeParams& params, vec3 r, Nb& nb) {
-  VolumeProjection fail;
-  fail.predicted = fail.point = r;
-  fail.normal = vec3(0, 0, 1);
-  fail.frame = Frame::from_normal(r, fail.normal);
-  const vec3 g = fields.gradient_at(r);
-  if (!(length2(g) > 0)) {
-    fail.status = VolumeProjectionStatus::no_gradient;
-    return fail;
-  }
-  vec3 n = g / glm::length(g);
-  fail.status = VolumeProjectionStatus::no_weight;
-  const auto theta_of = [](vec3, float, float theta) { return theta; };
-  float t = 0;
-  for (int it = 0; it < params.max_predictor_iterations; ++it) {
-    nb.gather(fields, r + t * n, params.radius, n, true);
-    const WeightedMoments moments = nb.moments(theta_of);
-    const float w = moments.weight_sum;
-    const vec3 m = moments.first;  // Σθ(pᵢ − q)
-    Sym3 c = moments.second;       // Σθ(pᵢ − q)(pᵢ − q)ᵀ
-    if (!(w > 0)) return fail;
-    // Eq. 3 for fixed n: t = Σθ⟨n, pᵢ − r⟩ / Σθ.
-    const float dt = glm::dot(m, n) / w;
-    // C1 about q + δ from the moments about q: C − mδᵀ − δmᵀ + Wδδᵀ.
-    const vec3 delta = dt * n;
-    c.add_outer(delta, w);
-    c.xx -= 2 * m.x * delta.x;
-    c.yy -= 2 * m.y * delta.y;
-    c.zz -= 2 * m.z * delta.z;
-    c.xy -= m.x * delta.y + m.y * delta.x;
-    c.xz -= m.x * delta.z + m.z * delta.x;
-    c.yz -= m.y * delta.z + m.z * delta.y;
-    t += dt;
-    const EigenResult eig = smallest_eigenvector(c.scaled(1.0f / w), n, kEigenIterations);
-    if (eig.status != EigenStatus::invalid) n = eig.vector;
-    if (abs(dt) < params.t_tolerance) break;
-  }
-  VolumeProjection out = detail::fit_and_project(nb, r + t * n, n, params.h, theta_of);
-  out.predicted = out.point;
-  return out;
+  return Predictor<Nb>(fields, r).run(fields, params, nb);
 }
 
 // Corrector (§5.1, Eq. 4) from x0 = P(r) with the predictor's n: t minimises Eq. 4 by Brent
