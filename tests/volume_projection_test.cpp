@@ -148,39 +148,52 @@ TEST(VolumeProjection, CorrectorImprovesTheCleanSphere) {
   EXPECT_GT(moved, int(s.points.size()) * 9 / 10);
 }
 
-// The marcher's shortcut (marcher.hpp): given a reach, the predictor stops once it has moved
-// the point beyond it, and says so; resumed, it ends where one uninterrupted run ends, bit
-// for bit; and a projection that stays within the reach is the full one. Points 1.5 voxels
-// off the sphere move farther than 0.4 voxels, those on it do not.
-TEST(VolumeProjection, PredictorStopsOnlyBeyondTheSteeringReachAndResumes) {
-  const CleanSphere s;
-  const VolumeParams params = VolumeParams::from_voxels(1.0f, VolumeMethod::predictor);
-  const float reach = 0.4f;
-  VoxelNeighbourhood nb;
-  int far_steered = 0, near_steered = 0;
-  for (const vec3& p : s.points) {
-    const vec3 out = s.center + (s.radius + 1.5f) * glm::normalize(p - s.center);
-    const VolumeProjection full = predict(s.fields.view(), params, out, nb);
-    EXPECT_FALSE(full.steered);
-    EXPECT_LT(s.field.distance(full.point), 0.15f);
-    Predictor<VoxelNeighbourhood> predictor(s.fields.view(), out);
-    const VolumeProjection steered = predictor.run(s.fields.view(), params, nb, reach);
-    far_steered += steered.steered;
-    if (steered.steered) EXPECT_GT(glm::length(steered.frame.origin - out), reach);
-    const VolumeProjection resumed = predictor.run(s.fields.view(), params, nb);
-    EXPECT_FALSE(resumed.steered);
-    EXPECT_EQ(resumed.point, full.point);
-    EXPECT_EQ(resumed.normal, full.normal);
+void expect_same(const VolumeProjection& a, const VolumeProjection& b) {
+  EXPECT_EQ(a.status, b.status);
+  EXPECT_EQ(a.stopped_early, b.stopped_early);
+  EXPECT_EQ(a.predicted, b.predicted);
+  EXPECT_EQ(a.point, b.point);
+  EXPECT_EQ(a.normal, b.normal);
+  EXPECT_EQ(a.frame.origin, b.frame.origin);
+  EXPECT_EQ(a.polynomial.a, b.polynomial.a);
+  EXPECT_EQ(a.polynomial.b, b.polynomial.b);
+  EXPECT_EQ(a.polynomial.c, b.polynomial.c);
+  EXPECT_EQ(a.polynomial.d, b.polynomial.d);
+}
 
-    const vec3 on = s.center + s.radius * glm::normalize(p - s.center);
-    const VolumeProjection near = Predictor<VoxelNeighbourhood>(s.fields.view(), on).run(s.fields.view(), params, nb, reach);
-    near_steered += near.steered;
-    const VolumeProjection near_full = predict(s.fields.view(), params, on, nb);
-    EXPECT_EQ(near.point, near_full.point);
-    EXPECT_EQ(near.normal, near_full.normal);
-  }
-  EXPECT_EQ(far_steered, int(s.points.size()));
-  EXPECT_EQ(near_steered, 0);
+// The marcher's shortcut (marcher.hpp): given a reach, the predictor stops early once it has
+// moved the point beyond it, and says so; resumed, it ends where one uninterrupted run ends,
+// with the same iteration cap; and a projection that stays within the reach is the full one.
+// Points 1.5 voxels off the sphere move farther than the reaches, those on it do not.
+TEST(VolumeProjection, PredictorStopsOnlyBeyondItsReachAndResumes) {
+  const CleanSphere s;
+  const FieldView fields = s.fields.view();
+  VoxelNeighbourhood nb;
+  for (int cap : {1, 2, 3, 8})
+    for (float reach : {0.4f, 0.8f}) {
+      VolumeParams params = VolumeParams::from_voxels(1.0f, VolumeMethod::predictor);
+      params.max_predictor_iterations = cap;
+      int far_stopped = 0, near_stopped = 0;
+      for (const vec3& p : s.points) {
+        const vec3 out = s.center + (s.radius + 1.5f) * glm::normalize(p - s.center);
+        const VolumeProjection full = predict(fields, params, out, nb);
+        EXPECT_FALSE(full.stopped_early);
+        if (cap == 8) EXPECT_LT(s.field.distance(full.point), 0.15f);
+        Predictor<VoxelNeighbourhood> predictor(fields, out);
+        const VolumeProjection early = predictor.run(params, nb, reach);
+        far_stopped += early.stopped_early;
+        if (early.stopped_early) EXPECT_GT(glm::length(early.frame.origin - out), reach);
+        expect_same(predictor.run(params, nb), full);
+
+        const vec3 on = s.center + s.radius * glm::normalize(p - s.center);
+        const VolumeProjection near = Predictor<VoxelNeighbourhood>(fields, on).run(params, nb, reach);
+        near_stopped += near.stopped_early;
+        expect_same(near, predict(fields, params, on, nb));
+      }
+      // With one iteration allowed there is nothing to stop early.
+      EXPECT_EQ(far_stopped, cap == 1 ? 0 : int(s.points.size())) << cap << " " << reach;
+      EXPECT_EQ(near_stopped, 0) << cap << " " << reach;
+    }
 }
 
 }  // namespace pss

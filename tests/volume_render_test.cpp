@@ -223,10 +223,12 @@ TEST(VolumeRender, BrickSkippingKeepsTheHits) {
   }
 }
 
-// The paper's march (§5.1) with no shortcut but the corrector's reach: every sample that
-// passes the fragment test is projected with the predictor run to convergence; accepted
-// within ε, or followed to the ray's intersection with the polynomial inside B(r, b).
-Hit reference_march(const VolumeScene& s, const Ray& ray) {
+// The marcher as it was before the predictor could stop early: the paper's march (§5.1)
+// with our fragment and data-surface tests and retry cap, and no shortcut but the
+// corrector's reach. Every sample that passes the fragment test is projected with the
+// predictor run to convergence; accepted within ε, or followed to the ray's intersection
+// with the polynomial inside B(r, b).
+Hit uninterrupted_march(const VolumeScene& s, const Ray& ray) {
   const VolumeParams& p = s.params;
   Hit hit;
   float t0, t1;
@@ -261,13 +263,12 @@ Hit reference_march(const VolumeScene& s, const Ray& ray) {
   return hit;
 }
 
-// The marcher's shortcut (the predictor stopped where it only steers) decides only some
-// rejections on an unconverged polynomial: nearly every hit is the paper's march's own, bit
-// for bit; where a sample was rejected so, the ray's next sample finds the same surface
-// within 2ε, or (on a silhouette) none. No hit is new. And every hit is the paper's
-// projection of its point within ε: projected again in full, it lands within ε, with the
-// hit's normal.
-TEST(VolumeRender, HitsAreThoseOfThePapersMarch) {
+// The marcher's shortcut (the predictor stopped early) decides only some rejections on an
+// unconverged polynomial: nearly every hit is the uninterrupted march's own, to rounding;
+// where a sample was rejected so, the ray's next sample finds the same surface within 2ε,
+// or (on a silhouette) none. No hit is new. And every hit is the paper's projection of its
+// point within ε: projected again in full, it lands within ε, with the hit's normal.
+TEST(VolumeRender, HitsAreThoseOfTheUninterruptedMarch) {
   test::SampleVolumeOptions o;
   o.dims = ivec3(40);
   o.noise = 0.2f;
@@ -281,24 +282,24 @@ TEST(VolumeRender, HitsAreThoseOfThePapersMarch) {
     for (int y = 0; y < camera.height; ++y)
       for (int x = 0; x < camera.width; ++x) {
         const Ray ray = camera.primary_ray(x, y);
-        const Hit hit = march_volume(scene, ray), paper = reference_march(scene, ray);
+        const Hit hit = march_volume(scene, ray), uninterrupted = uninterrupted_march(scene, ray);
         if (!hit.found()) {
-          lost += paper.found();
+          lost += uninterrupted.found();
           continue;
         }
         ++hits;
-        ASSERT_TRUE(paper.found()) << int(m);
-        const bool same = std::abs(hit.t - paper.t) <= 1e-4f && glm::length(hit.normal - paper.normal) <= 1e-4f;
+        ASSERT_TRUE(uninterrupted.found()) << int(m);
+        const bool same = std::abs(hit.t - uninterrupted.t) <= 1e-4f && glm::length(hit.normal - uninterrupted.normal) <= 1e-4f;
         moved += !same;
-        if (!same) EXPECT_LE(std::abs(hit.t - paper.t), 2 * scene.params.epsilon) << int(m);
+        if (!same) EXPECT_LE(std::abs(hit.t - uninterrupted.t), 2 * scene.params.epsilon) << int(m);
         const VolumeProjection full = project_volume_point(scene.fields, scene.params, hit.point, nb);
         ASSERT_EQ(full.status, VolumeProjectionStatus::ok);
         EXPECT_LE(glm::length(full.point - hit.point), scene.params.epsilon * 1.0001f) << int(m);
         EXPECT_LT(glm::length(full.normal - hit.normal), 1e-4f) << int(m);
       }
-    std::printf("method %d: %d hits, %d moved from and %d lost of the paper's march's\n", int(m), hits, moved, lost);
+    std::printf("method %d: %d hits, %d moved from and %d lost of the uninterrupted march's\n", int(m), hits, moved, lost);
     EXPECT_GT(hits, 500) << int(m);
-    EXPECT_LE(moved + lost, hits / 50) << int(m);
+    EXPECT_LE(moved + lost, hits / 100) << int(m);  // measured: none
   }
 }
 

@@ -36,8 +36,8 @@ PSS_INLINE float height_bound(const Polynomial& g, float b) {
 // A bound on the rounding of heights computed from world coordinates of p's size (~1e-7 of
 // |p|₁, with room). The slab |z| ≤ height of a planar sample is otherwise no thicker than
 // that rounding, and whether a rounded ray enters it is chance (an FMA decides otherwise):
-// nearest_local_hit widens each slab by this for the sample (LocalPolynomial::height) and
-// for the ray's origin.
+// PreparedCloud adds it for the sample to LocalPolynomial::height, nearest_local_hit for
+// the ray's origin.
 PSS_INLINE float coordinate_rounding(vec3 p) { return 1e-6f * (abs(p.x) + abs(p.y) + abs(p.z)); }
 
 enum class LocalFitStatus : unsigned char {

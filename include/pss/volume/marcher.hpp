@@ -63,13 +63,13 @@ PSS_INLINE float intersection_in_ball(const VolumeProjection& proj, const Ray& r
 // predictor-corrector projection within ε. (--debug-projection runs the corrector on each
 // ray's first sample regardless, to show what it does there.)
 //
-// For the same reason the predictor stops iterating once it has moved the point farther
-// than kCorrectorReach·ε (Predictor): such a projection cannot be accepted, and its
-// polynomial only decides where the ray goes next. Where the unconverged polynomial meets
-// the ray outside the ball B(r, b) the sample is rejected there; otherwise the predictor
-// resumes to convergence and all goes on as if it had never stopped, so every hit and every
-// next point comes from the paper's full projections. Most such samples are rejected:
-// frames 7–17 % faster, 0.1 % of the hits lost on silhouettes (docs/benchmarks.md).
+// The predictor also stops early once it has moved the point farther than kCorrectorReach·ε
+// (Predictor): such a projection nearly always ends beyond that reach, where its polynomial
+// only decides where the ray goes next. Where the unconverged polynomial meets the ray
+// outside the ball B(r, b), the sample is rejected there (the one approximation: a few
+// silhouette hits are lost, docs/benchmarks.md); otherwise the predictor resumes, to
+// convergence or its iteration cap, and all goes on as if it had never stopped: every hit
+// and every next point comes from full projections. Most such samples are rejected.
 inline constexpr float kCorrectorReach = 4.0f;
 
 template <class Nb>
@@ -83,14 +83,13 @@ PSS_HOST_DEVICE bool resolve_sample(const VolumeScene& s, const Ray& ray, float 
     const vec3 x = ray.at(t);
     const bool record = p.debug_projection && first && attempt == 0;
     Predictor<Nb> predictor(s.fields, x);
-    VolumeProjection proj = predictor.run(s.fields, p, nb, record ? kInfinity : kCorrectorReach * p.epsilon);
+    VolumeProjection proj = predictor.run(p, nb, record ? kInfinity : kCorrectorReach * p.epsilon);
     ++hit.iterations;
-    if (proj.status != VolumeProjectionStatus::ok) return false;
-    if (proj.steered) {
+    if (proj.stopped_early) {
       if (!(intersection_in_ball(proj, ray, t, r, p.step) < kInfinity)) return false;
-      proj = predictor.run(s.fields, p, nb);
-      if (proj.status != VolumeProjectionStatus::ok) return false;
+      proj = predictor.run(p, nb);
     }
+    if (proj.status != VolumeProjectionStatus::ok) return false;
     if (record && length2(proj.predicted - x) > eps2) hit.flags |= kHitPredictorMoved;
     const bool could_accept = length2(proj.point - x) <= kCorrectorReach * kCorrectorReach * eps2;
     if (p.method == VolumeMethod::predictor_corrector && (could_accept || record)) {

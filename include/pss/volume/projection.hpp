@@ -68,7 +68,7 @@ struct VolumeProjection {
   Frame frame;     // of the final polynomial
   Polynomial polynomial;
   VolumeProjectionStatus status;
-  bool steered = false;  // the predictor stopped at steer_beyond (Predictor): not the paper's P(r)
+  bool stopped_early = false;  // the predictor stopped at stop_beyond (Predictor): not the paper's P(r)
 };
 
 // Calls f(p − x, voxel index) for the voxels p within `radius` of x.
@@ -335,37 +335,37 @@ PSS_HOST_DEVICE VolumeProjection fit_and_project(const Nb& nb, vec3 origin, vec3
 // moments to the new q; at convergence that is the paper's N(q). The polynomial is fitted
 // with θ in the frame of H(n, q), and P(r) is q's orthogonal projection onto it.
 //
-// Resumable: a caller that needs P(r) only for where the polynomial meets a ray, and only
-// while that is outside a ball, may stop the iterations once q is farther than
-// `steer_beyond` from r (marcher.hpp). The result is then marked `steered`, its polynomial
-// from the last gather; run() again resumes the same iterations where they stopped, so the
-// converged result is the same, bit for bit, as that of one uninterrupted run.
+// Resumable: a caller that wants P(r) only for where its polynomial meets a ray may stop
+// the iterations once q is farther than `stop_beyond` from r (marcher.hpp). The result is
+// then marked `stopped_early`, its polynomial from the last gather, and run() again (only
+// after such a result) resumes the iterations where they stopped: it ends where one
+// uninterrupted run ends, up to the rounding of the code around each call.
 template <class Nb>
 struct Predictor {
+  const FieldView* fields;
   vec3 r, n{0, 0, 1};
   float t = 0;
   int iteration = 0;
-  bool started = false;  // n is set (∇f(r) ≠ 0)
+  bool has_gradient;  // ∇f(r) ≠ 0: n starts along it
 
-  PSS_HOST_DEVICE Predictor(const FieldView& fields, vec3 point) : r(point) {
-    const vec3 g = fields.gradient_at(r);
-    started = length2(g) > 0;
-    if (started) n = g / glm::length(g);
+  PSS_HOST_DEVICE Predictor(const FieldView& f, vec3 point) : fields(&f), r(point) {
+    const vec3 g = f.gradient_at(r);
+    has_gradient = length2(g) > 0;
+    if (has_gradient) n = g / glm::length(g);
   }
 
-  PSS_HOST_DEVICE VolumeProjection run(const FieldView& fields, const VolumeParams& params, Nb& nb,
-                                       float steer_beyond = kInfinity) {
+  PSS_HOST_DEVICE VolumeProjection run(const VolumeParams& params, Nb& nb, float stop_beyond = kInfinity) {
     VolumeProjection fail;
     fail.predicted = fail.point = r;
     fail.normal = vec3(0, 0, 1);
     fail.frame = Frame::from_normal(r, fail.normal);
-    fail.status = started ? VolumeProjectionStatus::no_weight : VolumeProjectionStatus::no_gradient;
-    if (!started) return fail;
+    fail.status = has_gradient ? VolumeProjectionStatus::no_weight : VolumeProjectionStatus::no_gradient;
+    if (!has_gradient) return fail;
     const auto theta_of = [](vec3, float, float theta) { return theta; };
-    bool steered = false;
+    bool stopped_early = false;
     while (iteration < params.max_predictor_iterations) {
       ++iteration;
-      nb.gather(fields, r + t * n, params.radius, n, true);
+      nb.gather(*fields, r + t * n, params.radius, n, true);
       const WeightedMoments moments = nb.moments(theta_of);
       const float w = moments.weight_sum;
       const vec3 m = moments.first;  // Σθ(pᵢ − q)
@@ -385,25 +385,22 @@ struct Predictor {
       t += dt;
       const EigenResult eig = smallest_eigenvector(c.scaled(1.0f / w), n, kEigenIterations);
       if (eig.status != EigenStatus::invalid) n = eig.vector;
-      if (abs(dt) < params.t_tolerance) {
-        iteration = params.max_predictor_iterations;  // converged: a later run() only refits
-        break;
-      }
-      if (abs(t) > steer_beyond) {
-        steered = true;
+      if (abs(dt) < params.t_tolerance) break;
+      if (abs(t) > stop_beyond && iteration < params.max_predictor_iterations) {
+        stopped_early = true;
         break;
       }
     }
     VolumeProjection out = detail::fit_and_project(nb, r + t * n, n, params.h, theta_of);
     out.predicted = out.point;
-    out.steered = steered;
+    out.stopped_early = stopped_early;
     return out;
   }
 };
 
 template <class Nb>
 PSS_HOST_DEVICE VolumeProjection predict(const FieldView& fields, const VolumeParams& params, vec3 r, Nb& nb) {
-  return Predictor<Nb>(fields, r).run(fields, params, nb);
+  return Predictor<Nb>(fields, r).run(params, nb);
 }
 
 // Corrector (§5.1, Eq. 4) from x0 = P(r) with the predictor's n: t minimises Eq. 4 by Brent
