@@ -10,6 +10,7 @@
 #include "pss/fit/polynomial.hpp"
 #include "pss/fit/weights.hpp"
 #include "pss/volume/fields.hpp"
+#include "pss/volume/voxel_gather_avx2.hpp"
 
 namespace pss {
 
@@ -71,9 +72,18 @@ struct VolumeProjection {
   bool stopped_early = false;  // the predictor stopped at stop_beyond (Predictor): not the paper's P(r)
 };
 
-// Calls f(p − x, voxel index) for the voxels p within `radius` of x.
+// One row of the lattice's box around a ball: voxels i0…i1 of row (j, k), the first at
+// `index`, all at the offsets dy, dz from the ball's centre (dyz = dy² + dz²).
+struct VoxelRow {
+  float dy, dz, dyz;
+  int i0, i1;
+  std::int64_t index;
+};
+
+// Calls row(VoxelRow) for the rows of the lattice's box around the ball B(x, radius) whose
+// line meets the ball, in the lattice's order.
 template <class F>
-PSS_HOST_DEVICE void for_each_voxel_near(const VolumeView& v, vec3 x, float radius, F&& f) {
+PSS_HOST_DEVICE void for_each_voxel_row_near(const VolumeView& v, vec3 x, float radius, F&& row) {
   const vec3 lo = v.to_grid(x - vec3(radius)), hi = v.to_grid(x + vec3(radius));
   const int i0 = max(-int(floor(-lo.x)), 0), i1 = min(int(floor(hi.x)), v.dims.x - 1);
   const int j0 = max(-int(floor(-lo.y)), 0), j1 = min(int(floor(hi.y)), v.dims.y - 1);
@@ -84,16 +94,25 @@ PSS_HOST_DEVICE void for_each_voxel_near(const VolumeView& v, vec3 x, float radi
     for (int j = j0; j <= j1; ++j) {
       const float dy = v.origin.y + float(j) * v.spacing.y - x.y;
       const float dyz = dy * dy + dz * dz;
-      if (dyz > r2) continue;
-      // (Cutting the row to the ball's chord made engine frames 20 % slower: the row's
-      // sqrt and divisions cost more than the few voxel tests they spare.)
-      std::int64_t index = v.index(i0, j, k);
-      for (int i = i0; i <= i1; ++i, ++index) {
-        const float dx = v.origin.x + float(i) * v.spacing.x - x.x;
-        if (dx * dx + dyz <= r2) f(vec3(dx, dy, dz), index);
-      }
+      if (dyz > r2 || i0 > i1) continue;
+      row(VoxelRow{dy, dz, dyz, i0, i1, v.index(i0, j, k)});
     }
   }
+}
+
+// Calls f(p − x, voxel index) for the voxels p within `radius` of x, in the lattice's order.
+template <class F>
+PSS_HOST_DEVICE void for_each_voxel_near(const VolumeView& v, vec3 x, float radius, F&& f) {
+  const float r2 = radius * radius;
+  for_each_voxel_row_near(v, x, radius, [&](const VoxelRow& row) {
+    // (Cutting the row to the ball's chord made engine frames 20 % slower: the row's
+    // sqrt and divisions cost more than the few voxel tests they spare.)
+    std::int64_t index = row.index;
+    for (int i = row.i0; i <= row.i1; ++i, ++index) {
+      const float dx = v.origin.x + float(i) * v.spacing.x - x.x;
+      if (dx * dx + row.dyz <= r2) f(vec3(dx, row.dy, row.dz), index);
+    }
+  });
 }
 
 // N(x): the voxels within the radius ρ of x, gathered once into a flat array (offsets from
@@ -149,21 +168,62 @@ struct VoxelNeighbourhood {
     center = c;
     count = 0;
     const VoxelWeights weights{1.0f / (radius * radius), n, weighted_only};
-    for_each_voxel_near(fields.volume, c, radius, [&](vec3 d, std::int64_t index) {
-      if (count == kMaxNeighbours) return;
-      float w, t;
-      if (!weights(fields, d, index, w, t)) return;
-      dx[count] = d.x;
-      dy[count] = d.y;
-      dz[count] = d.z;
-      window[count] = w;
-      theta[count] = t;
-      ++count;
-    });
+#if PSS_CPU_AVX2
+    if (cpu::has_avx2()) {
+      gather_rows_avx2(fields, radius, weights);
+    } else
+#endif
+    {
+      for_each_voxel_near(fields.volume, c, radius, [&](vec3 d, std::int64_t index) { add(fields, weights, d, index); });
+    }
     for (int i = count; i % PSS_SUM_LANES != 0; ++i) dx[i] = dy[i] = dz[i] = window[i] = theta[i] = 0;
   }
   PSS_HOST_DEVICE vec3 offset(int i) const { return vec3(dx[i], dy[i], dz[i]); }
 
+ private:
+  // Stores the voxel at offset d if it counts, while there is room (the first kMaxNeighbours
+  // in the lattice's order).
+  PSS_HOST_DEVICE void add(const FieldView& fields, const VoxelWeights& weights, vec3 d, std::int64_t index) {
+    if (count == kMaxNeighbours) return;
+    float w, t;
+    if (!weights(fields, d, index, w, t)) return;
+    dx[count] = d.x;
+    dy[count] = d.y;
+    dz[count] = d.z;
+    window[count] = w;
+    theta[count] = t;
+    ++count;
+  }
+#if PSS_CPU_AVX2
+  // The same voxels, eight of a row at a time (volume/voxel_gather_avx2.hpp); the last
+  // voxels of the array, where 8 could not be read, one at a time.
+  void gather_rows_avx2(const FieldView& fields, float radius, const VoxelWeights& weights) {
+    const VolumeView& v = fields.volume;
+    const std::int64_t voxels = std::int64_t(v.dims.x) * v.dims.y * v.dims.z;
+    const float r2 = radius * radius;
+    static_assert(kSlots >= kMaxNeighbours + 8, "a row's 8 lanes are stored at count < kMaxNeighbours");
+    const detail::GatherSlots slots{dx, dy, dz, window, theta};
+    for_each_voxel_row_near(v, center, radius, [&](const VoxelRow& row) {
+      for (int i = row.i0; i <= row.i1 && count < kMaxNeighbours; i += 8) {
+        const std::int64_t index = row.index + (i - row.i0);
+        const int lanes = min(row.i1 - i + 1, 8);
+        if (index + 8 <= voxels) {
+          count += detail::gather_row_avx2(fields.features, index, i, lanes, v.origin.x, v.spacing.x, center.x, row.dy,
+                                           row.dz, row.dyz, r2, weights.inv_r2, weights.n, weights.weighted_only,
+                                           count, slots);
+          count = min(count, kMaxNeighbours);
+          continue;
+        }
+        for (int l = 0; l < lanes; ++l) {
+          const float x = v.origin.x + float(i + l) * v.spacing.x - center.x;
+          if (x * x + row.dyz <= r2) add(fields, weights, vec3(x, row.dy, row.dz), index + l);
+        }
+      }
+    });
+  }
+#endif
+
+ public:
   // f(pᵢ − center, window, θ) for each voxel of N, in the lattice's order.
   template <class F>
   PSS_HOST_DEVICE void for_each(F&& f) const {

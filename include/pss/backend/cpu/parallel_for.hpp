@@ -6,22 +6,13 @@
 #include <cstdint>
 
 #include "pss/core/cancel.hpp"
+#include "pss/core/cpu_features.hpp"
 #include "pss/core/progress.hpp"
 
-// On x86-64 the items also run in a copy of the kernel compiled for AVX2, FMA and BMI2 (most
-// x86 CPUs since 2013), chosen at run time: the build itself targets the baseline so that it
-// runs anywhere. GCC's `flatten` inlines the whole kernel into that copy, so no function
-// shared with the baseline build is compiled for AVX2 (clang's inlines only the direct
-// callees: slower, not wrong). -DPSS_CPU_AVX2=0 leaves the copy out: every CPU then computes
-// the baseline's bits.
-#if !defined(PSS_CPU_AVX2)
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__CUDA_ARCH__)
-#define PSS_CPU_AVX2 1
-#else
-#define PSS_CPU_AVX2 0
-#endif
-#endif
-
+// On x86-64 the items also run in a copy of the kernel compiled for AVX2, FMA and BMI2
+// (core/cpu_features.hpp). GCC's `flatten` inlines the whole kernel into that copy, so no
+// function shared with the baseline build is compiled for AVX2 (clang's inlines only the
+// direct callees: slower, not wrong).
 namespace pss::cpu {
 
 namespace detail {
@@ -39,17 +30,6 @@ template <class F>
 #endif
 
 }  // namespace detail
-
-// Whether this CPU runs the AVX2 copies (PSS_CPU_AVX2), decided once.
-inline bool has_avx2() {
-#if PSS_CPU_AVX2
-  static const bool yes = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") &&
-                          __builtin_cpu_supports("bmi2");
-  return yes;
-#else
-  return false;
-#endif
-}
 
 // Once the calling thread's cancel flag (core/cancel.hpp) is set, the chunks not yet begun
 // skip their items.
