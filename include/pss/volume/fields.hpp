@@ -34,7 +34,9 @@ static_assert(sizeof(FeatureVoxel) == 16);
 struct FieldView {
   VolumeView volume;
   const vec3* gradients = nullptr;         // ∇f per voxel, in value per world unit
-  const FeatureVoxel* features = nullptr;  // θ1 or θ2 and ∇f/|∇f| per voxel, for the FeatureParams in use
+  // θ1 or θ2 and ∇f/|∇f| per voxel, for the FeatureParams in use: one record per voxel (the
+  // CPU's gather reads whole rows of eight, volume/voxel_gather_avx2.hpp).
+  const FeatureVoxel* features = nullptr;
   float inv_max_gradient2 = 0;             // 1 / max|∇f|²
 
   PSS_HOST_DEVICE vec3 gradient_at(vec3 p) const {

@@ -176,11 +176,23 @@ struct VoxelNeighbourhood {
     {
       for_each_voxel_near(fields.volume, c, radius, [&](vec3 d, std::int64_t index) { add(fields, weights, d, index); });
     }
-    for (int i = count; i % PSS_SUM_LANES != 0; ++i) dx[i] = dy[i] = dz[i] = window[i] = theta[i] = 0;
+    pad();
+  }
+  // The same N(x) by the scalar walk alone: what the GPU and CPUs without AVX2 run (tests
+  // compare both ways with a brute-force loop on any CPU).
+  PSS_HOST_DEVICE void gather_scalar(const FieldView& fields, vec3 c, float radius, vec3 n, bool weighted_only) {
+    center = c;
+    count = 0;
+    const VoxelWeights weights{1.0f / (radius * radius), n, weighted_only};
+    for_each_voxel_near(fields.volume, c, radius, [&](vec3 d, std::int64_t index) { add(fields, weights, d, index); });
+    pad();
   }
   PSS_HOST_DEVICE vec3 offset(int i) const { return vec3(dx[i], dy[i], dz[i]); }
 
  private:
+  PSS_HOST_DEVICE void pad() {
+    for (int i = count; i % PSS_SUM_LANES != 0; ++i) dx[i] = dy[i] = dz[i] = window[i] = theta[i] = 0;
+  }
   // Stores the voxel at offset d if it counts, while there is room (the first kMaxNeighbours
   // in the lattice's order).
   PSS_HOST_DEVICE void add(const FieldView& fields, const VoxelWeights& weights, vec3 d, std::int64_t index) {

@@ -3,8 +3,10 @@
 // took two or three branches that the data decide (in the ball? any weight? facing?); here a
 // row's voxels are loaded in four 32-byte loads, tested in lanes, and the kept ones packed
 // to the front of the lanes by one permutation and stored. The same voxels, in the same order
-// and with the same window and θ as VoxelWeights computes them, up to rounding
-// (tests/volume_gather_test.cpp). CPU only: the GPU walks one voxel per step.
+// and with the same window and θ as VoxelWeights computes them, up to rounding: d² and the
+// window are computed with FMAs, so a voxel at |d| = ρ within rounding (window ~0) may be in
+// or out, as in the scalar AVX2 copy (tests/volume_gather_test.cpp). CPU only: the GPU walks
+// one voxel per step.
 #pragma once
 
 #include "pss/core/cpu_features.hpp"
@@ -62,7 +64,8 @@ struct GatherSlots {
   const __m256 gy = _mm256_shuffle_ps(t1, t3, _MM_SHUFFLE(1, 0, 1, 0));
   const __m256 gz = _mm256_shuffle_ps(t1, t3, _MM_SHUFFLE(3, 2, 3, 2));
 
-  const __m256 voxel = _mm256_setr_ps(0, 2, 4, 6, 1, 3, 5, 7);  // kLaneVoxel
+  const __m256 voxel = _mm256_setr_ps(kLaneVoxel[0], kLaneVoxel[1], kLaneVoxel[2], kLaneVoxel[3], kLaneVoxel[4],
+                                      kLaneVoxel[5], kLaneVoxel[6], kLaneVoxel[7]);
   const __m256 column = _mm256_add_ps(_mm256_set1_ps(float(i)), voxel);
   const __m256 dx = _mm256_sub_ps(_mm256_fmadd_ps(column, _mm256_set1_ps(spacing_x), _mm256_set1_ps(origin_x)),
                                   _mm256_set1_ps(center_x));
