@@ -79,6 +79,16 @@ TEST_F(CliProject, InfoReportsSizeAndSuggestedH) {
   EXPECT_NE(r.out.find("suggested h"), std::string::npos);
 }
 
+// The bounds carry the file's digits, not a float's binary expansion (-0.09468989819).
+TEST_F(CliProject, InfoPrintsTheBoundsWithTheFilesDigits) {
+  write("b.xyz", "-0.0946899 0.0329874 -0.0618736\n0.0610091 0.187321 0.0587997\n1e-3 0.1 0\n");
+  const test::CliResult r = test::run_pss("info " + path("b.xyz"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("bounds          [-0.0946899, 0.0610091] x [0.0329874, 0.187321] x [-0.0618736, 0.0587997]\n"),
+            std::string::npos)
+      << r.out;
+}
+
 TEST_F(CliProject, MissingFile) {
   expect_clean_failure("project " + path("nope.ply") + " -o " + path("out.ply"), path("nope.ply"), path("out.ply"));
   expect_clean_failure("info " + path("nope.ply"), path("nope.ply"), path("out.ply"));

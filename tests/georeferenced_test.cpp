@@ -122,6 +122,17 @@ TEST_F(GeoTest, EveryReaderKeepsTheDigitsAndTheWritersPutThemBack) {
   EXPECT_LT(largest_error(pss::read_point_cloud(path("b.xyz")), points), kTolerance);
 }
 
+// `pss info` prints world bounds with every digit the cloud keeps: 4000456.1234 needs 11,
+// more than a fixed %.10g gives, and its float about the origin tells the 4 apart.
+TEST_F(GeoTest, InfoPrintsTheWorldBoundsDigitForDigit) {
+  write("g.xyz", "500123.25 4000456.1234 310.75\n500128.125 4000461.5678 315.5\n");
+  const pss::test::CliResult r = pss::test::run_pss("info " + path("g.xyz"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("bounds          [500123.25, 500128.125] x [4000456.1234, 4000461.5678] x [310.75, 315.5]\n"),
+            std::string::npos)
+      << r.out;
+}
+
 TEST_F(GeoTest, ProjectAndRenderOnTheSphere) {
   write("s.xyz", text_of(sphere(4000), ""));
   const pss::test::CliResult project = pss::test::run_pss("project " + path("s.xyz") + " -o " + path("p.ply"));

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 
 #include "commands.hpp"
@@ -17,6 +18,17 @@ namespace pss::app {
 
 namespace {
 
+// A bound in world coordinates with the fewest digits that read back as the same float
+// about the cloud's origin (cloud.hpp): the file's own digits (-0.0946899, not
+// -0.09468989819), and a georeferenced cloud's all of them, which %g's six would cut.
+std::string world_coordinate(double origin, float local) {
+  char text[32];
+  for (int digits = 1;; ++digits) {
+    std::snprintf(text, sizeof text, "%.*g", digits, origin + double(local));
+    if (digits == 17 || float(std::strtod(text, nullptr) - origin) == local) return text;
+  }
+}
+
 void print_cloud(const std::string& path) {
   const PointCloud cloud = read_point_cloud(path);
   const Aabb box = cloud.bounds();
@@ -25,9 +37,11 @@ void print_cloud(const std::string& path) {
   const char* extras = cloud.has_normals() ? (cloud.has_colors() ? " (with normals and colours)" : " (with normals)")
                                            : (cloud.has_colors() ? " (with colours)" : "");
   std::printf("points          %zu%s\n", cloud.size(), extras);
-  // In world coordinates: a georeferenced cloud's need more than %g's six digits.
-  const glm::dvec3 lo = cloud.origin + glm::dvec3(box.lo), hi = cloud.origin + glm::dvec3(box.hi);
-  std::printf("bounds          [%.10g, %.10g] x [%.10g, %.10g] x [%.10g, %.10g]\n", lo.x, hi.x, lo.y, hi.y, lo.z, hi.z);
+  std::printf("bounds          ");
+  for (int k = 0; k < 3; ++k)
+    std::printf("%s[%s, %s]", k ? " x " : "", world_coordinate(cloud.origin[k], box.lo[k]).c_str(),
+                world_coordinate(cloud.origin[k], box.hi[k]).c_str());
+  std::printf("\n");
   std::printf("size            %g x %g x %g (diagonal %g)\n", size.x, size.y, size.z, glm::length(size));
   if (cloud.size() >= 2) {
     const SpacingEstimate s = estimate_spacing_of(cloud, path);
