@@ -13,6 +13,8 @@
 #include <functional>
 #include <optional>
 
+#include <CLI/CLI.hpp>
+
 #include "pss/backend/backend.hpp"
 #include "pss/io/output_file.hpp"
 #include "pss/io/ply.hpp"

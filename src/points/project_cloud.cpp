@@ -69,14 +69,9 @@ CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& p
     const GridMirror g(backend, grid);
     const Mirror<vec3> r(backend, positions), hint(backend, hints);
     Mirror<ProjectedPoint> out(backend, n);
-    const GridView view = g.view();
-    const vec3* rp = r.data();
-    const vec3* hp = hint.data();
-    ProjectedPoint* o = out.data();
     Progress progress("projecting", std::int64_t(n));
-    parallel_for(backend, "projection", std::int64_t(n), PSS_KERNEL(std::int64_t i) {
-      o[i] = project_point(view, rp[i], hp[i], unit_params);
-    }, stats, &progress);
+    parallel_for(backend, "projection", std::int64_t(n),
+                 ProjectPointsKernel{g.view(), r.data(), hint.data(), out.data(), unit_params}, stats, &progress);
     projected = out.take();
   }
 

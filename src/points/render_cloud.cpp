@@ -29,7 +29,7 @@ void validate(const RayPssParams& p) {
   if (p.max_candidates < 1) throw Error("candidates per ray must be at least 1");
 }
 
-namespace points_detail {  // not anonymous: nvcc wants kernels' enclosing functions to have linkage
+namespace points_detail {
 
 std::vector<LocalFit> fit_all(const UniformGrid& grid, const PointCloud& cloud, const RayPssParams& params,
                               Backend backend, Stats& stats) {
@@ -41,14 +41,10 @@ std::vector<LocalFit> fit_all(const UniformGrid& grid, const PointCloud& cloud, 
   const GridMirror g(backend, grid);
   const Mirror<vec3> hint(backend, hints);
   Mirror<LocalFit> fits(backend, n);
-  const GridView view = g.view();
-  const vec3* hp = hint.data();
-  LocalFit* o = fits.data();
-  const float h = params.projection.h, rho = params.projection.rho;
   Progress progress("local polynomials", std::int64_t(n));
-  parallel_for(backend, "local polynomials", std::int64_t(n), PSS_KERNEL(std::int64_t i) {
-    o[i] = fit_local_polynomial(view, view.points[i], hp[i], h, rho);
-  }, stats, &progress);
+  parallel_for(backend, "local polynomials", std::int64_t(n),
+               FitLocalPolynomialsKernel{g.view(), hint.data(), fits.data(), params.projection.h, params.projection.rho},
+               stats, &progress);
   return fits.take();
 }
 

@@ -42,12 +42,9 @@ PointCloud extract_surface(const PreparedVolume& volume, Backend backend, Stats&
   {
     const SceneMirror mirror(backend, volume);
     Mirror<ExtractedPoint> out(backend, std::size_t(lattice.size()));
-    const VolumeScene scene = mirror.scene();
-    ExtractedPoint* o = out.data();
     Progress progress("candidates", lattice.size());
-    parallel_for(backend, "projection", lattice.size(), PSS_KERNEL(std::int64_t i) {
-      o[i] = extract_candidate(scene, lattice.at(i));
-    }, stats, &progress);
+    parallel_for(backend, "projection", lattice.size(), ExtractCandidatesKernel{mirror.scene(), lattice, out.data()},
+                 stats, &progress);
     candidates = out.take();
   }
   ScopedPhase phase(stats, "deduplicate");

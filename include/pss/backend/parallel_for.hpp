@@ -1,9 +1,12 @@
 // The one launcher of both backends: parallel_for(backend, "phase", n, kernel, stats) runs
 // kernel(i) for i in [0, n) on every CPU core (OpenMP) or on the GPU, and adds the phase's
-// time to stats (on the GPU, device time from CUDA events). The kernel is a PSS_KERNEL
-// lambda, capturing by value what it reads (views and Mirror pointers of that backend), so
-// the code around a kernel is written once for both. In a CUDA build a file that launches
-// kernels is compiled as CUDA (PSS_KERNEL_SOURCES in src/CMakeLists.txt).
+// time to stats (on the GPU, device time from CUDA events). A kernel is a struct whose
+// members are what it reads (views and Mirror pointers of that backend) with
+//   PSS_HOST_DEVICE void operator()(std::int64_t i) const;
+// so the code around a kernel is written once for both. Files that launch kernels are C++,
+// compiled by the host compiler in every build, which makes the CPU's AVX2 copy of each
+// kernel (cpu/parallel_for.hpp); the GPU's code of each kernel type is made in one .cu file
+// (PSS_CUDA_KERNEL in cuda/launch.cuh).
 #pragma once
 
 #include <cstdint>
@@ -15,14 +18,8 @@
 #include "pss/core/stats.hpp"
 
 #if PSS_HAVE_CUDA
-#if !defined(__CUDACC__)
-#error "this file launches kernels: compile it as CUDA (add it to PSS_KERNEL_SOURCES in src/CMakeLists.txt)"
+#include "pss/backend/cuda/launch.hpp"
 #endif
-#include "pss/backend/cuda/launch.cuh"
-#endif
-
-// A kernel: PSS_KERNEL(std::int64_t i) { ... }
-#define PSS_KERNEL [=] PSS_HOST_DEVICE
 
 namespace pss {
 

@@ -73,4 +73,15 @@ PSS_INLINE LocalFit fit_local_polynomial(const GridView& grid, vec3 p, vec3 hint
   return out;
 }
 
+// out[i] = the local polynomial of the grid's sorted sample i (backend/parallel_for.hpp).
+struct FitLocalPolynomialsKernel {
+  GridView grid;
+  const vec3* hints;  // in the grid's order
+  LocalFit* out;
+  float h, rho;
+  PSS_HOST_DEVICE void operator()(std::int64_t i) const {
+    out[i] = fit_local_polynomial(grid, grid.points[i], hints[i], h, rho);
+  }
+};
+
 }  // namespace pss

@@ -25,6 +25,16 @@ PSS_INLINE ProjectedPoint project_point(const GridView& grid, vec3 r, vec3 hint,
   return {p.point, p.normal, p.status};
 }
 
+// out[i] = the projection of points[i] (backend/parallel_for.hpp).
+struct ProjectPointsKernel {
+  GridView grid;
+  const vec3* points;
+  const vec3* hints;  // the file's normals, or zeros
+  ProjectedPoint* out;
+  ProjectionParams params;
+  PSS_HOST_DEVICE void operator()(std::int64_t i) const { out[i] = project_point(grid, points[i], hints[i], params); }
+};
+
 struct StatusCounts {
   std::int64_t converged = 0, not_converged = 0, too_few_neighbours = 0, degenerate_normal = 0;
 };

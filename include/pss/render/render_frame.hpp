@@ -1,13 +1,13 @@
 // The frame driver of both backends, for any surface finder (see trace.hpp) whose views
-// point to that backend's memory: primary rays, secondary rays, shading, each a kernel and a
-// named phase of --stats; then the hits and the image on the host. Files that include it
-// launch kernels (backend/parallel_for.hpp).
+// point to that backend's memory: primary rays, secondary rays, shading, each a kernel
+// (frame_kernels.hpp) and a named phase of --stats; then the hits and the image on the host.
 #pragma once
 
 #include <cstdint>
 
 #include "pss/backend/mirror.hpp"
 #include "pss/backend/parallel_for.hpp"
+#include "pss/render/frame_kernels.hpp"
 #include "pss/render/rendered_frame.hpp"
 
 namespace pss {
@@ -21,29 +21,19 @@ RenderedFrame render_frame(Backend backend, const Finder& finder, const Camera& 
   // Without secondary rays nothing is written there, and nothing need come back.
   Mirror<SecondaryHits> secondary(backend, traces_secondary ? std::size_t(n) : 0);
   Mirror<vec3> pixels(backend, std::size_t(n));
-  Hit* h = hits.data();
-  SecondaryHits* s = secondary.data();
-  vec3* px = pixels.data();
-  const Finder f = finder;
-  const Camera cam = camera;
-  const TraceSettings ts = settings;
   {
     Progress progress("primary rays", n);
-    parallel_for(backend, "primary", n, PSS_KERNEL(std::int64_t i) {
-      h[i] = f.primary(cam.primary_ray(int(i % cam.width), int(i / cam.width)));
-    }, stats, &progress);
+    parallel_for(backend, "primary", n, PrimaryRaysKernel<Finder>{finder, camera, hits.data()}, stats, &progress);
   }
   if (traces_secondary) {
     Progress progress("secondary rays", n);
-    parallel_for(backend, "secondary", n, PSS_KERNEL(std::int64_t i) {
-      s[i] = trace_secondary(f, ts, cam.primary_ray(int(i % cam.width), int(i / cam.width)), h[i]);
-    }, stats, &progress);
+    parallel_for(backend, "secondary", n,
+                 SecondaryRaysKernel<Finder>{finder, camera, settings, hits.data(), secondary.data()}, stats, &progress);
   }
-  parallel_for(backend, "shading", n, PSS_KERNEL(std::int64_t i) {
-    const SecondaryHits none;  // what a pixel without secondary rays sees
-    px[i] = shade_pixel(f, ts, cam.primary_ray(int(i % cam.width), int(i / cam.width)), h[i],
-                        traces_secondary ? s[i] : none);
-  }, stats);
+  parallel_for(backend, "shading", n,
+               ShadePixelsKernel<Finder>{finder, camera, settings, hits.data(),
+                                         traces_secondary ? secondary.data() : nullptr, pixels.data()},
+               stats);
 
   RenderedFrame frame;
   frame.camera = camera;

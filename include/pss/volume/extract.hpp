@@ -66,6 +66,14 @@ PSS_INLINE ExtractedPoint extract_candidate(const VolumeScene& s, vec3 r) {
   return out;
 }
 
+// out[i] = the candidate at lattice point i (backend/parallel_for.hpp).
+struct ExtractCandidatesKernel {
+  VolumeScene scene;
+  ExtractLattice lattice;
+  ExtractedPoint* out;
+  PSS_HOST_DEVICE void operator()(std::int64_t i) const { out[i] = extract_candidate(scene, lattice.at(i)); }
+};
+
 struct ExtractionCounts {
   std::int64_t candidates = 0, accepted = 0, kept = 0;
 };

@@ -1,6 +1,6 @@
-// The GPU half of pss::parallel_for (backend/parallel_for.hpp), for files compiled as CUDA:
-// every runtime call checked, the block size from the occupancy API, and each named phase
-// timed with CUDA events.
+// The definition of cuda::launch (launch.hpp), for the .cu files that instantiate it: every
+// runtime call checked, the block size from the occupancy API, and each named phase timed
+// with CUDA events.
 #pragma once
 
 #include <cuda_runtime.h>
@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <string>
 
+#include "pss/backend/cuda/launch.hpp"
 #include "pss/core/error.hpp"
 #include "pss/core/progress.hpp"
 
@@ -69,8 +70,8 @@ class PhaseTimer {
   cudaEvent_t start_{}, stop_{};
 };
 
-// f(i) for i in [0, n) on the GPU; returns the phase's device time. A progress bar that is
-// shown splits the work into batches, waiting for each; otherwise it is one launch.
+// A progress bar that is shown splits the work into batches, waiting for each; otherwise it
+// is one launch.
 template <class F>
 double launch(const char* phase, std::int64_t n, const F& f, Progress* progress) {
   const int block = block_size<F>(phase);
@@ -90,3 +91,7 @@ double launch(const char* phase, std::int64_t n, const F& f, Progress* progress)
 }
 
 }  // namespace pss::cuda
+
+// The one instantiation of cuda::launch for a kernel type, in a .cu file.
+#define PSS_CUDA_KERNEL(...) \
+  template double pss::cuda::launch<__VA_ARGS__>(const char*, std::int64_t, const __VA_ARGS__&, pss::Progress*);

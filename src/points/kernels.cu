@@ -1,0 +1,14 @@
+// The GPU code of the point clouds' kernels (backend/cuda/launch.hpp): projection, local
+// polynomials and the frames of a cloud. Their CPU code comes from the same headers, compiled
+// by the host compiler where they are launched (project_cloud.cpp, render_cloud.cpp).
+#include "pss/backend/cuda/launch.cuh"
+#include "pss/points/local_polynomials.hpp"
+#include "pss/points/project_cloud.hpp"
+#include "pss/points/render_cloud.hpp"
+#include "pss/render/frame_kernels.hpp"
+
+PSS_CUDA_KERNEL(pss::ProjectPointsKernel)
+PSS_CUDA_KERNEL(pss::FitLocalPolynomialsKernel)
+PSS_CUDA_KERNEL(pss::PrimaryRaysKernel<pss::PointFinder>)
+PSS_CUDA_KERNEL(pss::SecondaryRaysKernel<pss::PointFinder>)
+PSS_CUDA_KERNEL(pss::ShadePixelsKernel<pss::PointFinder>)

@@ -1,0 +1,82 @@
+#!/usr/bin/env python3
+"""The GPU kernels' per-thread stack frames against a budget, from ptxas's reports.
+
+Every CUDA object of the library has its report beside it (OBJECT.ptxas, written by
+cmake/ptxas_report.sh). Prints a table of each kernel's stack frame and spills for every
+architecture built, and fails when a report is missing, when no kernel was reported, or when
+any kernel's stack frame exceeds the budget: a thread's stack lives in local memory, so every
+byte of it is memory traffic and lost occupancy.
+    kernel_stacks.py --budget 1024 OBJECT...
+"""
+import argparse, os, re, subprocess, sys
+
+ENTRY = re.compile(r"Compiling entry function '([^']+)' for '(sm_\d+)'")
+FRAME = re.compile(r"\d+ bytes stack frame, (\d+) bytes spill stores, (\d+) bytes spill loads")
+USED = re.compile(r"Used (\d+) registers, .*?(\d+) bytes cumulative stack size")
+
+
+def parse(text):
+    """(mangled kernel, arch, registers, stack, spill stores, spill loads) for each entry function.
+    The stack is ptxas's cumulative size: the kernel's own frame and those of the calls it makes."""
+    rows, entry, spills = [], None, None
+    for line in text.splitlines():
+        m = ENTRY.search(line)
+        if m:
+            entry, spills = m.groups(), None
+            continue
+        m = FRAME.search(line)
+        if m and entry and spills is None:
+            spills = tuple(map(int, m.groups()))
+            continue
+        m = USED.search(line)
+        if m and entry and spills is not None:
+            rows.append((entry[0], entry[1], int(m.group(1)), int(m.group(2)), *spills))
+            entry = None
+    return rows
+
+
+def short_names(mangled):
+    """The kernel type of each for_each_index<Kernel> instantiation, demangled."""
+    try:
+        out = subprocess.run(['c++filt'], input='\n'.join(mangled), capture_output=True, text=True).stdout.split('\n')
+    except OSError:
+        return mangled
+    names = []
+    for m, d in zip(mangled, out):
+        k = re.match(r'void pss::cuda::for_each_index<(.*)>\(long, long, ', d)
+        names.append(k.group(1) if k else d or m)
+    return names
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
+    ap.add_argument('--budget', type=int, required=True, help='bytes of stack per thread')
+    ap.add_argument('objects', nargs='+', help='the library\'s objects; those of .cu files must have reports')
+    a = ap.parse_args()
+    rows = []
+    for obj in a.objects:
+        if not obj.endswith('.cu.o'):
+            continue
+        report = obj + '.ptxas'
+        if not os.path.isfile(report):
+            print(f'{report}: no ptxas report (is cmake/ptxas_report.sh the CUDA compiler launcher?)')
+            return 1
+        rows += parse(open(report, encoding='utf-8', errors='replace').read())
+    if not rows:
+        print('no kernel in the ptxas reports')
+        return 1
+    names = short_names([r[0] for r in rows])
+    width = max(len(n) for n in names)
+    print(f'| {"kernel":<{width}} | arch   | registers | stack B | spill stores B | spill loads B |')
+    print(f'|{"-" * (width + 2)}|--------|-----------|---------|----------------|---------------|')
+    over = 0
+    for name, (_, arch, regs, stack, stores, loads) in sorted(zip(names, rows), key=lambda x: (-x[1][3], x[0], x[1][1])):
+        flag = '  OVER' if stack > a.budget else ''
+        over += stack > a.budget
+        print(f'| {name:<{width}} | {arch:<6} | {regs:>9} | {stack:>7} | {stores:>14} | {loads:>13} |{flag}')
+    print(f'{len(rows)} kernels, {over} over the budget of {a.budget} bytes of stack per thread')
+    return 1 if over else 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())
