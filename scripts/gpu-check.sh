@@ -104,18 +104,16 @@ stage images images
 [[ ${PSS_GPU_CHECK_BENCH:-1} == 0 ]] || {
 stage bench-tables-cuda build-gpu/bench/bench_paper_tables --backend cuda --runs 3 --frames 10 --json "$out/paper_tables_cuda.json"
 stage bench-tables-cpu build-gpu/bench/bench_paper_tables --backend cpu --runs "${PSS_GPU_CHECK_CPU_RUNS:-3}" --json "$out/paper_tables_cpu.json"
-# The kernels walking the neighbourhoods again at each pass (a few hundred bytes of stack per
-# thread) against the default that stores them (kilobytes): the same tables side by side
+# The point kernels walking the grid again at each pass against the default that keeps the
+# neighbours' indices (include/pss/points/neighbourhood.hpp): Table 2 side by side
 # (PSS_GPU_CHECK_VARIANT=0 skips it).
 variant() {
   cmake -S . -B build-gpu-walked -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$prefix/usr" \
     -DCMAKE_CUDA_ARCHITECTURES="${arch:-90}" -DPSS_BUILD_TESTS=OFF \
-    "-DCMAKE_CUDA_FLAGS=-DPSS_DEVICE_NEIGHBOURS=0 -DPSS_DEVICE_VOXEL_WALK=1" >/dev/null &&
+    "-DCMAKE_CUDA_FLAGS=-DPSS_DEVICE_NEIGHBOURS=0" >/dev/null &&
     cmake --build build-gpu-walked -j"$(nproc)" --target bench_paper_tables >/dev/null &&
     timeout "${PSS_GPU_CHECK_STAGE_SECONDS:-900}" build-gpu-walked/bench/bench_paper_tables --backend cuda --runs 3 \
-      --frames 10 --only table2 --json "$out/paper_tables_cuda_walked.json" &&
-    timeout "${PSS_GPU_CHECK_STAGE_SECONDS:-900}" build-gpu-walked/bench/bench_paper_tables --backend cuda --runs 3 \
-      --frames 10 --only table1 --json "$out/paper_tables_cuda_walked_t1.json"
+      --frames 10 --only table2 --json "$out/paper_tables_cuda_walked.json"
 }
 [[ ${PSS_GPU_CHECK_VARIANT:-1} == 0 ]] || stage bench-tables-cuda-walked-neighbourhoods variant
 stage bench-project build-gpu/bench/bench_project --runs 5 --large --json "$out/project.json"

@@ -161,6 +161,35 @@ TEST(Projection, NeighbourhoodsBeyondTheBufferProjectAsIfStored) {
   EXPECT_GT(beyond, int(cloud.size() / 10) * 9 / 10);
 }
 
+// What the GPU keeps of N(r) (Neighbourhood there): the grid's indices of its samples, each
+// read and weighed again at every pass; beyond its capacity, the grid walked again. The same
+// projection as offsets and weights stored, up to the rounding of sums taken in another order.
+TEST(Projection, NeighbourIndicesProjectAsStoredNeighbourhoods) {
+  test::SampleOptions o;
+  o.count = 8000;
+  o.noise = 0.005f;
+  const PointCloud cloud = test::sample(test::Torus{}, o);
+  for (PlaneFitMethod method : {PlaneFitMethod::wls, PlaneFitMethod::mls}) {
+    const ProjectionParams params = ProjectionParams::from_h(test::suggested_h(cloud), method);
+    const UniformGrid grid(cloud.positions, params.rho);
+    int overflowed = 0;
+    for (std::size_t i = 0; i < cloud.size(); i += 8) {
+      const vec3 r = cloud.positions[i] + vec3(0.3f * params.h, -0.2f * params.h, 0.1f * params.h);
+      const Projection stored = project_to_pss<NeighbourhoodOf<4096>>(grid.view(), r, params, vec3(0.0f));
+      const Projection indices = project_to_pss<NeighbourIndicesOf<96>>(grid.view(), r, params, vec3(0.0f));
+      const Projection walked = project_to_pss<NeighbourIndicesOf<8>>(grid.view(), r, params, vec3(0.0f));
+      overflowed += stored.neighbours > 8;
+      for (const Projection* p : {&indices, &walked}) {
+        EXPECT_EQ(p->neighbours, stored.neighbours) << i;
+        EXPECT_EQ(p->status, stored.status) << i;
+        EXPECT_LT(glm::length(p->point - stored.point), 1e-4f * params.h) << i;
+        EXPECT_LT(glm::length(p->normal - stored.normal), 1e-3f) << i;
+      }
+    }
+    EXPECT_GT(overflowed, int(cloud.size() / 8) * 9 / 10);
+  }
+}
+
 TEST(Projection, TooFewNeighboursLeavesThePointAlone) {
   PointCloud cloud;
   cloud.positions = {vec3(0.0f), vec3(10.0f, 0.0f, 0.0f)};

@@ -148,6 +148,32 @@ TEST(VolumeProjection, CorrectorImprovesTheCleanSphere) {
   EXPECT_GT(moved, int(s.points.size()) * 9 / 10);
 }
 
+// What the GPU runs (VoxelScratch there): N(x) walked on the lattice at each pass instead of
+// stored. The same voxels with the same weights, so the same projections up to the rounding
+// of sums taken in another order (the stored ones run in SIMD lanes), with both methods, on
+// and off the surface, where the predictor moves the point several voxels.
+TEST(VolumeProjection, WalkedNeighbourhoodsProjectAsStoredOnes) {
+  const CleanSphere s;
+  std::vector<vec3> points = s.points;
+  for (const vec3& p : points_near_sphere(vec3(16.0f), 9.0f, 2.5f, 300, 11)) points.push_back(p);
+  for (VolumeMethod m : {VolumeMethod::predictor, VolumeMethod::predictor_corrector}) {
+    const VolumeParams params = VolumeParams::from_voxels(1.0f, m);
+    VoxelNeighbourhood stored;
+    WalkedVoxelNeighbourhood walked;
+    int ok = 0;
+    for (const vec3& r : points) {
+      const VolumeProjection a = project_volume_point(s.fields.view(), params, r, stored);
+      const VolumeProjection b = project_volume_point(s.fields.view(), params, r, walked);
+      ASSERT_EQ(a.status, b.status) << r.x << " " << r.y << " " << r.z;
+      ok += a.status == VolumeProjectionStatus::ok;
+      EXPECT_LT(glm::length(a.point - b.point), 1e-4f);
+      EXPECT_LT(glm::length(a.predicted - b.predicted), 1e-4f);
+      EXPECT_GT(glm::dot(a.normal, b.normal), 1 - 1e-6f);
+    }
+    EXPECT_GT(ok, int(points.size()) * 9 / 10);
+  }
+}
+
 void expect_same(const VolumeProjection& a, const VolumeProjection& b) {
   EXPECT_EQ(a.status, b.status);
   EXPECT_EQ(a.stopped_early, b.stopped_early);

@@ -190,6 +190,7 @@ Bvh::Bvh(std::span<const Aabb> boxes, int leaf_size) {
   nodes_.emplace_back();
   depth_ = collapse(binary, 0, nodes_, 0);
   if (3 * depth_ + 1 > BvhView::kStackSize) throw Error("BVH too deep for the traversal stack");
+  if (nodes_.size() > std::size_t(BvhView::kMaxNodes)) throw Error("BVH has too many nodes for the traversal stack");
 }
 
 BvhView Bvh::view() const {

@@ -3,7 +3,7 @@
 
 Every CUDA object of the library has its report beside it (OBJECT.ptxas, written by
 cmake/ptxas_report.sh). Prints a table of each kernel's stack frame and spills for every
-architecture built, and fails when a report is missing, when no kernel was reported, or when
+architecture built, and fails when a report is missing or unreadable, when no kernel was reported, or when
 any kernel's stack frame exceeds the budget: a thread's stack lives in local memory, so every
 byte of it is memory traffic and lost occupancy.
     kernel_stacks.py --budget 1024 OBJECT...
@@ -11,26 +11,28 @@ byte of it is memory traffic and lost occupancy.
 import argparse, os, re, subprocess, sys
 
 ENTRY = re.compile(r"Compiling entry function '([^']+)' for '(sm_\d+)'")
-FRAME = re.compile(r"\d+ bytes stack frame, (\d+) bytes spill stores, (\d+) bytes spill loads")
-USED = re.compile(r"Used (\d+) registers, .*?(\d+) bytes cumulative stack size")
+FRAME = re.compile(r"(\d+) bytes stack frame, (\d+) bytes spill stores, (\d+) bytes spill loads")
+# ptxas leaves the cumulative size out where it is 0.
+USED = re.compile(r"Used (\d+) registers(?:.*?(\d+) bytes cumulative stack size)?")
 
 
 def parse(text):
     """(mangled kernel, arch, registers, stack, spill stores, spill loads) for each entry function.
     The stack is ptxas's cumulative size: the kernel's own frame and those of the calls it makes."""
-    rows, entry, spills = [], None, None
+    rows, entry, frame = [], None, None
     for line in text.splitlines():
         m = ENTRY.search(line)
         if m:
-            entry, spills = m.groups(), None
+            entry, frame = m.groups(), None
             continue
         m = FRAME.search(line)
-        if m and entry and spills is None:
-            spills = tuple(map(int, m.groups()))
+        if m and entry and frame is None:
+            frame = tuple(map(int, m.groups()))
             continue
         m = USED.search(line)
-        if m and entry and spills is not None:
-            rows.append((entry[0], entry[1], int(m.group(1)), int(m.group(2)), *spills))
+        if m and entry and frame is not None:
+            stack = max(frame[0], int(m.group(2) or 0))
+            rows.append((entry[0], entry[1], int(m.group(1)), stack, frame[1], frame[2]))
             entry = None
     return rows
 
@@ -61,7 +63,12 @@ def main():
         if not os.path.isfile(report):
             print(f'{report}: no ptxas report (is cmake/ptxas_report.sh the CUDA compiler launcher?)')
             return 1
-        rows += parse(open(report, encoding='utf-8', errors='replace').read())
+        text = open(report, encoding='utf-8', errors='replace').read()
+        found = parse(text)
+        if len(found) != len(ENTRY.findall(text)):
+            print(f'{report}: {len(ENTRY.findall(text))} kernels, {len(found)} of them with a stack figure read')
+            return 1
+        rows += found
     if not rows:
         print('no kernel in the ptxas reports')
         return 1

@@ -93,15 +93,69 @@ struct NeighbourhoodOf {
   }
 };
 
+// The same N(r) kept as the grid's indices of its samples, 4 bytes each against the 16 of an
+// offset and a weight: what a GPU thread keeps, whose stack lives in local memory (a budget
+// of 1 KiB per thread, tests/gpu/kernel_stacks.py). Each pass reads the samples from the
+// grid's sorted array, which neighbouring threads share in cache, and weighs them again.
+template <int Capacity>
+struct NeighbourIndicesOf {
+  static constexpr int kCapacity = Capacity;
+
+  const GridView* grid;
+  vec3 center;
+  float rho, h;
+  int count = 0;
+  int index[Capacity > 0 ? Capacity : 1];
+
+  PSS_HOST_DEVICE NeighbourIndicesOf(const GridView& g, vec3 c, float radius, float width)
+      : grid(&g), center(c), rho(radius), h(width) {
+    grid->for_each_in_radius(center, rho, [&](vec3, float, int i) {
+      if (count < Capacity) index[count] = i;
+      ++count;
+    });
+  }
+
+  PSS_HOST_DEVICE bool overflowed() const { return count > Capacity; }
+  PSS_HOST_DEVICE int stored() const { return count < Capacity ? count : Capacity; }
+
+  // f(p, w) for every sample again, in the same order.
+  template <class F>
+  PSS_HOST_DEVICE void for_each(F&& f) const {
+    if (!overflowed()) {
+      for (int i = 0; i < count; ++i) {
+        const vec3 p = grid->points[index[i]];
+        f(p, gaussian_weight(length2(p - center), h));
+      }
+    } else {
+      grid->for_each_in_radius(center, rho, [&](vec3 p, float d2, int) { f(p, gaussian_weight(d2, h)); });
+    }
+  }
+
+  PSS_HOST_DEVICE WeightedMoments moments() const {
+    WeightedMoments m(center);
+    for_each([&](vec3 p, float w) { m.add(p, w); });
+    return m;
+  }
+
+  PSS_HOST_DEVICE PolynomialFit polynomial_fit(const Frame& frame, bool weights_at_origin) const {
+    PolynomialFit fit(h);
+    for_each([&](vec3 p, float w_r) {
+      const vec3 l = frame.to_local(p);
+      fit.add(l, weights_at_origin ? gaussian_weight(length2(l), h) : w_r);
+    });
+    return fit;
+  }
+};
+
 // ρ = 2h around the default h holds ~60 samples (points/spacing.hpp); 128 covers uneven
-// sampling without spilling in most places. On the GPU too: walking the grid again at each
-// pass (PSS_DEVICE_NEIGHBOURS=0, 128–880 bytes of stack instead of 2.2–2.8 KB) measured
-// 9 % slower frames and half the projection rate on an H100 (docs/benchmarks.md).
+// sampling without walking the grid again in most places. The GPU keeps up to 96 indices
+// (above), what fits the budget beside the ray's BVH stack (1,064 bytes of stack with 128);
+// an earlier GPU build that kept the CPU's offsets and weights took 2.2–2.8 KB per thread.
 #ifndef PSS_DEVICE_NEIGHBOURS
-#define PSS_DEVICE_NEIGHBOURS 128
+#define PSS_DEVICE_NEIGHBOURS 96
 #endif
 #if defined(__CUDA_ARCH__)
-using Neighbourhood = NeighbourhoodOf<PSS_DEVICE_NEIGHBOURS>;
+using Neighbourhood = NeighbourIndicesOf<PSS_DEVICE_NEIGHBOURS>;
 #else
 using Neighbourhood = NeighbourhoodOf<128>;
 #endif

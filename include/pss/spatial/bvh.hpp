@@ -51,58 +51,75 @@ struct BvhView {
   // A visit pushes at most 3 entries more than it pops, and the tree is at most 24 levels
   // deep (Bvh's build): 3·24 + 1 entries.
   static constexpr int kStackSize = 73;
+  // An entry is a child slot c of node k, k·4 + c: 4 bytes where the slot's range and entry
+  // distance took 12. The stack was most of a GPU thread's stack, which lives in local
+  // memory (tests/gpu/kernel_stacks.py); the slot's box is tested again when popped.
+  static constexpr int kMaxNodes = 1 << 30;
+
+  // Entry and exit of the ray through the box of slot c of `node`. Boxes are slab-tested with
+  // inv_dir, which may hold infinities (axis-parallel rays): the test stays correct for
+  // origins off the slab planes. Plain comparisons: pss::min/max are fminf/fmaxf, library
+  // calls on the CPU.
+  PSS_HOST_DEVICE static void slot_span(const BvhNode& node, int c, vec3 o, vec3 inv_dir, float& enter, float& exit) {
+    const float ax = (node.lo_x[c] - o.x) * inv_dir.x, bx = (node.hi_x[c] - o.x) * inv_dir.x;
+    const float ay = (node.lo_y[c] - o.y) * inv_dir.y, by = (node.hi_y[c] - o.y) * inv_dir.y;
+    const float az = (node.lo_z[c] - o.z) * inv_dir.z, bz = (node.hi_z[c] - o.z) * inv_dir.z;
+    const float nx = ax < bx ? ax : bx, ny = ay < by ? ay : by, nz = az < bz ? az : bz;
+    const float fx = ax < bx ? bx : ax, fy = ay < by ? by : ay, fz = az < bz ? bz : az;
+    const float nxy = nx > ny ? nx : ny, fxy = fx < fy ? fx : fy;
+    enter = nxy > nz ? nxy : nz;
+    exit = fxy < fz ? fxy : fz;
+  }
 
   // Closest-hit traversal over [t_min, t_max]: calls leaf(k, t_max) for the primitive in
   // BVH order k of every leaf the ray reaches before the current t_max; leaf lowers t_max
   // (its reference) when it finds a nearer hit, which prunes the rest. Children are visited
-  // near first. Boxes are slab-tested with inv_dir, which may hold infinities (axis-parallel
-  // rays): the test stays correct for origins off the slab planes.
+  // near first.
   template <class Leaf>
   PSS_HOST_DEVICE void closest(const Ray& ray, float t_min, float& t_max, Leaf&& leaf) const {
     if (node_count == 0) return;
     const vec3 inv_dir = 1.0f / ray.dir;
     const vec3 o = ray.origin;
-    struct Entry {
-      int child, count;
-      float t;
-    };
-    Entry stack[kStackSize];
+    unsigned stack[kStackSize];
     int top = 0;
-    stack[top++] = {0, 0, t_min};
-    while (top > 0) {
-      const Entry e = stack[--top];
-      if (e.t > t_max) continue;
-      if (e.count > 0) {
-        for (int k = e.child; k < e.child + e.count; ++k) leaf(k, t_max);
-        continue;
-      }
-      const BvhNode& node = nodes[e.child];
-      float enter[BvhNode::kWidth], exit[BvhNode::kWidth];
-      // Plain comparisons: pss::min/max are fminf/fmaxf, library calls on the CPU.
-      for (int c = 0; c < BvhNode::kWidth; ++c) {
-        const float ax = (node.lo_x[c] - o.x) * inv_dir.x, bx = (node.hi_x[c] - o.x) * inv_dir.x;
-        const float ay = (node.lo_y[c] - o.y) * inv_dir.y, by = (node.hi_y[c] - o.y) * inv_dir.y;
-        const float az = (node.lo_z[c] - o.z) * inv_dir.z, bz = (node.hi_z[c] - o.z) * inv_dir.z;
-        const float nx = ax < bx ? ax : bx, ny = ay < by ? ay : by, nz = az < bz ? az : bz;
-        const float fx = ax < bx ? bx : ax, fy = ay < by ? by : ay, fz = az < bz ? bz : az;
-        const float nxy = nx > ny ? nx : ny, fxy = fx < fy ? fx : fy;
-        enter[c] = nxy > nz ? nxy : nz;
-        exit[c] = fxy < fz ? fxy : fz;
-      }
-      // The children the ray meets in [t_min, t_max], pushed far to near so that the
-      // nearest is visited next (insertion into a list sorted by falling entry).
-      Entry hit[BvhNode::kWidth];
+    // Pushes the slots of node k that the ray meets in [t_min, t_max], far to near so that
+    // the nearest is visited next (insertion into a list sorted by falling entry); false
+    // when they do not fit, which the build's depth bound rules out: the guard only keeps
+    // a malformed tree from writing past the stack.
+    const auto push_children = [&](int k) {
+      const BvhNode& node = nodes[k];
+      float enter[BvhNode::kWidth];
+      unsigned slot[BvhNode::kWidth];
       int n = 0;
       for (int c = 0; c < BvhNode::kWidth; ++c) {
-        if (node.count[c] < 0 || !(enter[c] <= exit[c] && exit[c] >= t_min && enter[c] <= t_max)) continue;
+        float in, out;
+        slot_span(node, c, o, inv_dir, in, out);
+        if (node.count[c] < 0 || !(in <= out && out >= t_min && in <= t_max)) continue;
         int i = n++;
-        for (; i > 0 && hit[i - 1].t < enter[c]; --i) hit[i] = hit[i - 1];
-        hit[i] = {node.child[c], node.count[c], enter[c]};
+        for (; i > 0 && enter[i - 1] < in; --i) {
+          enter[i] = enter[i - 1];
+          slot[i] = slot[i - 1];
+        }
+        enter[i] = in;
+        slot[i] = unsigned(k) * BvhNode::kWidth + unsigned(c);
       }
-      // The build bounds the depth so that this never fails; the guard only keeps a
-      // malformed tree from writing past the stack.
-      if (top + n > kStackSize) break;
-      for (int i = 0; i < n; ++i) stack[top++] = hit[i];
+      if (top + n > kStackSize) return false;
+      for (int i = 0; i < n; ++i) stack[top++] = slot[i];
+      return true;
+    };
+    if (!push_children(0)) return;
+    while (top > 0) {
+      const unsigned s = stack[--top];
+      const BvhNode& node = nodes[s / BvhNode::kWidth];
+      const int c = int(s % BvhNode::kWidth);
+      float in, out;
+      slot_span(node, c, o, inv_dir, in, out);
+      if (in > t_max) continue;  // a nearer hit was found since the push
+      if (node.count[c] > 0) {
+        for (int k = node.child[c]; k < node.child[c] + node.count[c]; ++k) leaf(k, t_max);
+        continue;
+      }
+      if (!push_children(node.child[c])) break;
     }
   }
 };

@@ -322,11 +322,11 @@ struct WalkedVoxelNeighbourhood {
   }
 };
 
-// The kernels' scratch space. Stored on the GPU too: walking the lattice again at each pass
-// (a build with PSS_DEVICE_VOXEL_WALK=1; 0–400 bytes of stack per thread instead of 10 KB)
-// made predictor-corrector frames 1.6–2× slower on an H100, the corrector's Brent
-// evaluations each walking it again (docs/benchmarks.md).
-#if defined(__CUDA_ARCH__) && PSS_DEVICE_VOXEL_WALK
+// The kernels' scratch space. The GPU walks the lattice at each pass: a stored N(x) takes
+// 10 KB per thread, in local memory, against a budget of 1 KiB (tests/gpu/kernel_stacks.py).
+// (An earlier GPU build stored it; walking measured 1.6–2× slower predictor-corrector
+// frames on an H100 then, docs/benchmarks.md, a cost to measure again with the stack budget.)
+#if defined(__CUDA_ARCH__)
 using VoxelScratch = WalkedVoxelNeighbourhood;
 #else
 using VoxelScratch = VoxelNeighbourhood;
