@@ -150,12 +150,12 @@ TEST(VolumeProjection, CorrectorImprovesTheCleanSphere) {
 
 // What the GPU runs (VoxelScratch there): N(x) walked on the lattice at each pass instead of
 // stored. The same voxels with the same weights, so the same projections up to the rounding
-// of sums taken in another order (the stored ones run in SIMD lanes), with both methods, on
-// and off the surface, where the predictor moves the point several voxels.
+// of sums taken in another order (the stored ones run in SIMD lanes), with both methods, from
+// up to 2.5 voxels off the surface, where the predictor moves the point that far.
 TEST(VolumeProjection, WalkedNeighbourhoodsProjectAsStoredOnes) {
   const CleanSphere s;
   std::vector<vec3> points = s.points;
-  for (const vec3& p : points_near_sphere(vec3(16.0f), 9.0f, 2.5f, 300, 11)) points.push_back(p);
+  for (const vec3& p : points_near_sphere(s.center, s.radius, 2.5f, 300, 11)) points.push_back(p);
   for (VolumeMethod m : {VolumeMethod::predictor, VolumeMethod::predictor_corrector}) {
     const VolumeParams params = VolumeParams::from_voxels(1.0f, m);
     VoxelNeighbourhood stored;

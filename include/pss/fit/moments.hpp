@@ -35,8 +35,9 @@ struct WeightedMoments {
 
   PSS_HOST_DEVICE explicit WeightedMoments(vec3 o) : origin(o) {}
 
-  PSS_HOST_DEVICE void add(vec3 p, float w) {
-    const vec3 d = p - origin;
+  PSS_HOST_DEVICE void add(vec3 p, float w) { add_offset(p - origin, w); }
+  // add(origin + d, w), with d as given.
+  PSS_HOST_DEVICE void add_offset(vec3 d, float w) {
     weight_sum += w;
     first += w * d;
     second.add_outer(d, w);

@@ -309,15 +309,14 @@ struct WalkedVoxelNeighbourhood {
   template <class W>
   PSS_HOST_DEVICE WeightedMoments moments(W&& weight) const {
     WeightedMoments m(center);
-    for_each([&](vec3 d, float window, float theta) { m.add(center + d, weight(d, window, theta)); });
+    for_each([&](vec3 d, float window, float theta) { m.add_offset(d, weight(d, window, theta)); });
     return m;
   }
   template <class W>
   PSS_HOST_DEVICE PolynomialFit polynomial_fit(const Frame& frame, float h, W&& weight) const {
     PolynomialFit fit(h);
-    for_each([&](vec3 d, float window, float theta) {
-      fit.add(frame.to_local(center + d), weight(d, window, theta));
-    });
+    const vec3 o = frame.to_local(center);
+    for_each([&](vec3 d, float window, float theta) { fit.add(o + frame.direction_to_local(d), weight(d, window, theta)); });
     return fit;
   }
 };
