@@ -10,6 +10,11 @@ cd "$(dirname "$0")/.."
 # The optional targets that this machine's packages switch on are part of the default build.
 [[ -x build/bench/peer_pcl_mls ]] || { echo "PCL is installed but bench/peer_pcl_mls was not built" >&2; exit 1; }
 ctest --test-dir build --output-on-failure -j"$(nproc)"
+# The GPU kernels' stack frames (a CUDA build's test gpu.kernel_stacks, which fails above the
+# budget): the table, in the log.
+if [[ -n $(ctest --test-dir build -N -R '^gpu\.kernel_stacks$' | grep 'Test *#') ]]; then
+  ctest --test-dir build -R '^gpu\.kernel_stacks$' -V | grep -E '^[0-9]+: (\||[0-9]+ kernels)' | sed 's/^[0-9]*: //'
+fi
 
 # On the idle 2-core CI machine (2026-11-23) this whole script took 10.3 min from a fresh
 # clone: the build with CUDA and its suite about 5.7, the sanitized build and suite about
