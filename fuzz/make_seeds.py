@@ -228,6 +228,12 @@ def point_format_seeds():
     write("obj", "continuation.obj", b"v 1 2 \\\n3\n")
     write("obj", "bad-index.obj", b"v 0 0 0\nvn 0 0 1\nf 1//9223372036854775807 -9223372036854775808//1\n")
 
+    write("off", "bunny.off", b"OFF # bunny\n" + f"{len(pts)} 1 0\n".encode() + "".join(
+        f"{x:g} {y:g} {z:g}\n" for x, y, z in pts).encode() + b"3 0 1 2\n")
+    write("off", "normals-colours.off", b"STCNOFF 2 0 0\n0 0 0 0 0 2 255 0 51 0.5 0.5\n1 0 0 0 1 0 0.2 1.0 0 1 0 0\n")
+    write("off", "counts-lie.off", b"COFF\n\n# counts\n1000000000000 0\n1 2 3 4 5 6\n")
+    write("off", "no-keyword.off", b"2 0\n1 2 3\n4 nan 6\n")
+
     facets = [pts[i:i + 3] for i in range(0, len(pts) - 2, 3)]
     binary = b"solid binary".ljust(80) + struct.pack("<I", len(facets)) + b"".join(
         struct.pack("<3f", 0, 0, 1) + b"".join(struct.pack("<3f", *v) for v in f) + b"\0\0" for f in facets)

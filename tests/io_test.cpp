@@ -502,9 +502,10 @@ TEST_F(PointCloudFileTest, DispatchesOnExtensionCaseInsensitively) {
 }
 
 TEST_F(PointCloudFileTest, UnknownExtension) {
-  const fs::path path = write("mesh.off", "OFF\n");
+  const fs::path path = write("mesh.3ds", "OFF\n");
   expect_file_error([&] { pss::read_point_cloud(path); }, path,
-                    "unknown point cloud format '.off' (expected .ply, .xyz, .txt, .pts, .obj, .stl, .pcd or .las)");
+                    "unknown point cloud format '.3ds' (expected .ply, .xyz, .txt, .pts, .pwn, .obj, .off, .stl, .pcd or "
+                    ".las)");
 }
 
 // ---------------------------------------------------------------------------------------

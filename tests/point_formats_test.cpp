@@ -18,6 +18,7 @@
 #include "pss/core/error.hpp"
 #include "pss/io/las.hpp"
 #include "pss/io/obj.hpp"
+#include "pss/io/off.hpp"
 #include "pss/io/pcd.hpp"
 #include "pss/io/ply.hpp"
 #include "pss/io/point_cloud_file.hpp"
@@ -124,6 +125,79 @@ TEST_F(FormatTest, ObjErrors) {
       {"# nothing\ng empty\n", "no vertices"},
   };
   for (const auto& [text, problem] : cases) expect_refused(pss::read_obj, write("bad.obj", text), problem);
+}
+
+// ---------------------------------------------------------------------------------------
+// OFF
+
+TEST_F(FormatTest, OffVerticesWithCommentsAndFacesIgnored) {
+  const PointCloud cloud = pss::read_off(write("m.off",
+                                               "OFF  # a tetrahedron\n"
+                                               "\n"
+                                               "4 4 6\n"
+                                               "0 0 0\n1 0 0 # comment\n0 1 0\n0 0 1.5\n"
+                                               "3 0 1 2\n3 0 1 3\n3 0 2 3\n3 1 2 3\n"));
+  EXPECT_EQ(cloud.positions, (std::vector<vec3>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1.5f}}));
+  EXPECT_FALSE(cloud.has_normals());
+  EXPECT_FALSE(cloud.has_colors());
+}
+
+TEST_F(FormatTest, OffCountsOnTheKeywordLineOrWithoutKeyword) {
+  for (const std::string text : {"OFF 2 0 0\n1 2 3\n4 5 6\n", "2 0\n1 2 3\n4 5 6\n"}) {
+    const PointCloud cloud = pss::read_off(write("m.off", text));
+    EXPECT_EQ(cloud.positions, (std::vector<vec3>{{1, 2, 3}, {4, 5, 6}})) << text;
+  }
+}
+
+TEST_F(FormatTest, OffNormalsAndColoursAsTheKeywordSays) {
+  const PointCloud n = pss::read_off(write("n.off", "NOFF\n2 0 0\n0 0 0 0 0 2\n1 0 0 0 1 0\n"));
+  EXPECT_EQ(n.normals, (std::vector<vec3>{{0, 0, 1}, {0, 1, 0}}));  // made unit
+  EXPECT_FALSE(n.has_colors());
+  // Colours: integers are 0..255, numbers with a point 0..1; an alpha may follow.
+  const PointCloud c = pss::read_off(write("c.off", "COFF\n2 0 0\n0 0 0 255 0 51\n1 0 0 0.2 1.0 0 1\n"));
+  EXPECT_EQ(c.colors, (std::vector<Rgb8>{{255, 0, 51}, {51, 255, 0}}));
+  EXPECT_FALSE(c.has_normals());
+  const PointCloud both = pss::read_off(write("cn.off", "STCNOFF\n1 0 0\n1 2 3 1 0 0 10 20 30 0.5 0.5\n"));
+  EXPECT_EQ(both.positions, std::vector<vec3>{vec3(1, 2, 3)});
+  EXPECT_EQ(both.normals, std::vector<vec3>{vec3(1, 0, 0)});
+  EXPECT_EQ(both.colors, std::vector<Rgb8>{Rgb8(10, 20, 30)});
+}
+
+// The shared meshes and CGAL's points with normals (shared/data/clouds, beside the checkout),
+// read whole: every vertex, and the .pwn file's normals.
+TEST_F(FormatTest, SharedOffMeshesAndPointsWithNormals) {
+  const std::filesystem::path clouds = std::filesystem::path(PSS_SOURCE_DIR) / "../shared/data/clouds";
+  if (!std::filesystem::exists(clouds / "blade.off")) GTEST_SKIP() << "no " << clouds;
+  EXPECT_EQ(pss::read_point_cloud(clouds / "blade.off").size(), 8231u);
+  EXPECT_EQ(pss::read_point_cloud(clouds / "cylinder_locally_refined.off").size(), 8285u);
+  const PointCloud cube = pss::read_point_cloud(clouds / "cube.pwn");
+  EXPECT_EQ(cube.size(), 50000u);
+  ASSERT_TRUE(cube.has_normals());
+  EXPECT_EQ(cube.normals[0], vec3(0, 1, 0));  // its first line: -0.175308 0.371795 0.209773 0 1 0
+}
+
+TEST_F(FormatTest, OffErrors) {
+  const std::pair<std::string, std::string> cases[] = {
+      {"", "empty OFF file"},
+      {"# only a comment\n", "empty OFF file"},
+      {"PLY\n1 0 0\n", "line 1: expected the keyword OFF (or COFF, NOFF, CNOFF, STOFF, ...), found 'PLY'"},
+      {"4OFF\n1 0 0\n1 2 3 4\n", "line 1: '4OFF': only 3-dimensional OFF files are read"},
+      {"nOFF\n3\n1 0 0\n1 2 3\n", "line 1: 'nOFF': only 3-dimensional OFF files are read"},
+      {"OFF\n", "no vertex count after 'OFF'"},
+      {"OFF\n3\n", "line 2: expected the counts 'vertices faces [edges]'"},
+      {"OFF\n-1 0 0\n", "line 2: malformed count '-1'"},
+      {"OFF\n1.5 0 0\n", "line 2: malformed count '1.5'"},
+      {"OFF\n0 0 0\n", "line 2: no vertices"},
+      {"OFF\n3 0 0\n1 2 3\n4 5 6\n", "the header says 3 vertices, the file has 2"},
+      {"OFF\n1000000000000 0 0\n1 2 3\n", "the header says 1000000000000 vertices, the file has 1"},
+      {"OFF\n1 0 0\n1 2\n", "line 3: expected 3 numbers per vertex, found 2"},
+      {"NOFF\n1 0 0\n1 2 3\n", "line 3: expected 6 numbers per vertex, found 3"},
+      {"COFF\n1 0 0\n1 2 3 4 5\n", "line 3: expected 3 + 3 or 4 numbers per vertex, found 5"},
+      {"OFF\n1 0 0\n1 x 3\n", "line 3: malformed number 'x'"},
+      {"OFF\n1 0 0\n1 inf 3\n", "line 3: non-finite coordinate"},
+      {"COFF\n1 0 0\n1 2 3 nan 0 0\n", "line 3: non-finite colour"},
+  };
+  for (const auto& [text, problem] : cases) expect_refused(pss::read_off, write("bad.off", text), problem);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -692,6 +766,8 @@ TEST_F(FormatTest, ReadPointCloudDispatchesEveryFormatCaseInsensitively) {
   las.legacy_points = 1;
   const std::pair<std::string, std::string> files[] = {
       {"m.OBJ", "v 1 2 3\n"},
+      {"m.Off", "OFF\n1 0 0\n1 2 3\n"},
+      {"p.PWN", "1 2 3 0 0 1\n"},
       {"m.Stl", "solid\nfacet normal 0 0 1\nouter loop\nvertex 1 2 3\nvertex 1 2 3\nvertex 1 2 3\nendloop\n"
                 "endfacet\nendsolid\n"},
       {"c.PcD", "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nPOINTS 1\nDATA ascii\n1 2 3\n"},

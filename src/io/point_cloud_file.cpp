@@ -8,6 +8,7 @@
 #include "pss/io/output_format.hpp"
 #include "pss/io/las.hpp"
 #include "pss/io/obj.hpp"
+#include "pss/io/off.hpp"
 #include "pss/io/pcd.hpp"
 #include "pss/io/ply.hpp"
 #include "pss/io/stl.hpp"
@@ -19,14 +20,16 @@ namespace pss {
 PointCloud read_point_cloud(const std::filesystem::path& path) {
   const std::string ext = io::lowercase_extension(path);
   if (ext == ".ply") return read_ply(path);
-  if (ext == ".xyz" || ext == ".txt" || ext == ".pts") return read_xyz(path);
+  // .pwn: CGAL's points with normals, x y z nx ny nz.
+  if (ext == ".xyz" || ext == ".txt" || ext == ".pts" || ext == ".pwn") return read_xyz(path);
   if (ext == ".obj") return read_obj(path);
+  if (ext == ".off") return read_off(path);
   if (ext == ".stl") return read_stl(path);
   if (ext == ".pcd") return read_pcd(path);
   if (ext == ".las") return read_las(path);
   if (ext == ".laz") throw file_error(path, "compressed LAS (LAZ) is not supported; decompress it to .las first (laszip, PDAL)");
   throw file_error(path, "unknown point cloud format " + quote(path.extension().string()) +
-                             " (expected .ply, .xyz, .txt, .pts, .obj, .stl, .pcd or .las)");
+                             " (expected .ply, .xyz, .txt, .pts, .pwn, .obj, .off, .stl, .pcd or .las)");
 }
 
 void write_point_cloud(const std::filesystem::path& path, const PointCloud& cloud,
