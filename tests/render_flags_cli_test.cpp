@@ -1,8 +1,9 @@
-// Flags of `pss render` and `pss project` that change what is computed, checked end to end:
+// Flags of `pss render`, `pss project` and `pss volume` that change what is computed, end to end:
 // each must reach the computation (its effect shows) and be recorded as it took effect in
 // --stats.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <string>
@@ -12,6 +13,7 @@
 #include "support/cli.hpp"
 #include "support/output_readers.hpp"
 #include "support/shapes.hpp"
+#include "support/volumes.hpp"
 
 namespace pss {
 namespace {
@@ -59,7 +61,8 @@ TEST_F(RenderFlags, SecondaryModeChangesOnlyWhatReflectionsShow) {
       const bool hit = std::isfinite(full.at("Z", x, y));
       hits += hit;
       double d = 0;
-      for (const char* c : {"R", "G", "B"}) d = std::max(d, double(std::abs(full.at(c, x, y) - paper.at(c, x, y))));
+      for (const char* c : {"R", "G", "B"})
+        d = std::max(d, double(std::abs(full.at(c, x, y) - paper.at(c, x, y))));
       if (d == 0) continue;
       ++differ;
       EXPECT_TRUE(hit) << x << ',' << y;  // the background reflects nothing
@@ -71,8 +74,8 @@ TEST_F(RenderFlags, SecondaryModeChangesOnlyWhatReflectionsShow) {
 }
 
 // The MLS parameters of `pss render` reach the preparation and the search, as --stats records
-// them: --iterations caps the projections per candidate, --ball-spacing 0 keeps one local polynomial per sample that has neighbours (as the
-// paper), the default b/2 far fewer.
+// them: --iterations caps the projections per candidate; --ball-spacing 0 keeps one local
+// polynomial per sample that has neighbours (as the paper), the default b/2 far fewer.
 TEST_F(RenderFlags, SurfaceParametersTakeEffect) {
   test::SampleOptions o;
   o.count = 2000;
@@ -134,6 +137,25 @@ TEST_F(ProjectFlags, RhoAndIterationsTakeEffect) {
   const test::CliResult tiny = test::run_pss("project " + path("sphere.xyz") + " -o " + path("p.xyz") + " --rho 0.01");
   EXPECT_NE(tiny.exit_code, 0);
   EXPECT_NE(tiny.err.find("rho = 0.01 (too few neighbours 2000"), std::string::npos) << tiny.err;
+}
+
+using VolumeFlags = test::CliTest;
+
+// The projection's parameters of `pss volume`, in voxels (u = 1 here), reach the prepared
+// volume as --stats records it: h, b = k·h, the neighbourhood radius in h, α1, ε and θ1's k.
+TEST_F(VolumeFlags, ProjectionParametersTakeEffect) {
+  write("ball.raw", test::uint8_raw_bytes(test::sphere_distance(vec3(32.0f), 10.0f), ivec3(64)));
+  const test::CliResult r = test::run_pss("volume " + path("ball.raw") + " --dims 64x64x64 --type uint8 --iso 100"
+                                          " --size 16x16 -o " + path("v.png") + " --stats " + path("v.json") +
+                                          " --h 2.5 --k 0.6 --radius 1.6 --alpha 0.5 --error 0.2 --smoothing 2");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json v = read_json(path("v.json"))["volume"];
+  EXPECT_FLOAT_EQ(v["params"]["h"].get<float>(), 2.5f);
+  EXPECT_FLOAT_EQ(v["params"]["b"].get<float>(), 1.5f);
+  EXPECT_FLOAT_EQ(v["params"]["radius"].get<float>(), 4.0f);
+  EXPECT_FLOAT_EQ(v["params"]["alpha"].get<float>(), 0.5f);
+  EXPECT_FLOAT_EQ(v["params"]["epsilon"].get<float>(), 0.2f);
+  EXPECT_FLOAT_EQ(v["feature"]["smoothing"].get<float>(), 2.0f);
 }
 
 }  // namespace
