@@ -74,6 +74,33 @@ TEST(Bvh, NearestBallMatchesBruteForce) {
   EXPECT_GT(hits, 1000);  // the test exercises hits, not only misses
 }
 
+// Children are visited near first, so the first hit prunes what lies behind it: a ray along
+// a row of 2,000 overlapping balls tests the leaf of the first, where visiting far first
+// tests all of them. The count of leaf calls, not time, so the test is exact.
+TEST(Bvh, NearestChildrenFirstPruneTheRest) {
+  std::vector<vec3> centers;
+  for (int i = 0; i < 2000; ++i) centers.push_back(vec3(float(i), 0.0f, 0.0f));
+  const Bvh bvh(centers, 0.6f);
+  for (const float sign : {1.0f, -1.0f}) {
+    const Ray ray{vec3(sign > 0 ? -5.0f : 2004.0f, 0.01f, 0.0f), vec3(sign, 0.0f, 0.0f)};
+    int calls = 0, which = -1;
+    float best = kInfinity;
+    const BvhView view = bvh.view();
+    view.closest(ray, 0.0f, best, [&](int k, float& t_best) {
+      ++calls;
+      float t0, t1;
+      if (ray_ball(ray, centers[view.primitives[k]], 0.6f, t0, t1) && t0 < t_best) {
+        t_best = t0;
+        which = view.primitives[k];
+      }
+    });
+    EXPECT_EQ(which, sign > 0 ? 0 : 1999);
+    // One leaf, the first ball's (4 primitives a leaf by default): a far slot pushed before
+    // the hit was found is dropped when popped, and a near one is visited first.
+    EXPECT_LE(calls, 4) << "from the " << (sign > 0 ? "start" : "end");
+  }
+}
+
 TEST(Bvh, EmptyAndSinglePrimitiveAndCoincidentCentres) {
   const Bvh empty({}, 1.0f);
   int which;
