@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs what pss needs from Debian 12's archive (root or sudo). Quiet when all is there.
 # --optional adds what the optional targets need (scripts/test.sh): PCL for the peer benchmark
-# bench/peer_pcl_mls, so that a default build on a machine with PCL is built and tested too.
+# bench/peer_pcl_mls, so that a default build on a machine with PCL is built in CI too.
 set -euo pipefail
 packages=(g++ cmake ninja-build pkg-config libglm-dev libcli11-dev libstb-dev nlohmann-json3-dev
           libnanoflann-dev zlib1g-dev libnifti2-dev libopenexr-dev libgtest-dev libgmock-dev

@@ -8,7 +8,10 @@ cd "$(dirname "$0")/.."
 
 ./scripts/build.sh
 # The optional targets that this machine's packages switch on are part of the default build.
-[[ -x build/bench/peer_pcl_mls ]] || { echo "PCL is installed but bench/peer_pcl_mls was not built" >&2; exit 1; }
+built() { echo "$1 was not built, though its packages are installed" >&2; exit 1; }
+[[ -x build/bench/peer_pcl_mls ]] || built "the PCL peer benchmark (bench/peer_pcl_mls)"
+build/pss view --help >/dev/null 2>&1 || built "the viewer (pss view: GLFW, Dear ImGui)"
+compgen -G "build/python/pss/_pss*.so" >/dev/null || built "the Python module (build/python/pss)"
 ctest --test-dir build --output-on-failure -j"$(nproc)"
 # The GPU kernels' stack frames (a CUDA build's test gpu.kernel_stacks, which fails above the
 # budget): the table, in the log.

@@ -2,10 +2,12 @@
 // for every bad input one line naming the file and the problem, a non-zero exit, no output.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
 #include "pss/io/ply.hpp"
+#include "pss/points/spacing.hpp"
 #include "support/cli.hpp"
 #include "support/shapes.hpp"
 
@@ -77,6 +79,34 @@ TEST_F(CliProject, InfoReportsSizeAndSuggestedH) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("points          4000"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("suggested h"), std::string::npos);
+}
+
+// The spread of the spacing, as the library estimates it for the cloud as written: a sphere
+// whose upper half is sampled 8 times more densely.
+TEST_F(CliProject, InfoReportsTheSpreadOfTheSpacing) {
+  PointCloud cloud;
+  for (const vec3& p : test::sample(test::Sphere{}, {}).positions)
+    if (p.y < 0) cloud.positions.push_back(p);
+  test::SampleOptions dense;
+  dense.count = 32000;
+  for (const vec3& p : test::sample(test::Sphere{}, dense).positions)
+    if (p.y >= 0) cloud.positions.push_back(p);
+  write_ply(path("uneven.ply"), cloud);
+  const test::CliResult r = test::run_pss("info " + path("uneven.ply"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::size_t at = r.out.find("15th neighbour  min ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  double least = 0, median = 0, largest = 0, ratio = 0;
+  ASSERT_EQ(std::sscanf(r.out.c_str() + at, "15th neighbour  min %lf, median %lf, max %lf (max/min %lf)", &least, &median,
+                        &largest, &ratio),
+            4)
+      << r.out;
+  const SpacingEstimate e = estimate_spacing(read_ply(path("uneven.ply")).positions);
+  EXPECT_NEAR(least, e.min_kth, 1e-5 * e.min_kth);
+  EXPECT_NEAR(median, e.median_kth, 1e-5 * e.median_kth);
+  EXPECT_NEAR(largest, e.max_kth, 1e-5 * e.max_kth);
+  EXPECT_NEAR(ratio, e.max_kth / e.min_kth, 1e-2 * ratio);
+  EXPECT_GT(ratio, 2.0);  // √8 between the halves' spacings
 }
 
 // The bounds carry the file's digits, not a float's binary expansion (-0.09468989819).

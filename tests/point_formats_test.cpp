@@ -154,8 +154,8 @@ TEST_F(FormatTest, OffNormalsAndColoursAsTheKeywordSays) {
   EXPECT_EQ(n.normals, (std::vector<vec3>{{0, 0, 1}, {0, 1, 0}}));  // made unit
   EXPECT_FALSE(n.has_colors());
   // Colours: integers are 0..255, numbers with a point 0..1; an alpha may follow.
-  const PointCloud c = pss::read_off(write("c.off", "COFF\n2 0 0\n0 0 0 255 0 51\n1 0 0 0.2 1.0 0 1\n"));
-  EXPECT_EQ(c.colors, (std::vector<Rgb8>{{255, 0, 51}, {51, 255, 0}}));
+  const PointCloud c = pss::read_off(write("c.off", "COFF\n3 0 0\n0 0 0 255 0 51\n1 0 0 0.2 1.0 0 1\n2 0 0 1e0 1 2E-1\n"));
+  EXPECT_EQ(c.colors, (std::vector<Rgb8>{{255, 0, 51}, {51, 255, 0}, {255, 1, 51}}));
   EXPECT_FALSE(c.has_normals());
   const PointCloud both = pss::read_off(write("cn.off", "STCNOFF\n1 0 0\n1 2 3 1 0 0 10 20 30 0.5 0.5\n"));
   EXPECT_EQ(both.positions, std::vector<vec3>{vec3(1, 2, 3)});
@@ -187,6 +187,8 @@ TEST_F(FormatTest, OffErrors) {
       {"OFF\n3\n", "line 2: expected the counts 'vertices faces [edges]'"},
       {"OFF\n-1 0 0\n", "line 2: malformed count '-1'"},
       {"OFF\n1.5 0 0\n", "line 2: malformed count '1.5'"},
+      {"OFF\n1e30 0 0\n", "line 2: malformed count '1e30'"},
+      {"OFF\ninf 0 0\n", "line 2: malformed count 'inf'"},
       {"OFF\n0 0 0\n", "line 2: no vertices"},
       {"OFF\n3 0 0\n1 2 3\n4 5 6\n", "the header says 3 vertices, the file has 2"},
       {"OFF\n1000000000000 0 0\n1 2 3\n", "the header says 1000000000000 vertices, the file has 1"},

@@ -190,6 +190,29 @@ TEST(Projection, NeighbourIndicesProjectAsStoredNeighbourhoods) {
   }
 }
 
+// At the indices' capacity exactly, and one past it: 8 samples within ρ are kept, 9 walk the
+// grid again; both project as a buffer holding every sample does.
+TEST(Projection, NeighbourIndicesAtAndPastTheirCapacity) {
+  for (int inside : {8, 9}) {
+    PointCloud cloud;
+    for (int i = 0; i < inside; ++i) {
+      const float a = 2.4f * float(i);
+      cloud.positions.push_back(vec3(0.6f * std::cos(a), 0.6f * std::sin(a), 0.05f * std::sin(3.0f * a)));
+    }
+    for (int i = 0; i < 20; ++i) cloud.positions.push_back(vec3(3.0f + 0.3f * float(i), 0.0f, 0.0f));  // beyond ρ
+    const ProjectionParams params = ProjectionParams::from_h(0.5f, PlaneFitMethod::mls);
+    const UniformGrid grid(cloud.positions, params.rho);
+    const vec3 r(0.1f, -0.05f, 0.2f);
+    const Projection stored = project_to_pss<NeighbourhoodOf<4096>>(grid.view(), r, params, vec3(0.0f));
+    const Projection indices = project_to_pss<NeighbourIndicesOf<8>>(grid.view(), r, params, vec3(0.0f));
+    ASSERT_EQ(stored.neighbours, inside);
+    EXPECT_EQ(indices.neighbours, inside);
+    EXPECT_EQ(indices.status, stored.status) << inside;
+    EXPECT_LT(glm::length(indices.point - stored.point), 1e-5f) << inside;
+    EXPECT_LT(glm::length(indices.normal - stored.normal), 1e-4f) << inside;
+  }
+}
+
 TEST(Projection, TooFewNeighboursLeavesThePointAlone) {
   PointCloud cloud;
   cloud.positions = {vec3(0.0f), vec3(10.0f, 0.0f, 0.0f)};

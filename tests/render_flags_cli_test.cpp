@@ -1,6 +1,7 @@
-// Flags of `pss render`, `pss project` and `pss volume` that change what is computed, end to end:
-// each must reach the computation (its effect shows) and be recorded as it took effect in
-// --stats.
+// Flags of `pss render`, `pss project` and `pss volume` that change what is computed, end to end
+// through the built pss: each is recorded as it took effect in --stats, and where its effect
+// can be told from the outputs (--secondary, --ball-spacing, --iterations, --reflectivity,
+// project's --rho and --iterations) that effect must show.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -48,6 +48,9 @@ void print_cloud(const std::string& path) {
     std::printf("spacing         %g mean nearest-neighbour distance\n", s.mean_nearest);
     std::printf("suggested h     %g (median distance to the %dth nearest neighbour; rho = 2h = %g)\n", s.suggested_h,
                 s.k, 2 * s.suggested_h);
+    // Where the spacing varies, one h cannot serve the whole cloud: the spread says by how much.
+    std::printf("%dth neighbour  min %g, median %g, max %g (max/min %.3g)\n", s.k, s.min_kth, s.median_kth, s.max_kth,
+                s.max_kth / s.min_kth);
   }
 }
 

@@ -1,5 +1,6 @@
 #include "pss/io/off.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -80,7 +81,8 @@ PointCloud read_off(const std::filesystem::path& path) {
   std::uint64_t vertices = 0;
   for (std::size_t i = first; i < words.size(); ++i) {
     double v;
-    if (!io::parse_number(words[i], v) || !(v >= 0) || v != double(std::uint64_t(v)) || v > 9e15)
+    // Compared before any cast: a count beyond uint64 (1e30, inf) is refused, not converted.
+    if (!io::parse_number(words[i], v) || !(v >= 0) || v > 9e15 || v != std::floor(v))
       throw fail("malformed count " + quote(words[i], 40));
     if (i == first) vertices = std::uint64_t(v);
   }

@@ -29,7 +29,7 @@ void validate(const RayPssParams& p) {
   if (p.max_candidates < 1) throw Error("candidates per ray must be at least 1");
 }
 
-namespace points_detail {
+namespace {
 
 std::vector<LocalFit> fit_all(const UniformGrid& grid, const PointCloud& cloud, const RayPssParams& params,
                               Backend backend, Stats& stats) {
@@ -86,8 +86,7 @@ std::vector<vec3> linear_colors(const UniformGrid& grid, const PointCloud& cloud
   return colors;
 }
 
-}  // namespace points_detail
-using namespace points_detail;
+}  // namespace
 
 // The arrays of a PointSurfaceView in device memory, uploaded on the first GPU frame.
 struct PreparedCloud::DeviceCopy {

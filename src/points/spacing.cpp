@@ -54,6 +54,9 @@ SpacingEstimate estimate_spacing(std::span<const vec3> input, int k, std::size_t
   e.k = k;
   e.mean_nearest = nearest_sum / double(kth.size()) * frame.scale;
   e.median_kth = kth[kth.size() / 2] * frame.scale;
+  const auto [least, largest] = std::minmax_element(kth.begin(), kth.end());
+  e.min_kth = *least * frame.scale;
+  e.max_kth = *largest * frame.scale;
   e.suggested_h = e.median_kth;
   if (!(e.suggested_h > 0))
     throw Error("cannot estimate the sample spacing: the points coincide (pass --h explicitly)");

@@ -2,36 +2,46 @@
 """The GPU kernels' per-thread stack frames against a budget, from ptxas's reports.
 
 Every CUDA object of the library has its report beside it (OBJECT.ptxas, written by
-cmake/ptxas_report.sh). Prints a table of each kernel's stack frame and spills for every
-architecture built, and fails when a report is missing or unreadable, when no kernel was reported, or when
-any kernel's stack frame exceeds the budget: a thread's stack lives in local memory, so every
-byte of it is memory traffic and lost occupancy.
+cmake/ptxas_report.sh). Prints a table of each kernel's stack and spills for every
+architecture built, and fails when a report is missing or unreadable, when no kernel was
+reported, or when any kernel's stack exceeds the budget or has no bound ptxas can tell
+(recursion, calls through pointers): a thread's stack lives in local memory, so every byte
+of it is memory traffic and lost occupancy.
     kernel_stacks.py --budget 1024 OBJECT...
 """
 import argparse, os, re, subprocess, sys
 
-ENTRY = re.compile(r"Compiling entry function '([^']+)' for '(sm_\d+)'")
+ENTRY = re.compile(r"Compiling entry function '([^']+)' for '(sm_\w+)'")
+PROPERTIES = re.compile(r"Function properties for (\S+)")
 FRAME = re.compile(r"(\d+) bytes stack frame, (\d+) bytes spill stores, (\d+) bytes spill loads")
 # ptxas leaves the cumulative size out where it is 0.
 USED = re.compile(r"Used (\d+) registers(?:.*?(\d+) bytes cumulative stack size)?")
+# Recursion or calls through pointers: the stack has no bound ptxas can tell.
+UNBOUNDED = re.compile(r"Stack size for entry function '([^']+)' cannot be statically determined")
 
 
 def parse(text):
     """(mangled kernel, arch, registers, stack, spill stores, spill loads) for each entry function.
-    The stack is ptxas's cumulative size: the kernel's own frame and those of the calls it makes."""
-    rows, entry, frame = [], None, None
+    The stack is ptxas's cumulative size: the kernel's own frame and those of the calls it makes;
+    None where ptxas says it cannot be bounded."""
+    rows, entry, properties, frame = [], None, None, None
+    unbounded = set(UNBOUNDED.findall(text))
     for line in text.splitlines():
         m = ENTRY.search(line)
         if m:
-            entry, frame = m.groups(), None
+            entry, properties, frame = m.groups(), None, None
+            continue
+        m = PROPERTIES.search(line)
+        if m:
+            properties = m.group(1)
             continue
         m = FRAME.search(line)
-        if m and entry and frame is None:
+        if m and entry and properties == entry[0]:
             frame = tuple(map(int, m.groups()))
             continue
         m = USED.search(line)
         if m and entry and frame is not None:
-            stack = max(frame[0], int(m.group(2) or 0))
+            stack = None if entry[0] in unbounded else max(frame[0], int(m.group(2) or 0))
             rows.append((entry[0], entry[1], int(m.group(1)), stack, frame[1], frame[2]))
             entry = None
     return rows
@@ -44,7 +54,7 @@ def short_names(mangled):
     except OSError:
         return mangled
     names = []
-    for m, d in zip(mangled, out):
+    for m, d in zip(mangled, out + [''] * len(mangled)):
         k = re.match(r'void pss::cuda::for_each_index<(.*)>\(long, long, ', d)
         names.append(k.group(1) if k else d or m)
     return names
@@ -76,11 +86,14 @@ def main():
     width = max(len(n) for n in names)
     print(f'| {"kernel":<{width}} | arch   | registers | stack B | spill stores B | spill loads B |')
     print(f'|{"-" * (width + 2)}|--------|-----------|---------|----------------|---------------|')
-    over = 0
-    for name, (_, arch, regs, stack, stores, loads) in sorted(zip(names, rows), key=lambda x: (-x[1][3], x[0], x[1][1])):
-        flag = '  OVER' if stack > a.budget else ''
-        over += stack > a.budget
-        print(f'| {name:<{width}} | {arch:<6} | {regs:>9} | {stack:>7} | {stores:>14} | {loads:>13} |{flag}')
+    def over(stack):
+        return stack is None or stack > a.budget
+    for name, (_, arch, regs, stack, stores, loads) in sorted(
+            zip(names, rows), key=lambda x: (-(x[1][3] if x[1][3] is not None else 1 << 40), x[0], x[1][1])):
+        shown = 'unbounded' if stack is None else stack
+        print(f'| {name:<{width}} | {arch:<6} | {regs:>9} | {shown:>7} | {stores:>14} | {loads:>13} |'
+              f'{"  OVER" if over(stack) else ""}')
+    over = sum(over(r[3]) for r in rows)
     print(f'{len(rows)} kernels, {over} over the budget of {a.budget} bytes of stack per thread')
     return 1 if over else 0
 

@@ -116,7 +116,6 @@ struct NeighbourIndicesOf {
   }
 
   PSS_HOST_DEVICE bool overflowed() const { return count > Capacity; }
-  PSS_HOST_DEVICE int stored() const { return count < Capacity ? count : Capacity; }
 
   // f(p, w) for every sample again, in the same order.
   template <class F>

@@ -10,6 +10,9 @@ namespace pss {
 struct SpacingEstimate {
   double mean_nearest = 0;  // mean distance to the nearest other sample
   double median_kth = 0;    // median distance to the k-th nearest sample
+  // Its spread: the least and the largest, over the same samples. A cloud whose spacing
+  // varies (a scan's near and far parts, a locally refined mesh) shows it here.
+  double min_kth = 0, max_kth = 0;
   int k = 0;
   // h = median_kth with k = 15: a ball of radius ρ = 2h on a surface then holds about
   // 4·k = 60 samples, ~20 of them with weight above e⁻¹: enough to average noise down to

@@ -1,0 +1,77 @@
+"""kernel_stacks.py, the stack budget check of every CUDA build, on reports written here:
+it must fail for each way a kernel can be over the budget or unaccounted for, and pass
+otherwise. No GPU or nvcc needed (ctest: kernel_stacks_script)."""
+import pathlib, subprocess, sys
+
+SCRIPT = pathlib.Path(__file__).with_name('kernel_stacks.py')
+
+
+def entry(name, arch, frame, cumulative=None, registers=40):
+    used = f"ptxas info    : Used {registers} registers, used 0 barriers"
+    if cumulative:
+        used += f", {cumulative} bytes cumulative stack size"
+    return (f"ptxas info    : Compiling entry function '{name}' for '{arch}'\n"
+            f"ptxas info    : Function properties for {name}\n"
+            f"    {frame} bytes stack frame, 0 bytes spill stores, 0 bytes spill loads\n"
+            f"{used}\nptxas info    : Compile time = 1.0 ms\n")
+
+
+def callee(name, frame):
+    return (f"ptxas info    : Function properties for {name}\n"
+            f"    {frame} bytes stack frame, 8 bytes spill stores, 8 bytes spill loads\n")
+
+
+def run(tmp_path, reports, extra_objects=()):
+    objects = []
+    for i, text in enumerate(reports):
+        obj = tmp_path / f'k{i}.cu.o'
+        obj.write_bytes(b'')
+        (tmp_path / f'k{i}.cu.o.ptxas').write_text(text)
+        objects.append(str(obj))
+    r = subprocess.run([sys.executable, str(SCRIPT), '--budget', '1024', *objects, *extra_objects],
+                       capture_output=True, text=True)
+    return r.returncode, r.stdout
+
+
+def test_kernels_within_the_budget_pass_and_are_tabled(tmp_path):
+    rc, out = run(tmp_path, [entry('_Z1av', 'sm_90', 1024, 1024) + callee('_Z6helperv', 64) + entry('_Z1bv', 'sm_75', 0)])
+    assert rc == 0, out
+    assert '| _Z1av' in out or 'a()' in out
+    assert '2 kernels, 0 over the budget' in out
+
+
+def test_a_frame_over_the_budget_fails(tmp_path):
+    rc, out = run(tmp_path, [entry('_Z1av', 'sm_90', 1028, 1028)])
+    assert rc == 1 and '1 over the budget' in out and 'OVER' in out
+
+
+def test_the_calls_count_cumulative_beyond_the_own_frame(tmp_path):
+    rc, out = run(tmp_path, [entry('_Z1av', 'sm_90', 16, 4096)])
+    assert rc == 1 and '4096' in out
+
+
+def test_every_architecture_counts_suffixed_ones_too(tmp_path):
+    rc, out = run(tmp_path, [entry('_Z1av', 'sm_90', 16) + entry('_Z1av', 'sm_90a', 4000, 4000)])
+    assert rc == 1 and 'sm_90a' in out
+
+
+def test_a_stack_ptxas_cannot_bound_fails(tmp_path):
+    text = entry('_Z1av', 'sm_90', 16) + \
+        "ptxas warning : Stack size for entry function '_Z1av' cannot be statically determined\n"
+    rc, out = run(tmp_path, [text])
+    assert rc == 1 and 'unbounded' in out
+
+
+def test_a_kernel_without_its_frame_line_fails(tmp_path):
+    text = "ptxas info    : Compiling entry function '_Z1av' for 'sm_90'\n" + callee('_Z6helperv', 16) + \
+        "ptxas info    : Used 40 registers, used 0 barriers\n"
+    rc, out = run(tmp_path, [text])
+    assert rc == 1 and 'with a stack figure read' in out
+
+
+def test_a_missing_report_or_none_at_all_fails(tmp_path):
+    missing = tmp_path / 'absent.cu.o'
+    rc, out = run(tmp_path, [entry('_Z1av', 'sm_90', 16)], [str(missing)])
+    assert rc == 1 and 'no ptxas report' in out
+    rc, out = run(tmp_path, [''])
+    assert rc == 1 and 'no kernel' in out
