@@ -1,7 +1,8 @@
 """kernel_stacks.py, the stack budget check of every CUDA build, on reports written here:
 it must fail for each way a kernel can be over the budget or unaccounted for, and pass
-otherwise. No GPU or nvcc needed (ctest: kernel_stacks_script)."""
-import pathlib, subprocess, sys
+otherwise. No GPU or nvcc needed (ctest: kernel_stacks_script); the standard library's
+unittest, so that any python3 runs it."""
+import pathlib, subprocess, sys, tempfile, unittest
 
 SCRIPT = pathlib.Path(__file__).with_name('kernel_stacks.py')
 
@@ -33,45 +34,52 @@ def run(tmp_path, reports, extra_objects=()):
     return r.returncode, r.stdout
 
 
-def test_kernels_within_the_budget_pass_and_are_tabled(tmp_path):
-    rc, out = run(tmp_path, [entry('_Z1av', 'sm_90', 1024, 1024) + callee('_Z6helperv', 64) + entry('_Z1bv', 'sm_75', 0)])
-    assert rc == 0, out
-    assert '| _Z1av' in out or 'a()' in out
-    assert '2 kernels, 0 over the budget' in out
+class KernelStacks(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.TemporaryDirectory()
+        self.tmp = pathlib.Path(self.dir.name)
+
+    def tearDown(self):
+        self.dir.cleanup()
+
+    def test_kernels_within_the_budget_pass_and_are_tabled(self):
+        rc, out = run(self.tmp, [entry('_Z1av', 'sm_90', 1024, 1024) + callee('_Z6helperv', 64) +
+                                 entry('_Z1bv', 'sm_75', 0)])
+        self.assertTrue(rc == 0, out)
+        self.assertTrue('| _Z1av' in out or 'a()' in out, out)
+        self.assertTrue('2 kernels, 0 over the budget' in out, out)
+
+    def test_a_frame_over_the_budget_fails(self):
+        rc, out = run(self.tmp, [entry('_Z1av', 'sm_90', 1028, 1028)])
+        self.assertTrue(rc == 1 and '1 over the budget' in out and 'OVER' in out, out)
+
+    def test_the_calls_count_cumulative_beyond_the_own_frame(self):
+        rc, out = run(self.tmp, [entry('_Z1av', 'sm_90', 16, 4096)])
+        self.assertTrue(rc == 1 and '4096' in out, out)
+
+    def test_every_architecture_counts_suffixed_ones_too(self):
+        rc, out = run(self.tmp, [entry('_Z1av', 'sm_90', 16) + entry('_Z1av', 'sm_90a', 4000, 4000)])
+        self.assertTrue(rc == 1 and 'sm_90a' in out, out)
+
+    def test_a_stack_ptxas_cannot_bound_fails(self):
+        text = entry('_Z1av', 'sm_90', 16) + \
+            "ptxas warning : Stack size for entry function '_Z1av' cannot be statically determined\n"
+        rc, out = run(self.tmp, [text])
+        self.assertTrue(rc == 1 and 'unbounded' in out, out)
+
+    def test_a_kernel_without_its_frame_line_fails(self):
+        text = "ptxas info    : Compiling entry function '_Z1av' for 'sm_90'\n" + callee('_Z6helperv', 16) + \
+            "ptxas info    : Used 40 registers, used 0 barriers\n"
+        rc, out = run(self.tmp, [text])
+        self.assertTrue(rc == 1 and 'with a stack figure read' in out, out)
+
+    def test_a_missing_report_or_none_at_all_fails(self):
+        missing = self.tmp / 'absent.cu.o'
+        rc, out = run(self.tmp, [entry('_Z1av', 'sm_90', 16)], [str(missing)])
+        self.assertTrue(rc == 1 and 'no ptxas report' in out, out)
+        rc, out = run(self.tmp, [''])
+        self.assertTrue(rc == 1 and 'no kernel' in out, out)
 
 
-def test_a_frame_over_the_budget_fails(tmp_path):
-    rc, out = run(tmp_path, [entry('_Z1av', 'sm_90', 1028, 1028)])
-    assert rc == 1 and '1 over the budget' in out and 'OVER' in out
-
-
-def test_the_calls_count_cumulative_beyond_the_own_frame(tmp_path):
-    rc, out = run(tmp_path, [entry('_Z1av', 'sm_90', 16, 4096)])
-    assert rc == 1 and '4096' in out
-
-
-def test_every_architecture_counts_suffixed_ones_too(tmp_path):
-    rc, out = run(tmp_path, [entry('_Z1av', 'sm_90', 16) + entry('_Z1av', 'sm_90a', 4000, 4000)])
-    assert rc == 1 and 'sm_90a' in out
-
-
-def test_a_stack_ptxas_cannot_bound_fails(tmp_path):
-    text = entry('_Z1av', 'sm_90', 16) + \
-        "ptxas warning : Stack size for entry function '_Z1av' cannot be statically determined\n"
-    rc, out = run(tmp_path, [text])
-    assert rc == 1 and 'unbounded' in out
-
-
-def test_a_kernel_without_its_frame_line_fails(tmp_path):
-    text = "ptxas info    : Compiling entry function '_Z1av' for 'sm_90'\n" + callee('_Z6helperv', 16) + \
-        "ptxas info    : Used 40 registers, used 0 barriers\n"
-    rc, out = run(tmp_path, [text])
-    assert rc == 1 and 'with a stack figure read' in out
-
-
-def test_a_missing_report_or_none_at_all_fails(tmp_path):
-    missing = tmp_path / 'absent.cu.o'
-    rc, out = run(tmp_path, [entry('_Z1av', 'sm_90', 16)], [str(missing)])
-    assert rc == 1 and 'no ptxas report' in out
-    rc, out = run(tmp_path, [''])
-    assert rc == 1 and 'no kernel' in out
+if __name__ == '__main__':
+    unittest.main()
