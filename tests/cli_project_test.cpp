@@ -8,6 +8,7 @@
 
 #include "pss/io/ply.hpp"
 #include "pss/points/spacing.hpp"
+#include "pss/points/support.hpp"
 #include "support/cli.hpp"
 #include "support/shapes.hpp"
 
@@ -107,6 +108,17 @@ TEST_F(CliProject, InfoReportsTheSpreadOfTheSpacing) {
   EXPECT_NEAR(largest, e.max_kth, 1e-5 * e.max_kth);
   EXPECT_NEAR(ratio, e.max_kth / e.min_kth, 1e-2 * ratio);
   EXPECT_GT(ratio, 2.0);  // √8 between the halves' spacings
+  // The adaptive widths render and project use: those of support_widths, h to wider.
+  const std::size_t w = r.out.find("adaptive h_i    from ");
+  ASSERT_NE(w, std::string::npos) << r.out;
+  double narrowest = 0, widest = 0;
+  ASSERT_EQ(std::sscanf(r.out.c_str() + w, "adaptive h_i    from %lf to %lf", &narrowest, &widest), 2) << r.out;
+  ProjectionParams params = ProjectionParams::from_h(float(e.suggested_h));
+  params.support = Support::adaptive;
+  const SupportWidths widths = support_widths(read_ply(path("uneven.ply")).positions, params);
+  EXPECT_NEAR(narrowest, widths.least, 1e-5 * widths.least);
+  EXPECT_NEAR(widest, widths.largest, 1e-5 * widths.largest);
+  EXPECT_GT(widest, 1.5 * narrowest);
 }
 
 // The bounds carry the file's digits, not a float's binary expansion (-0.09468989819).

@@ -2,6 +2,7 @@
 // brute force, on the two faces of a thin plate, and in the defaults of the renderer.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -20,14 +21,17 @@ float off_graph(const LocalPolynomial& by, vec3 p) {
 bool same_sample(const LocalPolynomial& a, const LocalPolynomial& b) { return a.origin == b.origin; }
 
 // Every local polynomial of a noisy torus (curved, uneven: some samples lie off their
-// neighbours' graphs).
+// neighbours' graphs), sampled 10:1 unevenly with adaptive support: each ball's radius b_k
+// is its own.
 std::vector<LocalPolynomial> torus_locals(float& h) {
   test::SampleOptions o;
   o.count = 3000;
   o.noise = 0.01f;
+  o.nonuniform = true;
   const PointCloud cloud = test::sample(test::Torus{}, o);
   h = test::suggested_h(cloud);
   RayPssParams params = RayPssParams::from_h(h);
+  params.projection.support = Support::adaptive;
   params.ball_spacing = 0;
   Stats stats;
   const PreparedCloud prepared(cloud, params, Backend::cpu, stats);
@@ -37,7 +41,10 @@ std::vector<LocalPolynomial> torus_locals(float& h) {
 TEST(Thinning, EveryDroppedSampleLiesOnAKeptNeighboursGraphAndNoKeptOneOnAnothers) {
   float h = 0;
   const std::vector<LocalPolynomial> all = torus_locals(h);
-  const float spacing = 0.5f * h, tolerance = kThinningTolerance * h;
+  // Per unit of each kept ball's radius b_k, which varies over the torus by some 2:1.
+  const float spacing = 0.5f, tolerance = kThinningTolerance;
+  const auto [least, largest] = std::minmax_element(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.radius < b.radius; });
+  ASSERT_GT(largest->radius, 1.3f * least->radius);
   const std::vector<LocalPolynomial> kept = thin_local_polynomials(all, spacing, tolerance);
   ASSERT_GT(kept.size(), 0u);
   EXPECT_LT(kept.size(), all.size() * 3 / 4);
@@ -46,21 +53,22 @@ TEST(Thinning, EveryDroppedSampleLiesOnAKeptNeighboursGraphAndNoKeptOneOnAnother
     bool is_kept = false, represented = false;
     for (const LocalPolynomial& k : kept) {
       if (same_sample(j, k)) is_kept = true;
-      else if (glm::length(j.origin - k.origin) <= spacing && off_graph(k, j.origin) <= tolerance) represented = true;
+      else if (glm::length(j.origin - k.origin) <= spacing * k.radius && off_graph(k, j.origin) <= tolerance * k.radius)
+        represented = true;
     }
     if (is_kept) continue;
     ++dropped;
     EXPECT_TRUE(represented) << "a dropped sample at " << j.origin.x << ", " << j.origin.y << ", " << j.origin.z;
   }
   EXPECT_EQ(dropped + kept.size(), all.size());
-  // Of two kept samples closer than the spacing, the later one lies off the earlier one's
-  // graph, so at least one lies off the other's.
+  // Of two kept samples within the earlier one's spacing, the later one lies off the earlier
+  // one's graph.
   int close_pairs = 0;
   for (std::size_t a = 0; a < kept.size(); ++a)
     for (std::size_t b = a + 1; b < kept.size(); ++b) {
-      if (!(glm::length(kept[a].origin - kept[b].origin) <= spacing)) continue;
+      if (!(glm::length(kept[a].origin - kept[b].origin) <= spacing * kept[a].radius)) continue;
       ++close_pairs;
-      EXPECT_TRUE(off_graph(kept[a], kept[b].origin) > tolerance || off_graph(kept[b], kept[a].origin) > tolerance);
+      EXPECT_GT(off_graph(kept[a], kept[b].origin), tolerance * kept[a].radius);
     }
   EXPECT_GT(close_pairs, 0);  // the noise keeps some neighbours: the tolerance is exercised
 }
@@ -68,7 +76,7 @@ TEST(Thinning, EveryDroppedSampleLiesOnAKeptNeighboursGraphAndNoKeptOneOnAnother
 TEST(Thinning, ZeroSpacingKeepsEverySampleInOrder) {
   float h = 0;
   const std::vector<LocalPolynomial> all = torus_locals(h);
-  const std::vector<LocalPolynomial> kept = thin_local_polynomials(all, 0.0f, kThinningTolerance * h);
+  const std::vector<LocalPolynomial> kept = thin_local_polynomials(all, 0.0f, kThinningTolerance);
   ASSERT_EQ(kept.size(), all.size());
   for (std::size_t i = 0; i < all.size(); ++i) EXPECT_TRUE(same_sample(kept[i], all[i]));
 }
@@ -84,13 +92,14 @@ TEST(Thinning, KeepsBothFacesOfAThinPlate) {
         LocalPolynomial l;
         l.origin = vec3(0.4f * h * float(i), 0.4f * h * float(j), 0.3f * h * float(f));
         l.normal = vec3(0, 0, f == 0 ? 1.0f : -1.0f);
+        l.radius = h;
         face[f].push_back(l);
         both.push_back(l);
       }
-  const std::size_t alone = thin_local_polynomials(face[0], spacing, kThinningTolerance * h).size();
+  const std::size_t alone = thin_local_polynomials(face[0], spacing / h, kThinningTolerance).size();
   ASSERT_LE(alone, face[0].size() / 2);  // a flat face thins
   std::size_t on[2] = {0, 0};
-  for (const LocalPolynomial& k : thin_local_polynomials(both, spacing, kThinningTolerance * h)) ++on[k.origin.z > 0];
+  for (const LocalPolynomial& k : thin_local_polynomials(both, spacing / h, kThinningTolerance)) ++on[k.origin.z > 0];
   EXPECT_EQ(on[0], alone);
   EXPECT_EQ(on[1], alone);
 }

@@ -130,6 +130,28 @@ TEST_F(Viewer, ScreenshotsAreTheRenderedImagesAtTheSameCamera) {
   EXPECT_EQ(b["forward"], a["forward"]);
 }
 
+// The panel's support: adaptive by default, as pss render's; global when set, as
+// --support global's. A sphere with its half x < 0 sampled 64 times sparser tells them apart.
+TEST_F(Viewer, SupportIsTheRenderedOne) {
+  test::SampleOptions o;
+  o.count = 20000;
+  o.step = 64;
+  {
+    std::ofstream xyz(path("step.xyz"));
+    xyz.precision(9);
+    for (const vec3& p : test::sample(test::Sphere{}, o).positions) xyz << p.x << ' ' << p.y << ' ' << p.z << '\n';
+  }
+  const test::CliResult r =
+      view(path("step.xyz") + " --size 96x96", "view 180 0\nscreenshot a\nset support global\nscreenshot g\n");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string render = "render " + path("step.xyz") + " --size 96x96 --view 180,0 -o ";
+  ASSERT_EQ(test::run_pss(render + path("ra.png")).exit_code, 0);
+  ASSERT_EQ(test::run_pss(render + path("rg.png") + " --support global").exit_code, 0);
+  EXPECT_EQ(read(path("a.png")), read(path("ra.png")));
+  EXPECT_EQ(read(path("g.png")), read(path("rg.png")));
+  EXPECT_NE(read(path("a.png")), read(path("g.png")));
+}
+
 TEST_F(Viewer, VolumeScreenshotsAreThoseOfPssVolume) {
   write("ball.raw", test::uint8_raw_bytes(test::sphere_distance(vec3(15.0f, 16.0f, 14.0f), 8.0f), ivec3(32)));
   const std::string volume = path("ball.raw") + " --dims 32x32x32 --type uint8";

@@ -5,7 +5,9 @@
 #include <string>
 
 #include "pss/points/cloud.hpp"
+#include "pss/points/projection.hpp"
 #include "pss/points/spacing.hpp"
+#include "pss/points/support.hpp"
 
 namespace pss::app {
 
@@ -22,6 +24,13 @@ void add_progress_option(CLI::App& command);
 // estimate_spacing of a cloud read from `file`, its errors ("the points coincide") naming
 // the file.
 SpacingEstimate estimate_spacing_of(const PointCloud& cloud, const std::string& file);
+
+// --support adaptive|global (points/support.hpp); `choice` is empty when the flag is not
+// given: adaptive then, unless --h fixed one width for every sample.
+void add_support_option(CLI::App& command, std::string& choice);
+Support support_of(const std::string& choice, bool h_given);
+// "global support", or "adaptive support, h_i from X to Y", for the summary line.
+std::string support_text(Support support, const SupportWidths& widths);
 
 // What a chosen subcommand does once CLI11 has parsed and validated its options: run, or
 // only check the options that need more than one flag's validator (the --iso/--gradient

@@ -1,5 +1,7 @@
 #include "commands.hpp"
 
+#include <cstdio>
+
 #include "numbers.hpp"
 #include "pss/backend/backend.hpp"
 #include "pss/core/error.hpp"
@@ -38,6 +40,27 @@ SpacingEstimate estimate_spacing_of(const PointCloud& cloud, const std::string& 
   } catch (const Error& e) {
     throw file_error(file, e.what());
   }
+}
+
+void add_support_option(CLI::App& command, std::string& choice) {
+  command
+      .add_option("--support", choice,
+                  "each sample's Gaussian width h_i: adaptive (h, or wider where the distance to the 15th nearest "
+                  "neighbour is over 4/3 of its median) or global (h for every sample, as the paper); default adaptive, "
+                  "global when --h is given")
+      ->check(CLI::IsMember({"adaptive", "global"}));
+}
+
+Support support_of(const std::string& choice, bool h_given) {
+  if (choice.empty()) return h_given ? Support::global : Support::adaptive;
+  return choice == "global" ? Support::global : Support::adaptive;
+}
+
+std::string support_text(Support support, const SupportWidths& widths) {
+  if (support == Support::global) return "global support";
+  char text[120];
+  std::snprintf(text, sizeof text, "adaptive support, h_i from %g to %g", double(widths.least), double(widths.largest));
+  return text;
 }
 
 }  // namespace pss::app

@@ -11,6 +11,7 @@
 #include "pss/io/point_cloud_file.hpp"
 #include "pss/io/volume_file.hpp"
 #include "pss/points/spacing.hpp"
+#include "pss/points/support.hpp"
 #include "pss/volume/histogram.hpp"
 #include "raw_volume_options.hpp"
 
@@ -51,6 +52,12 @@ void print_cloud(const std::string& path) {
     // Where the spacing varies, one h cannot serve the whole cloud: the spread says by how much.
     std::printf("%dth neighbour  min %g, median %g, max %g (max/min %.3g)\n", s.k, s.min_kth, s.median_kth, s.max_kth,
                 s.max_kth / s.min_kth);
+    // What render, project and view use without --h (points/support.hpp).
+    ProjectionParams params = ProjectionParams::from_h(float(s.suggested_h));
+    params.support = Support::adaptive;
+    const SupportWidths w = support_widths(cloud.positions, params);
+    std::printf("adaptive h_i    from %g to %g (wider where the spacing is; --support global uses h everywhere)\n",
+                double(w.least), double(w.largest));
   }
 }
 

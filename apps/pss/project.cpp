@@ -22,6 +22,7 @@ struct ProjectOptions {
   std::string input, output;
   float h = 0, rho = 0;
   std::string method = "mls";
+  std::string support;  // empty: support_of's default
   int iterations = 4;
   ComputeOptions compute;
 };
@@ -45,6 +46,7 @@ void run_project(const ProjectOptions& o) {
   ProjectionParams params =
       ProjectionParams::from_h(h, o.method == "wls" ? PlaneFitMethod::wls : PlaneFitMethod::mls);
   if (o.rho != 0) params.rho = o.rho;
+  params.support = support_of(o.support, o.h != 0);
   params.max_mls_iterations = o.iterations;
 
   const CloudProjection result = project_cloud(cloud, params, backend, stats);
@@ -68,9 +70,10 @@ void run_project(const ProjectOptions& o) {
   std::printf("projected %zu points onto the PSS in %.3f s (projection %.3f s, %.0f points/s, %s backend, %d threads)\n",
               cloud.size(), total, projection_s, double(cloud.size()) / projection_s, backend_name(backend),
               cpu_threads());
-  std::printf("h = %g, rho = %g, plane fit %s; converged %lld, not converged %lld, too few neighbours %lld, "
-              "degenerate normal %lld\n", params.h, params.rho, o.method.c_str(), (long long)c.converged,
-              (long long)c.not_converged, (long long)c.too_few_neighbours, (long long)c.degenerate_normal);
+  std::printf("h = %g (%s), rho = %g, plane fit %s; converged %lld, not converged %lld, too few neighbours %lld, "
+              "degenerate normal %lld\n", params.h, support_text(params.support, result.widths).c_str(), params.rho,
+              o.method.c_str(), (long long)c.converged, (long long)c.not_converged, (long long)c.too_few_neighbours,
+              (long long)c.degenerate_normal);
 
   if (!o.compute.stats_path.empty()) {
     auto& v = stats.values();
@@ -82,6 +85,8 @@ void run_project(const ProjectOptions& o) {
     v["backend"] = backend_name(backend);
     v["threads"] = cpu_threads();
     v["params"] = {{"h", params.h}, {"rho", params.rho}, {"plane_fit", o.method},
+                   {"support", params.support == Support::global ? "global" : "adaptive"},
+                   {"h_least", result.widths.least}, {"h_largest", result.widths.largest},
                    {"max_mls_iterations", params.max_mls_iterations}, {"t_tolerance", params.t_tolerance}};
     v["status"] = {{"converged", c.converged}, {"not_converged", c.not_converged},
                    {"too_few_neighbours", c.too_few_neighbours}, {"degenerate_normal", c.degenerate_normal}};
@@ -111,7 +116,8 @@ void add_project_command(CLI::App& app, Action action) {
       ->check(points_output());
   command->add_option("--h", o->h, "Gaussian width h (default: estimated from the spacing, see pss info)")
       ->check(finite_positive());
-  command->add_option("--rho", o->rho, "range-query radius (default 2h)")->check(finite_positive());
+  command->add_option("--rho", o->rho, "range-query radius (default 2h; with adaptive support, at h)")->check(finite_positive());
+  add_support_option(*command, o->support);
   command->add_option("--method", o->method, "plane fit: mls (Eq. 2, default) or wls (Eq. 1)")
       ->check(CLI::IsMember({"mls", "wls"}))
       ->capture_default_str();

@@ -23,6 +23,7 @@ struct RenderCloudOptions {
   float ball_spacing = -1;  // -1: b/2
   std::string iterations = "2";
   std::string secondary = "full";
+  std::string support;  // empty: support_of's default
   bool color = false;  // shade with the samples' colours
   RenderOptions render;
 };
@@ -54,6 +55,7 @@ void run_render(const RenderCloudOptions& o) {
   }
   RayPssParams params = RayPssParams::from_h(h);
   if (o.rho != 0) params.projection.rho = o.rho;
+  params.projection.support = support_of(o.support, o.h != 0);
   if (o.b != 0) params.ball_radius = o.b;
   params.ball_spacing = o.ball_spacing >= 0 ? o.ball_spacing : 0.5f * params.ball_radius;
   if (o.epsilon != 0) params.epsilon = o.epsilon;
@@ -76,9 +78,9 @@ void run_render(const RenderCloudOptions& o) {
               "BVH %.3f s (%s backend, %d threads)\n", o.input.c_str(), cloud.size(), camera.width, camera.height,
               seconds, frame_s, 1.0 / frame_s, stats.time("preprocess"), stats.time("acceleration structure"),
               backend_name(backend), cpu_threads());
-  std::printf("%lld rays, %lld hits, %.2f projections per hit, %lld secondary rays; h = %g, b = %g, eps = %g\n",
+  std::printf("%lld rays, %lld hits, %.2f projections per hit, %lld secondary rays; h = %g (%s), b = %g, eps = %g\n",
               (long long)s.rays, (long long)s.hits, s.mean_iterations, (long long)s.secondary_rays, params.projection.h,
-              params.ball_radius, params.epsilon);
+              support_text(params.projection.support, prepared.widths()).c_str(), params.ball_radius, params.epsilon);
 
   if (!o.render.compute.stats_path.empty()) {
     record_render_stats(stats, o.render, frame, settings, backend, "render", o.input);
@@ -87,6 +89,9 @@ void run_render(const RenderCloudOptions& o) {
     v["samples_left_out"] = prepared.left_out();
     v["local_polynomials"] = prepared.locals().size();
     v["params"] = {{"h", params.projection.h}, {"rho", params.projection.rho}, {"b", params.ball_radius},
+                   {"support", params.projection.support == Support::global ? "global" : "adaptive"},
+                   {"h_least", prepared.widths().least}, {"h_largest", prepared.widths().largest},
+                   {"support_levels", prepared.support_levels()},
                    {"ball_spacing", params.ball_spacing},
                    {"epsilon", params.epsilon}, {"iterations", o.iterations},
                    {"max_candidates", params.max_candidates}, {"secondary", o.secondary},
@@ -119,7 +124,9 @@ void add_render_command(CLI::App& app, Action action) {
   command->add_option("file", o->input, "point cloud (.ply, .xyz/.txt/.pts, .obj, .stl, .pcd, .las)")->required();
   command->add_option("--h", o->h, "Gaussian width h (default: estimated from the spacing, see pss info)")
       ->check(finite_positive());
-  command->add_option("--rho", o->rho, "range-query radius of the projection (default 2h)")->check(finite_positive());
+  command->add_option("--rho", o->rho, "range-query radius of the projection (default 2h; with adaptive support, at h)")
+      ->check(finite_positive());
+  add_support_option(*command, o->support);
   command->add_option("--b", o->b, "ball radius b around each sample's local polynomial (default h)")
       ->check(finite_positive());
   command->add_option("--ball-spacing", o->ball_spacing,

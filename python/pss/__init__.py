@@ -104,11 +104,14 @@ def estimate_h(points):
     return _pss.estimate_h(points)
 
 
-def project(points, h=None, *, normals=None, method="mls", rho=None, iterations=4, backend="auto"):
+def project(points, h=None, *, normals=None, method="mls", rho=None, support=None, iterations=4, backend="auto"):
     """Move every point onto the point set surface, as `pss project`.
 
     points: (N, 3). h: the Gaussian width (default: estimate_h(points)); rho: the
-    neighbourhood radius (default 2h); method: 'mls' (the paper's Eq. 2) or 'wls' (Eq. 1);
+    neighbourhood radius (default 2h); support: 'adaptive' (each sample's width h, or wider
+    where the distance to its 15th nearest neighbour is over 4/3 of the median; lengths given
+    at h scale with it) or 'global' (h for every sample, as the paper); default adaptive,
+    global when h is given; method: 'mls' (the paper's Eq. 2) or 'wls' (Eq. 1);
     iterations: the most MLS alternations; normals: (N, 3) hints of the side each point's
     normal faces (without them the normals are oriented consistently over the cloud).
 
@@ -117,18 +120,19 @@ def project(points, h=None, *, normals=None, method="mls", rho=None, iterations=
     int32 status: 0 converged, 1 not converged within `iterations`, 2 too few neighbours
     within rho (point and normal unchanged), 3 degenerate normal (neighbours on a line).
     """
-    return _pss.project(points, {"normals": normals, "h": h, "method": method, "rho": rho,
+    return _pss.project(points, {"normals": normals, "h": h, "method": method, "rho": rho, "support": support,
                                  "iterations": iterations, "backend": backend})
 
 
-def render(points, h=None, *, normals=None, colors=None, rho=None, b=None, epsilon=None, ball_spacing=None, iterations=2,
-           secondary="full", size=None, view=None, fov=None, look_at=None, up=None, distance=None,
+def render(points, h=None, *, normals=None, colors=None, rho=None, support=None, b=None, epsilon=None, ball_spacing=None,
+           iterations=2, secondary="full", size=None, view=None, fov=None, look_at=None, up=None, distance=None,
            zoom=None, roll=None, camera=None, shadows=False, reflections=False, reflectivity=None,
            transparent=False, backend="auto", full_output=False):
     """Ray trace the point set surface of (N, 3) points (the paper's section 5.2), as `pss render`.
 
-    Surface: h (default: estimated from the spacing), rho (default 2h), b: the radius of the
-    balls around the local polynomials (default h), epsilon: a hit's tolerance (default 1e-3 h),
+    Surface: h (default: estimated from the spacing), rho (default 2h), support ('adaptive' or
+    'global', as for project), b: the radius of the balls around the local polynomials
+    (default h), epsilon: a hit's tolerance (default 1e-3 h),
     ball_spacing (default b/2; 0 keeps one polynomial per sample, as the paper),
     iterations: projections per ray candidate, 1 to 32 or 'auto' (default 2, the paper's),
     secondary: 'full' or 'paper' (the paper's rough secondary hits); normals: optional hints.
@@ -137,8 +141,8 @@ def render(points, h=None, *, normals=None, colors=None, rho=None, b=None, epsil
     """
     options = _frame_options(size, view, fov, look_at, up, distance, zoom, roll, camera, shadows, reflections,
                              reflectivity, transparent, backend, full_output)
-    options.update({"normals": normals, "colors": colors, "h": h, "rho": rho, "b": b, "epsilon": epsilon,
-                    "ball_spacing": ball_spacing, "iterations": iterations, "secondary": secondary})
+    options.update({"normals": normals, "colors": colors, "h": h, "rho": rho, "support": support, "b": b,
+                    "epsilon": epsilon, "ball_spacing": ball_spacing, "iterations": iterations, "secondary": secondary})
     return _pss.render(points, options)
 
 

@@ -44,6 +44,12 @@ float suggested_h(const std::vector<vec3>& p) {
   return h_from_spacing(p, [](const auto& q) { return estimate_spacing(q).suggested_h; });
 }
 
+// support=None: adaptive, unless h fixes one width for every sample (as the CLI's --support).
+Support support_of(const py::dict& o, bool h_given) {
+  if (!is_given(o, "support")) return h_given ? Support::global : Support::adaptive;
+  return choice(o, "support", {"adaptive", "global"}) == "global" ? Support::global : Support::adaptive;
+}
+
 float estimate_h(const py::handle& points) {
   const PointCloud cloud = cloud_of_rows(points, "points");
   py::gil_scoped_release release;
@@ -55,12 +61,14 @@ py::tuple project(const py::handle& points, const py::dict& o) {
   const std::string method = choice(o, "method", {"mls", "wls"});
   const std::optional<float> h = positive_or_none(o, "h"), rho = positive_or_none(o, "rho");
   const int iterations = integer_in(o, "iterations", 1, 100);
+  const Support support = support_of(o, h.has_value());
   const Backend backend = backend_of(o);
   CloudProjection result = run_interruptibly([&] {
     Stats stats;
     ProjectionParams params = ProjectionParams::from_h(
         h ? *h : suggested_h(cloud.positions), method == "wls" ? PlaneFitMethod::wls : PlaneFitMethod::mls);
     if (rho) params.rho = *rho;
+    params.support = support;
     params.max_mls_iterations = iterations;
     CloudProjection projection = project_cloud(cloud, params, backend, stats);
     check_some_projected(projection, params);
@@ -94,6 +102,7 @@ py::object render(const py::handle& points, const py::dict& o) {
   const std::optional<float> spacing = is_given(o, "ball_spacing")
                                            ? std::optional<float>(float(number_in(o, "ball_spacing", 0, 1e30)))
                                            : std::nullopt;
+  const Support support = support_of(o, h.has_value());
   const Backend backend = backend_of(o);
   const FrameRequest request = frame_request(o);
   const Camera camera = make_camera(request, cloud.bounds(), cloud.origin);
@@ -104,6 +113,7 @@ py::object render(const py::handle& points, const py::dict& o) {
     RayPssParams params = RayPssParams::from_h(
         h ? *h : h_from_spacing(cloud.positions, [](const auto& q) { return default_h(q); }));
     if (rho) params.projection.rho = *rho;
+    params.projection.support = support;
     if (b) params.ball_radius = *b;
     params.ball_spacing = spacing ? *spacing : 0.5f * params.ball_radius;
     if (epsilon) params.epsilon = *epsilon;
@@ -114,6 +124,8 @@ py::object render(const py::handle& points, const py::dict& o) {
                                  cloud.has_colors() ? SurfaceColor::samples : SurfaceColor::albedo);
     stats.values()["local_polynomials"] = prepared.locals().size();
     stats.values()["params"] = {{"h", params.projection.h}, {"rho", params.projection.rho}, {"b", params.ball_radius},
+                                {"support", support == Support::global ? "global" : "adaptive"},
+                                {"h_least", prepared.widths().least}, {"h_largest", prepared.widths().largest},
                                 {"ball_spacing", params.ball_spacing}, {"epsilon", params.epsilon},
                                 {"iterations", params.max_iterations}};
     return render_cloud(prepared, camera, settings, backend, stats);

@@ -6,13 +6,13 @@
 #include <vector>
 
 #include "pss/core/progress.hpp"
-#include "pss/spatial/uniform_grid.hpp"
+#include "pss/spatial/support_grid.hpp"
 
 namespace pss {
 
-void orient_normals_consistently(std::span<const vec3> points, std::span<vec3> normals, float radius) {
-  const UniformGrid grid(points, radius);
-  const GridView view = grid.view();
+void orient_normals_consistently(std::span<const vec3> points, std::span<vec3> normals, std::span<const float> radius) {
+  const SupportGrid grid(points, radius, 1.0f);
+  const SupportGridView view = grid.view();
   const std::span<const int> original = grid.original_index();
 
   std::vector<int> by_height(points.size());
@@ -43,7 +43,7 @@ void orient_normals_consistently(std::span<const vec3> points, std::span<vec3> n
       if (++oriented % 4096 == 0) progress.advance(4096);
       // Prim's order: the edge that reaches i first is its tree edge to the parent.
       if (e.parent >= 0 && glm::dot(normals[e.parent], normals[i]) < 0) normals[i] = -normals[i];
-      view.for_each_in_radius(points[i], radius, [&](vec3, float, int sorted) {
+      view.for_each_covering(points[i], [&](vec3, float, int sorted) {
         const int j = original[sorted];
         if (!done[j]) frontier.push({1.0f - std::abs(glm::dot(normals[i], normals[j])), j, i});
       });

@@ -8,6 +8,7 @@
 #include "pss/backend/parallel_for.hpp"
 #include "pss/core/error.hpp"
 #include "pss/points/orient_normals.hpp"
+#include "pss/points/support.hpp"
 #include "pss/spatial/grid_mirror.hpp"
 #include "unit_frame.hpp"
 
@@ -60,9 +61,14 @@ CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& p
   unit_params.rho = float(double(params.rho) / frame.scale);
   unit_params.t_tolerance = float(double(params.t_tolerance) / frame.scale);
   std::vector<ProjectedPoint> projected;
+  SupportWidths widths;
   {
+    {
+      ScopedPhase phase(stats, "support widths", params.support == Support::global);  // else its Progress shows it
+      widths = support_widths(positions, unit_params);
+    }
     ScopedPhase phase(stats, "spatial index");
-    const UniformGrid grid(positions, unit_params.rho);
+    const SupportGrid grid(positions, widths.h, unit_params.rho / unit_params.h);
     phase.stop();
     // Without input normals the eigenvector's sign is arbitrary; orientation comes after.
     const std::vector<vec3> hints = input.has_normals() ? input.normals : std::vector<vec3>(n, vec3(0.0f));
@@ -76,6 +82,9 @@ CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& p
   }
 
   CloudProjection out;
+  out.widths.least = float(widths.least * frame.scale);
+  out.widths.median = float(widths.median * frame.scale);
+  out.widths.largest = float(widths.largest * frame.scale);
   out.cloud.positions.resize(n);
   out.cloud.normals.resize(n);
   out.status.resize(n);
@@ -96,7 +105,9 @@ CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& p
   }
   if (!input.has_normals()) {
     ScopedPhase phase(stats, "orient normals", false);  // its Progress shows it
-    orient_normals_consistently(out.cloud.positions, out.cloud.normals, unit_params.h);
+    std::vector<float> support(n);  // ρ_i: the orientation links the samples of each N(p_i)
+    for (std::size_t i = 0; i < n; ++i) support[i] = widths.h[i] * (unit_params.rho / unit_params.h);
+    orient_normals_consistently(out.cloud.positions, out.cloud.normals, support);
   }
   for (vec3& p : out.cloud.positions) p = frame.from_unit(p);
   return out;

@@ -31,7 +31,7 @@ void validate(const RayPssParams& p) {
 
 namespace {
 
-std::vector<LocalFit> fit_all(const UniformGrid& grid, const PointCloud& cloud, const RayPssParams& params,
+std::vector<LocalFit> fit_all(const SupportGrid& grid, const PointCloud& cloud, const RayPssParams& params,
                               Backend backend, Stats& stats) {
   // In the grid's (cell-sorted) order, so that neighbouring samples share cached cells.
   const std::size_t n = grid.sorted_points().size();
@@ -43,26 +43,34 @@ std::vector<LocalFit> fit_all(const UniformGrid& grid, const PointCloud& cloud, 
   Mirror<LocalFit> fits(backend, n);
   Progress progress("local polynomials", std::int64_t(n));
   parallel_for(backend, "local polynomials", std::int64_t(n),
-               FitLocalPolynomialsKernel{g.view(), hint.data(), fits.data(), params.projection.h, params.projection.rho},
+               FitLocalPolynomialsKernel{g.view(), hint.data(), fits.data(), params.ball_radius / params.projection.h},
                stats, &progress);
   return fits.take();
 }
 
-// The range-query grid is part of the preprocessing (the paper's 3D neighbourhood texture).
-UniformGrid timed_grid(const PointCloud& cloud, const ProjectionParams& projection, Stats& stats) {
+// The samples' widths and the range-query grid are part of the preprocessing (the paper's 3D
+// neighbourhood texture).
+SupportGrid timed_grid(const PointCloud& cloud, const ProjectionParams& projection, Stats& stats,
+                       SupportWidths& widths) {
   check_neighbourhood(projection, points_detail::unit_frame(cloud.positions).diagonal);
-  const float rho = projection.rho;
-  ScopedPhase phase(stats, "preprocess", false);  // a counting sort: the fits after it are what takes time
-  return UniformGrid(cloud.positions, 0.5f * rho);
+  {
+    ScopedPhase phase(stats, "support widths", projection.support == Support::global);  // else its Progress shows it
+    widths = support_widths(cloud.positions, projection);
+  }
+  ScopedPhase phase(stats, "preprocess", false);  // counting sorts: the fits after them are what takes time
+  SupportGrid grid(cloud.positions, widths.h, projection.rho / projection.h);
+  widths.h = {};  // the grid keeps them
+  return grid;
 }
 
-// What a ray can meet of sample i lies in B(p_i, b) and in the slab |z| ≤ height about its
-// tangent plane (nearest_local_hit clips to both): a disc of radius b and that thickness,
+// What a ray can meet of sample i lies in B(p_i, b_i) and in the slab |z| ≤ height about its
+// tangent plane (nearest_local_hit clips to both): a disc of radius b_i and that thickness,
 // whose box is much flatter than the ball's where the normal is near an axis. Tighter
 // nodes prune more of the ~16-fold overlap of the balls at b = h.
-std::vector<Aabb> disc_boxes(const std::vector<LocalPolynomial>& locals, float b) {
+std::vector<Aabb> disc_boxes(const std::vector<LocalPolynomial>& locals) {
   std::vector<Aabb> boxes(locals.size());
   for (std::size_t i = 0; i < locals.size(); ++i) {
+    const float b = locals[i].radius;
     const vec3 n = locals[i].normal;
     const float height = std::min(locals[i].height, b);
     vec3 half;
@@ -75,7 +83,7 @@ std::vector<Aabb> disc_boxes(const std::vector<LocalPolynomial>& locals, float b
 
 // The cloud's colours in linear light, in the grid's order of the samples, so that a kernel
 // reads sample i's colour where the grid walk reads its position.
-std::vector<vec3> linear_colors(const UniformGrid& grid, const PointCloud& cloud) {
+std::vector<vec3> linear_colors(const SupportGrid& grid, const PointCloud& cloud) {
   if (!cloud.has_colors()) throw Error("the point cloud has no per-point colours");
   const std::span<const int> original = grid.original_index();
   std::vector<vec3> colors(original.size());
@@ -115,7 +123,7 @@ PreparedCloud::PreparedCloud(const PointCloud& cloud, const RayPssParams& params
                              SurfaceColor color)
     : origin_(cloud.origin),
       params_((validate(params), params)),
-      grid_(timed_grid(cloud, params.projection, stats)),
+      grid_(timed_grid(cloud, params.projection, stats, widths_)),
       bvh_(std::span<const Aabb>{}) {
   {
     ScopedPhase phase(stats, "preprocess");
@@ -128,9 +136,10 @@ PreparedCloud::PreparedCloud(const PointCloud& cloud, const RayPssParams& params
     }
   }
   ScopedPhase phase(stats, "acceleration structure");
-  locals_ = thin_local_polynomials(locals_, params.ball_spacing, kThinningTolerance * params.projection.h);
-  for (LocalPolynomial& l : locals_) l.height = height_bound(l.g, params.ball_radius) + coordinate_rounding(l.origin);
-  bvh_ = Bvh(disc_boxes(locals_, params.ball_radius));
+  const float b = params.ball_radius;
+  locals_ = thin_local_polynomials(locals_, params.ball_spacing / b, kThinningTolerance * params.projection.h / b);
+  for (LocalPolynomial& l : locals_) l.height = height_bound(l.g, l.radius) + coordinate_rounding(l.origin);
+  bvh_ = Bvh(disc_boxes(locals_));
   std::vector<LocalPolynomial> ordered(locals_.size());
   for (std::size_t k = 0; k < ordered.size(); ++k) ordered[k] = locals_[bvh_.primitives()[k]];
   locals_ = std::move(ordered);

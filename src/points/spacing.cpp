@@ -2,29 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <nanoflann.hpp>
 #include <vector>
 
 #include "pss/core/error.hpp"
+#include "kd_tree.hpp"
 #include "unit_frame.hpp"
 
 namespace pss {
 
-namespace {
-
-struct CloudAdaptor {
-  std::span<const vec3> points;
-  std::size_t kdtree_get_point_count() const { return points.size(); }
-  float kdtree_get_pt(std::size_t i, std::size_t dim) const { return points[i][int(dim)]; }
-  template <class Box>
-  bool kdtree_get_bbox(Box&) const {
-    return false;
-  }
-};
-
-using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, CloudAdaptor>, CloudAdaptor, 3>;
-
-}  // namespace
+using points_detail::CloudAdaptor;
+using points_detail::KdTree;
 
 SpacingEstimate estimate_spacing(std::span<const vec3> input, int k, std::size_t max_samples) {
   if (input.size() < 2) throw Error("cannot estimate the sample spacing of fewer than two points");

@@ -1,6 +1,6 @@
 #include "pss/points/thinning.hpp"
 
-#include "pss/spatial/uniform_grid.hpp"
+#include "pss/spatial/support_grid.hpp"
 
 namespace pss {
 
@@ -18,20 +18,24 @@ std::vector<LocalPolynomial> thin_local_polynomials(std::span<const LocalPolynom
                                                     float tolerance) {
   if (!(spacing > 0)) return {locals.begin(), locals.end()};
   std::vector<vec3> origins(locals.size());
-  for (std::size_t i = 0; i < locals.size(); ++i) origins[i] = locals[i].origin;
-  // Cells of `spacing`: the samples within it of p lie in the 27 cells around p's.
-  const UniformGrid grid(origins, spacing);
-  const GridView view = grid.view();
+  std::vector<float> reach(locals.size());
+  for (std::size_t i = 0; i < locals.size(); ++i) {
+    origins[i] = locals[i].origin;
+    reach[i] = spacing * locals[i].radius;
+  }
+  // Sample k's support is its reach: the query at p_j finds every k within spacing·b_k.
+  const SupportGrid grid(origins, reach, 1.0f);
+  const SupportGridView view = grid.view();
   const std::span<const int> input_index = grid.original_index();
   std::vector<char> kept(locals.size(), 0);  // by input index
   std::vector<LocalPolynomial> out;
   // In input order, so that the result does not depend on the grid's.
   for (std::size_t j = 0; j < locals.size(); ++j) {
     bool represented = false;
-    view.for_each_in_radius(locals[j].origin, spacing, [&](vec3, float, int s) {
+    view.for_each_covering(locals[j].origin, [&](vec3, float, int s) {
       const int k = input_index[std::size_t(s)];
       if (represented || !kept[std::size_t(k)]) return;
-      represented = off_graph(locals[std::size_t(k)], locals[j].origin) <= tolerance;
+      represented = off_graph(locals[std::size_t(k)], locals[j].origin) <= tolerance * locals[std::size_t(k)].radius;
     });
     if (represented) continue;
     kept[j] = 1;

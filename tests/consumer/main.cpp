@@ -16,9 +16,10 @@ int main() {
     cloud.positions.push_back(d * (1.0f + 0.002f * gauss(random)));
   }
   const float h = float(pss::estimate_spacing(cloud.positions).suggested_h);
+  pss::ProjectionParams params = pss::ProjectionParams::from_h(h);
+  params.support = pss::Support::adaptive;  // as the README's example
   pss::Stats stats;
-  const pss::CloudProjection out =
-      pss::project_cloud(cloud, pss::ProjectionParams::from_h(h), pss::Backend::cpu, stats);
+  const pss::CloudProjection out = pss::project_cloud(cloud, params, pss::Backend::cpu, stats);
   float worst = 0;
   for (const pss::vec3& p : out.cloud.positions) worst = std::fmax(worst, std::fabs(glm::length(p) - 1.0f));
   std::printf("projected %zu points with h = %g: farthest %g from the sphere\n", out.cloud.size(), h, worst);

@@ -34,6 +34,43 @@ def test_project_gives_the_cli_s_points_normals_and_status(bunny, tmp_path, meth
     assert np.count_nonzero(status == 0) > 0.9 * len(status)
 
 
+def stepped_sphere():
+    """A unit sphere whose half x < 0 is sampled 64 times sparser (render_test's SphereStep64)."""
+    rng = np.random.default_rng(1)
+    d = rng.normal(size=(60000, 3))
+    d /= np.linalg.norm(d, axis=1, keepdims=True)
+    keep = (d[:, 0] >= 0) | (rng.random(len(d)) < 1 / 64)
+    return d[keep].astype(np.float32)
+
+
+@pytest.mark.parametrize("support", ["adaptive", "global"])
+def test_support_is_the_cli_s(tmp_path, support):
+    points = stepped_sphere()
+    cloud = tmp_path / "step.xyz"
+    np.savetxt(cloud, points, fmt="%.9g")
+    out = tmp_path / "projected.ply"
+    cli_ok("project", cloud, "--support", support, "-o", out)
+    cli = read_binary_ply(out)
+    projected, _, status = pss.project(np.loadtxt(cloud, dtype=np.float32), support=support)
+    assert np.array_equal(projected, np.stack([cli["x"], cli["y"], cli["z"]], 1))
+    assert np.array_equal(status, cli["status"])
+    # One global h leaves the sparse half's points with too few neighbours (status 2).
+    assert (np.count_nonzero(status == 2) == 0) == (support == "adaptive")
+
+
+def test_support_is_adaptive_by_default_and_global_with_h():
+    points = stepped_sphere()
+    h = pss.estimate_h(points)
+    default = pss.project(points)[0]
+    assert np.array_equal(default, pss.project(points, support="adaptive")[0])
+    assert not np.array_equal(default, pss.project(points, support="global")[0])
+    assert np.array_equal(pss.project(points, h)[0], pss.project(points, h, support="global")[0])
+    _, _, stats = pss.render(points, size=(32, 32), full_output=True)
+    assert stats["params"]["support"] == "adaptive" and stats["params"]["h_largest"] > 3 * h
+    _, _, stats = pss.render(points, h, size=(32, 32), full_output=True)
+    assert stats["params"]["support"] == "global" and stats["params"]["h_largest"] == pytest.approx(h)
+
+
 def test_project_takes_any_array_like_and_hands_back_arrays_it_does_not_copy(bunny):
     as_list = bunny[:2000].astype(np.float64).tolist()
     points, _, _ = pss.project(as_list, 0.004)

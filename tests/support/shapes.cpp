@@ -1,6 +1,7 @@
 #include "support/shapes.hpp"
 
 #include "pss/points/spacing.hpp"
+#include "pss/points/support.hpp"
 
 #include <cmath>
 #include <numbers>
@@ -13,9 +14,11 @@ namespace {
 constexpr float kPi = std::numbers::pi_v<float>;
 
 // Rejection keeps a sample with probability density(p) / 1; nonuniform densities fall
-// from 1 to 0.1 along x, so the sparse side has ~10x fewer samples per area.
-float density(vec3 unit_position, bool nonuniform) {
-  return nonuniform ? 0.1f + 0.9f * (0.5f + 0.5f * unit_position.x) : 1.0f;
+// from 1 to 0.1 along x, so the sparse side has ~10x fewer samples per area; a step divides
+// the density of the half x < 0.
+float density(vec3 unit_position, const SampleOptions& o) {
+  const float d = o.nonuniform ? 0.1f + 0.9f * (0.5f + 0.5f * unit_position.x) : 1.0f;
+  return unit_position.x < 0 ? d / o.step : d;
 }
 
 }  // namespace
@@ -40,7 +43,7 @@ PointCloud sample(const Sphere& s, const SampleOptions& o) {
     vec3 d(gauss(rng), gauss(rng), gauss(rng));
     if (glm::length(d) < 1e-6f) continue;
     d = glm::normalize(d);
-    if (uni(rng) > density(d, o.nonuniform)) continue;
+    if (uni(rng) > density(d, o)) continue;
     cloud.positions.push_back(s.center + (s.radius + o.noise * gauss(rng)) * d);
   }
   return cloud;
@@ -58,7 +61,7 @@ PointCloud sample(const Torus& t, const SampleOptions& o) {
     const vec3 n(std::cos(v) * std::cos(u), std::cos(v) * std::sin(u), std::sin(v));
     const vec3 p((t.major + t.minor * std::cos(v)) * std::cos(u), (t.major + t.minor * std::cos(v)) * std::sin(u),
                  t.minor * std::sin(v));
-    if (uni(rng) > density(vec3(std::cos(u), 0, 0), o.nonuniform)) continue;
+    if (uni(rng) > density(vec3(std::cos(u), 0, 0), o)) continue;
     cloud.positions.push_back(p + o.noise * gauss(rng) * n);
   }
   return cloud;
@@ -71,7 +74,7 @@ PointCloud sample_plane(float half_size, const SampleOptions& o) {
   PointCloud cloud;
   while (cloud.size() < o.count) {
     const vec3 unit(uni(rng), uni(rng), 0.0f);
-    if (0.5f * (uni(rng) + 1) > density(unit, o.nonuniform)) continue;
+    if (0.5f * (uni(rng) + 1) > density(unit, o)) continue;
     cloud.positions.push_back(vec3(half_size * unit.x, half_size * unit.y, o.noise * gauss(rng)));
   }
   return cloud;
@@ -81,12 +84,17 @@ float ShapeCase::radius() const { return torus ? Torus{}.minor : Sphere{}.radius
 
 PointCloud ShapeCase::sample() const {
   SampleOptions o;
-  o.count = torus ? 12000 : 5000;
+  o.count = count ? count : torus ? 12000 : 5000;
   o.noise = noise_sigma();
   o.nonuniform = nonuniform;
+  o.step = step;
   return torus ? test::sample(Torus{}, o) : test::sample(Sphere{}, o);
 }
 
 float suggested_h(const PointCloud& cloud) { return float(estimate_spacing(cloud.positions).suggested_h); }
+
+SupportGrid support_grid(std::span<const vec3> points, const ProjectionParams& params) {
+  return SupportGrid(points, support_widths(points, params).h, params.rho / params.h);
+}
 
 }  // namespace pss::test

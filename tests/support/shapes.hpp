@@ -3,9 +3,12 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "pss/points/cloud.hpp"
+#include "pss/points/projection.hpp"
+#include "pss/spatial/support_grid.hpp"
 
 namespace pss::test {
 
@@ -32,6 +35,7 @@ struct SampleOptions {
   std::size_t count = 4000;
   float noise = 0;            // standard deviation of the offset along the normal
   bool nonuniform = false;    // density varying about 10× across the shape
+  float step = 1;             // the half x < 0 (of the unit shape) sampled this many times sparser
   std::uint32_t seed = 1;
 };
 
@@ -46,13 +50,19 @@ struct ShapeCase {
   bool torus;
   bool nonuniform;
   float noise;  // relative to radius()
+  float step = 1;  // SampleOptions::step
+  std::size_t count = 0;  // samples; 0: 12,000 of the torus, 5,000 of the sphere
 
   float radius() const;  // the sphere's radius or the torus's tube radius: 1/κ of the largest curvature
   float noise_sigma() const { return noise * radius(); }
-  PointCloud sample() const;  // 12,000 samples of the torus, 5,000 of the sphere
+  PointCloud sample() const;
 };
 
 // The h `pss` would choose for the cloud (points/spacing.hpp).
 float suggested_h(const PointCloud& cloud);
+
+// The range-query grid of `points` with the widths that params.support gives them
+// (points/support.hpp), as the library's own callers build it.
+SupportGrid support_grid(std::span<const vec3> points, const ProjectionParams& params);
 
 }  // namespace pss::test

@@ -39,15 +39,18 @@ class CloudScene : public Scene {
                        Stats& stats) override {
     RayPssParams params = RayPssParams::from_h(s.h);
     if (s.rho != 0) params.projection.rho = s.rho;
+    params.projection.support = s.adaptive_support ? Support::adaptive : Support::global;
     params.epsilon = s.epsilon;
     params.max_iterations = s.iterations;
     params.secondary = s.secondary_full ? SecondaryMode::full : SecondaryMode::paper;
     validate(params);
-    if (!prepared_ || s.h != prepared_h_ || s.rho != prepared_rho_ || s.backend != prepared_backend_) {
+    if (!prepared_ || s.h != prepared_h_ || s.rho != prepared_rho_ || s.adaptive_support != prepared_adaptive_ ||
+        s.backend != prepared_backend_) {
       prepared_.reset();
       prepared_ = std::make_unique<PreparedCloud>(cloud_, params, s.backend, stats);
       prepared_h_ = s.h;
       prepared_rho_ = s.rho;
+      prepared_adaptive_ = s.adaptive_support;
       prepared_backend_ = s.backend;
     }
     prepared_->set_search(params);
@@ -61,6 +64,7 @@ class CloudScene : public Scene {
   SceneInfo info_;
   std::unique_ptr<PreparedCloud> prepared_;
   float prepared_h_ = 0, prepared_rho_ = 0;
+  bool prepared_adaptive_ = true;
   Backend prepared_backend_ = Backend::cpu;
 };
 

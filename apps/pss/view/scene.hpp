@@ -30,6 +30,7 @@ struct ViewSettings {
   // Point clouds (0: the defaults of `pss render`).
   float h = 0;
   float rho = 0;  // the projection's range-query radius (0: 2h)
+  bool adaptive_support = true;  // each sample's width from its spacing (points/support.hpp)
   float epsilon = 0;
   int iterations = 2;
   bool secondary_full = true;

@@ -4,7 +4,8 @@
 //   view AZ EL           orbit to azimuth and elevation (degrees)
 //   zoom Z | pan X Y | fov DEG
 //   camera FILE.json     the camera of a file (--camera's format), until the next move
-//   set NAME VALUE       a panel value: h, rho, epsilon, iterations, secondary (full|paper),
+//   set NAME VALUE       a panel value: h, rho, support (adaptive|global), epsilon,
+//                        iterations, secondary (full|paper),
 //                        shadows, reflections, debug (on|off), iso, threshold, gradient
 //                        (on|off), method (predictor|predictor-corrector)
 //   wait                 until the full-size frame of the current view is drawn

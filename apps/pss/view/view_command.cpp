@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "commands.hpp"
 #include "numbers.hpp"
 #include "pss/core/progress.hpp"
 #include "pss/core/text.hpp"
@@ -46,18 +47,21 @@ void add_view_command(CLI::App& app) {
   command->add_option("--camera", o->camera_file, "the first view: a camera JSON file (as pss render --camera)");
   command->add_flag("--shadows", o->settings.shadows, "shadow rays toward the key light");
   command->add_flag("--reflections", o->settings.reflections, "one mirror reflection per primary hit");
+  auto support = std::make_shared<std::string>();
+  add_support_option(*command, *support);
   command->add_option("--script", o->script, "run these steps (one a line: view, zoom, set, wait, screenshot, ...), then quit");
   command->add_option("--screenshot-dir", o->screenshot_dir, "where the script's screenshots go (default .)");
   auto backend = std::make_shared<std::string>("auto");
   command->add_option("--backend", *backend, "cpu, cuda, or auto")->check(CLI::IsMember({"cpu", "cuda", "auto"}));
   const CLI::Option* h_option = command->get_option("--h");
-  command->callback([o, backend, h_option] {
+  command->callback([o, backend, support, h_option] {
     o->settings.backend = select_backend(*backend);
     o->settings.volume = o->file.settings;
     o->settings.volume.method =
         o->file.method == "predictor" ? VolumeMethod::predictor : VolumeMethod::predictor_corrector;
     // For a point cloud --h is in its own units (0: estimated); the volume default is 2 voxels.
     o->settings.h = h_option->count() ? o->file.settings.h : 0;
+    o->settings.adaptive_support = support_of(*support, h_option->count() > 0) == Support::adaptive;
     // The window shows each frame's progress; bars on the terminal behind it would only flicker.
     set_progress_mode(ProgressMode::never);
     if (const int status = view::run_viewer(*o); status != 0) std::exit(status);

@@ -43,6 +43,16 @@ float number_of(const Step& s, std::size_t i, const std::string& script) {
   return v;
 }
 
+// The step's value, one of `choices`.
+std::string choice_of(const Step& s, std::initializer_list<const char*> choices, const std::string& script) {
+  std::string listed;
+  for (const char* c : choices) {
+    if (s.args[1] == c) return c;
+    listed += (listed.empty() ? "" : " or ") + std::string(c);
+  }
+  throw file_error(script + ":" + std::to_string(s.line), "expected " + listed + " (got " + quote(s.args[1]) + ")");
+}
+
 bool switch_of(const Step& s, const std::string& script) {
   if (s.args[1] == "on") return true;
   if (s.args[1] == "off") return false;
@@ -55,6 +65,7 @@ void set_value(ViewSettings& v, const Step& s, const std::string& script) {
   const std::string& value = s.args[1];
   if (name == "h") v.h = number_of(s, 1, script);
   else if (name == "rho") v.rho = number_of(s, 1, script);
+  else if (name == "support") v.adaptive_support = choice_of(s, {"adaptive", "global"}, script) == "adaptive";
   else if (name == "epsilon") v.epsilon = number_of(s, 1, script);
   else if (name == "iterations") v.iterations = int(number_of(s, 1, script));
   else if (name == "secondary") v.secondary_full = value != "paper";
@@ -271,6 +282,9 @@ class Viewer {
   void cloud_panel(ViewSettings& s) {
     ImGui::InputFloat("h", &s.h, 0, 0, "%.6g", ImGuiInputTextFlags_EnterReturnsTrue);
     ImGui::InputFloat("rho (0: 2h)", &s.rho, 0, 0, "%.6g", ImGuiInputTextFlags_EnterReturnsTrue);
+    int support = s.adaptive_support ? 0 : 1;
+    const char* supports[] = {"adaptive", "global"};
+    if (ImGui::Combo("support", &support, supports, 2)) s.adaptive_support = support == 0;
     ImGui::InputFloat("epsilon", &s.epsilon, 0, 0, "%.3g", ImGuiInputTextFlags_EnterReturnsTrue);
     ImGui::SliderInt("iterations", &s.iterations, 1, 8);
     int secondary = s.secondary_full ? 0 : 1;

@@ -25,6 +25,9 @@ struct Hit {
   vec3 normal{0.0f};    // unit, as the surface defines it: not yet turned toward the viewer
   std::int32_t iterations = 0;  // projections spent on this ray, rejected candidates included
   std::uint32_t flags = 0;
+  // The surface's length scale here over the finder's own (adaptive support: h_i/h of the
+  // sample whose ball gave the hit); 1 where the scale is the same everywhere (volumes).
+  float scale = 1;
 
   PSS_HOST_DEVICE bool found() const { return (flags & kHitFound) != 0; }
 };

@@ -32,6 +32,7 @@ struct WeightedMoments {
   vec3 first{0.0f};  // Σ w (p - origin)
   Sym3 second;       // Σ w (p - origin)(p - origin)ᵀ
   int count = 0;
+  float inv_h2_sum = 0;  // Σ w/h² of the samples' own widths, where they have them (points/neighbourhood.hpp)
 
   PSS_HOST_DEVICE explicit WeightedMoments(vec3 o) : origin(o) {}
 

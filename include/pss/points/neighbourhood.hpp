@@ -1,19 +1,21 @@
-// The ρ-neighbourhood N(r) of a point with its Gaussian weights θ3(‖pᵢ − r‖), gathered
-// once: every sum of one projection runs over the same samples (Eq. 1, 2 and the
-// polynomial), so later passes need no grid walk, and those weighted from r no exp().
-// A fixed-size buffer (no allocation, usable in kernels); a neighbourhood larger than it
-// is read from the grid again, with the same samples and weights.
+// The neighbourhood N(r) of a point with its Gaussian weights θ3(‖pᵢ − r‖) = exp(−‖pᵢ − r‖²/hᵢ²):
+// the samples whose support holds r (‖pᵢ − r‖ ≤ ρᵢ; one global h gives every sample the
+// same, the paper's ρ-neighbourhood), gathered once: every sum of one projection runs over
+// the same samples (Eq. 1, 2 and the polynomial), so later passes need no grid walk, and
+// those weighted from r no exp(). A fixed-size buffer (no allocation, usable in kernels); a
+// neighbourhood larger than it is read from the grid again, with the same samples and
+// weights.
 //
 // The samples are kept as offsets from r, one array per coordinate, so that the weights
 // and the sums over them run in SIMD lanes on the CPU; the gather stores every candidate
-// of the grid cells and keeps it only when within ρ, with no branch to mispredict.
+// of the grid cells and keeps it only when covered, with no branch to mispredict.
 #pragma once
 
 #include "pss/core/frame.hpp"
 #include "pss/fit/moments.hpp"
 #include "pss/fit/polynomial.hpp"
 #include "pss/fit/weights.hpp"
-#include "pss/spatial/uniform_grid.hpp"
+#include "pss/spatial/support_grid.hpp"
 
 namespace pss {
 
@@ -21,72 +23,80 @@ template <int Capacity>
 struct NeighbourhoodOf {
   static constexpr int kCapacity = Capacity;
 
-  const GridView* grid;
+  const SupportGridView* grid;
   vec3 center;
-  float rho, h;
   int count = 0;
   // Slot Capacity takes the candidates the gather rejects once the buffer is full; the
   // slots after the last sample, up to a multiple of the sum lanes, hold zeros (add_all).
   static constexpr int kSlots = Capacity + PSS_SUM_LANES;
-  float dx[kSlots], dy[kSlots], dz[kSlots], weight[kSlots];
+  float dx[kSlots], dy[kSlots], dz[kSlots], weight[kSlots], inv_h2[kSlots];
 
-  PSS_HOST_DEVICE NeighbourhoodOf(const GridView& g, vec3 c, float radius, float width)
-      : grid(&g), center(c), rho(radius), h(width) {
-    const float r2 = rho * rho;
-    grid->for_each_near(center, rho, [&](vec3 p, int) {
+  PSS_HOST_DEVICE NeighbourhoodOf(const SupportGridView& g, vec3 c) : grid(&g), center(c) {
+    const float kappa2 = grid->kappa2;
+    grid->for_each_near(center, [&](vec3 p, int i) {
       const vec3 d = p - center;
       const float d2 = length2(d);
+      const float q = grid->inv_h2[i];
       const int slot = count < Capacity ? count : Capacity;
       dx[slot] = d.x;
       dy[slot] = d.y;
       dz[slot] = d.z;
-      weight[slot] = d2;
-      count += d2 <= r2 ? 1 : 0;
+      weight[slot] = d2 * q;
+      inv_h2[slot] = q;
+      count += weight[slot] <= kappa2 ? 1 : 0;  // SupportGridView::covers
     });
     const int n = stored();
-    for (int i = 0; i < n; ++i) weight[i] = gaussian_weight(weight[i], h);
-    for (int i = n; i % PSS_SUM_LANES != 0; ++i) dx[i] = dy[i] = dz[i] = weight[i] = 0;
+    for (int i = 0; i < n; ++i) weight[i] = exp_nonpositive(-weight[i]);
+    for (int i = n; i % PSS_SUM_LANES != 0; ++i) dx[i] = dy[i] = dz[i] = weight[i] = inv_h2[i] = 0;
   }
 
   PSS_HOST_DEVICE bool overflowed() const { return count > Capacity; }
   PSS_HOST_DEVICE int stored() const { return count < Capacity ? count : Capacity; }
 
-  // f(p, w) for every sample again, in the same order.
+  // f(p, w, 1/h²) for every sample again, in the same order.
   template <class F>
   PSS_HOST_DEVICE void for_each(F&& f) const {
     if (!overflowed()) {
-      for (int i = 0; i < count; ++i) f(center + vec3(dx[i], dy[i], dz[i]), weight[i]);
+      for (int i = 0; i < count; ++i) f(center + vec3(dx[i], dy[i], dz[i]), weight[i], inv_h2[i]);
     } else {
-      grid->for_each_in_radius(center, rho, [&](vec3 p, float d2, int) { f(p, gaussian_weight(d2, h)); });
+      grid->for_each_covering(center, [&](vec3 p, float d2, int i) {
+        const float q = grid->inv_h2[i];
+        f(p, exp_nonpositive(-d2 * q), q);
+      });
     }
   }
 
-  // Σw, Σw·(p − r), Σw·(p − r)(p − r)ᵀ with the weights from r (Eq. 1 at r).
+  // Σw, Σw·(p − r), Σw·(p − r)(p − r)ᵀ with the weights from r (Eq. 1 at r), and Σw/h².
   PSS_HOST_DEVICE WeightedMoments moments() const {
     WeightedMoments m(center);
-    if (!overflowed())
+    if (!overflowed()) {
       m.add_all(count, [&](int i) { return vec3(dx[i], dy[i], dz[i]); }, [&](int i) { return weight[i]; });
-    else
-      for_each([&](vec3 p, float w) { m.add(p, w); });
+      for (int i = 0; i < count; ++i) m.inv_h2_sum += weight[i] * inv_h2[i];
+    } else {
+      for_each([&](vec3 p, float w, float q) {
+        m.add(p, w);
+        m.inv_h2_sum += w * q;
+      });
+    }
     return m;
   }
 
-  // The polynomial's normal equations in `frame`, weighted from r or, with
-  // weights_at_origin, from the frame's origin q (the MLS polynomial).
-  PSS_HOST_DEVICE PolynomialFit polynomial_fit(const Frame& frame, bool weights_at_origin) const {
-    PolynomialFit fit(h);
+  // The polynomial's normal equations in `frame` (x, y in units of `scale`), weighted from r
+  // or, with weights_at_origin, from the frame's origin q (the MLS polynomial).
+  PSS_HOST_DEVICE PolynomialFit polynomial_fit(const Frame& frame, bool weights_at_origin, float scale) const {
+    PolynomialFit fit(scale);
     if (!overflowed()) {
       const vec3 o = frame.to_local(center);
       auto local = [&](int i) { return o + frame.direction_to_local(vec3(dx[i], dy[i], dz[i])); };
       if (weights_at_origin)
         // The padding's weight must be 0 (add_all): a factor, not a branch, so it vectorises.
-        fit.add_all(count, local, [&](int i) { return gaussian_weight(length2(local(i)), h) * (i < count ? 1.0f : 0.0f); });
+        fit.add_all(count, local, [&](int i) { return exp_nonpositive(-length2(local(i)) * inv_h2[i]) * (i < count ? 1.0f : 0.0f); });
       else
         fit.add_all(count, local, [&](int i) { return weight[i]; });
     } else {
-      for_each([&](vec3 p, float w_r) {
+      for_each([&](vec3 p, float w_r, float q) {
         const vec3 l = frame.to_local(p);
-        fit.add(l, weights_at_origin ? gaussian_weight(length2(l), h) : w_r);
+        fit.add(l, weights_at_origin ? exp_nonpositive(-length2(l) * q) : w_r);
       });
     }
     return fit;
@@ -101,15 +111,13 @@ template <int Capacity>
 struct NeighbourIndicesOf {
   static constexpr int kCapacity = Capacity;
 
-  const GridView* grid;
+  const SupportGridView* grid;
   vec3 center;
-  float rho, h;
   int count = 0;
   int index[Capacity > 0 ? Capacity : 1];
 
-  PSS_HOST_DEVICE NeighbourIndicesOf(const GridView& g, vec3 c, float radius, float width)
-      : grid(&g), center(c), rho(radius), h(width) {
-    grid->for_each_in_radius(center, rho, [&](vec3, float, int i) {
+  PSS_HOST_DEVICE NeighbourIndicesOf(const SupportGridView& g, vec3 c) : grid(&g), center(c) {
+    grid->for_each_covering(center, [&](vec3, float, int i) {
       if (count < Capacity) index[count] = i;
       ++count;
     });
@@ -117,34 +125,50 @@ struct NeighbourIndicesOf {
 
   PSS_HOST_DEVICE bool overflowed() const { return count > Capacity; }
 
-  // f(p, w) for every sample again, in the same order.
+  // f(p, w, 1/h²) for every sample again, in the same order.
   template <class F>
   PSS_HOST_DEVICE void for_each(F&& f) const {
     if (!overflowed()) {
-      for (int i = 0; i < count; ++i) {
-        const vec3 p = grid->points[index[i]];
-        f(p, gaussian_weight(length2(p - center), h));
+      for (int k = 0; k < count; ++k) {
+        const int i = index[k];
+        const vec3 p = grid->points[i];
+        const float q = grid->inv_h2[i];
+        f(p, exp_nonpositive(-length2(p - center) * q), q);
       }
     } else {
-      grid->for_each_in_radius(center, rho, [&](vec3 p, float d2, int) { f(p, gaussian_weight(d2, h)); });
+      grid->for_each_covering(center, [&](vec3 p, float d2, int i) {
+        const float q = grid->inv_h2[i];
+        f(p, exp_nonpositive(-d2 * q), q);
+      });
     }
   }
 
   PSS_HOST_DEVICE WeightedMoments moments() const {
     WeightedMoments m(center);
-    for_each([&](vec3 p, float w) { m.add(p, w); });
+    for_each([&](vec3 p, float w, float q) {
+      m.add(p, w);
+      m.inv_h2_sum += w * q;
+    });
     return m;
   }
 
-  PSS_HOST_DEVICE PolynomialFit polynomial_fit(const Frame& frame, bool weights_at_origin) const {
-    PolynomialFit fit(h);
-    for_each([&](vec3 p, float w_r) {
+  PSS_HOST_DEVICE PolynomialFit polynomial_fit(const Frame& frame, bool weights_at_origin, float scale) const {
+    PolynomialFit fit(scale);
+    for_each([&](vec3 p, float w_r, float q) {
       const vec3 l = frame.to_local(p);
-      fit.add(l, weights_at_origin ? gaussian_weight(length2(l), h) : w_r);
+      fit.add(l, weights_at_origin ? exp_nonpositive(-length2(l) * q) : w_r);
     });
     return fit;
   }
 };
+
+// The local width h(r) of a neighbourhood from its moments: 1/√(Σw·h_i⁻²/Σw), the samples'
+// widths averaged with their weights at r as 1/h² (what they store); with one global h, that
+// h. It sizes what the projection measures in h: the line search's bracket, its tolerance,
+// the polynomial's scale.
+PSS_INLINE float local_width(const WeightedMoments& m) {
+  return m.inv_h2_sum > 0 ? sqrt(m.weight_sum / m.inv_h2_sum) : 0.0f;
+}
 
 // ρ = 2h around the default h holds ~60 samples (points/spacing.hpp); 128 covers uneven
 // sampling without walking the grid again in most places. The GPU keeps up to 96 indices

@@ -10,6 +10,7 @@
 #include "pss/core/stats.hpp"
 #include "pss/points/cloud.hpp"
 #include "pss/points/projection.hpp"
+#include "pss/points/support.hpp"
 
 namespace pss {
 
@@ -20,14 +21,14 @@ struct ProjectedPoint {
 };
 
 // The per-point kernel both backends run.
-PSS_INLINE ProjectedPoint project_point(const GridView& grid, vec3 r, vec3 hint, const ProjectionParams& params) {
+PSS_INLINE ProjectedPoint project_point(const SupportGridView& grid, vec3 r, vec3 hint, const ProjectionParams& params) {
   const Projection p = project_to_pss(grid, r, params, hint);
   return {p.point, p.normal, p.status};
 }
 
 // out[i] = the projection of points[i] (backend/parallel_for.hpp).
 struct ProjectPointsKernel {
-  GridView grid;
+  SupportGridView grid;
   const vec3* points;
   const vec3* hints;  // the file's normals, or zeros
   ProjectedPoint* out;
@@ -43,6 +44,7 @@ struct CloudProjection {
   PointCloud cloud;  // projected points, with normals, and the input's colours and scalars
   std::vector<ProjectionStatus> status;  // one per point
   StatusCounts counts;
+  SupportWidths widths;  // least, median, largest h_i (h is not kept)
 };
 
 // Throws Error for invalid parameters (h or ρ not positive and finite, ρ beyond the cloud's

@@ -1,6 +1,8 @@
 // The PSS projection operator P(r) of a point cloud (paper §3): a local plane H(n, q),
 // q = r + t·n, by WLS (Eq. 1) or MLS (Eq. 2); the polynomial g(x, y) fitted by WLS on it;
-// P(r) = q + g(0, 0)·n. Every sum runs over N(r), the samples within ρ of r.
+// P(r) = q + g(0, 0)·n. Every sum runs over N(r), the samples within ρ of r; with adaptive
+// support each sample has its own h_i and ρ_i, and N(r) holds those within their ρ_i of r
+// (spatial/support_grid.hpp).
 #pragma once
 
 #include "pss/core/frame.hpp"
@@ -19,16 +21,24 @@ enum class PlaneFitMethod : unsigned char { wls, mls };
 enum class ProjectionStatus : unsigned char {
   converged = 0,
   not_converged = 1,       // MLS alternation still moving after max_mls_iterations
-  too_few_neighbours = 2,  // fewer than 3 samples within ρ: no plane; point and normal unchanged
+  too_few_neighbours = 2,  // fewer than 3 samples in N(r): no plane; point and normal unchanged
   degenerate_normal = 3,   // neighbours (nearly) on a line: the normal is the start vector's
 };
 
+// How wide each sample's weight is (issue 26): one h for every sample, as the paper, or h_i
+// growing with the distance to its k-th nearest neighbour where the cloud is sparser than
+// its median by more than 4/3 (points/support.hpp), so that a cloud whose spacing varies is not torn where it
+// is sparse. Lengths given at h (ρ, the tolerances, the ray tracer's b, ε, δ) then scale
+// with h_i/h.
+enum class Support : unsigned char { global, adaptive };
+
 struct ProjectionParams {
-  float h = 0;    // Gaussian width of θ3, the local level of detail
+  float h = 0;    // Gaussian width of θ3, the local level of detail (with adaptive support, the least h_i)
   float rho = 0;  // range-query radius, 2h in the paper
   PlaneFitMethod plane = PlaneFitMethod::mls;
+  Support support = Support::global;
   int max_mls_iterations = 4;
-  float t_tolerance = 0;  // MLS stops when t moves less than this (default 1e-3·h)
+  float t_tolerance = 0;  // MLS stops when t moves less than this (default 1e-3·h), at h
 
   static ProjectionParams from_h(float h, PlaneFitMethod plane = PlaneFitMethod::mls) {
     ProjectionParams p;
@@ -47,6 +57,7 @@ struct Projection {
   Frame frame;  // at q, with n; g lives in it
   Polynomial polynomial;
   float t;
+  float width;  // the local width h(r) (local_width), 0 with too few neighbours
   int neighbours;
   ProjectionStatus status;
 };
@@ -59,12 +70,10 @@ template <class Nb>
 struct MlsEnergy {
   const Nb& neighbours;
   vec3 r, n;
-  float h;
 
   PSS_HOST_DEVICE float operator()(float t, float& derivative) const {
     float e = 0, de = 0;
-    const float inv_h2 = 1.0f / (h * h);
-    neighbours.for_each([&](vec3 p, float) {
+    neighbours.for_each([&](vec3 p, float, float inv_h2) {
       const float d2 = length2(p - r);
       const float z = glm::dot(p - r, n);
       const float s = z - t;
@@ -80,23 +89,28 @@ struct MlsEnergy {
 }  // namespace detail
 
 // Nb is the neighbourhood's storage (neighbourhood.hpp); every capacity gives the same result.
+// The grid holds the samples' widths; params' lengths are taken at params.h and scaled to
+// the local width h(r) (local_width).
 template <class Nb = Neighbourhood>
-PSS_HOST_DEVICE Projection project_to_pss(const GridView& grid, vec3 r, const ProjectionParams& params,
+PSS_HOST_DEVICE Projection project_to_pss(const SupportGridView& grid, vec3 r, const ProjectionParams& params,
                                           vec3 normal_hint) {
   Projection out;
   out.point = r;
   out.normal = length2(normal_hint) > 0 ? glm::normalize(normal_hint) : vec3(0, 0, 1);
   out.t = 0;
+  out.width = 0;
   out.frame = Frame::from_normal(r, out.normal);
   out.status = ProjectionStatus::too_few_neighbours;
 
   // Eq. 1 with the weighter at r: for fixed weights the best plane passes through the
   // weighted mean m, its normal is the smallest eigenvector of the covariance about m.
   // N(r) is gathered once, with its weights θ3(‖pᵢ − r‖); every later pass reads it again.
-  const Nb neighbours(grid, r, params.rho, params.h);
+  const Nb neighbours(grid, r);
   const WeightedMoments moments = neighbours.moments();
   out.neighbours = moments.count;
   if (moments.count < 3 || !(moments.weight_sum > 0)) return out;
+  const float h = local_width(moments);
+  const float t_tolerance = params.t_tolerance * (h / params.h);
 
   EigenResult eig = smallest_eigenvector(moments.covariance_about_mean(), out.normal);
   vec3 n = eig.vector;
@@ -108,16 +122,16 @@ PSS_HOST_DEVICE Projection project_to_pss(const GridView& grid, vec3 r, const Pr
     // eigenvector of C(q) = Σ θ3(‖pᵢ − q‖)(pᵢ − q)(pᵢ − q)ᵀ, the plane through q.
     status = ProjectionStatus::not_converged;
     for (int it = 0; it < params.max_mls_iterations; ++it) {
-      const detail::MlsEnergy<Nb> energy{neighbours, r, n, params.h};
-      const float t_next = brent_minimize(energy, t - params.h, t + params.h, t, params.t_tolerance).x;
+      const detail::MlsEnergy<Nb> energy{neighbours, r, n};
+      const float t_next = brent_minimize(energy, t - h, t + h, t, t_tolerance).x;
       const vec3 q = r + t_next * n;
       WeightedMoments at_q(q);
-      neighbours.for_each([&](vec3 p, float) { at_q.add(p, gaussian_weight(length2(p - q), params.h)); });
+      neighbours.for_each([&](vec3 p, float, float inv_h2) { at_q.add(p, exp_nonpositive(-length2(p - q) * inv_h2)); });
       eig = smallest_eigenvector(at_q.covariance_about_origin(), n);
-      const float moved = abs(t_next - t) + params.h * glm::length(eig.vector - n);
+      const float moved = abs(t_next - t) + h * glm::length(eig.vector - n);
       n = eig.vector;
       t = t_next;
-      if (moved < params.t_tolerance) {
+      if (moved < t_tolerance) {
         status = ProjectionStatus::converged;
         break;
       }
@@ -129,9 +143,10 @@ PSS_HOST_DEVICE Projection project_to_pss(const GridView& grid, vec3 r, const Pr
   // H(n, q).
   const vec3 q = r + t * n;
   const Frame frame = Frame::from_normal(q, n);
-  out.polynomial = neighbours.polynomial_fit(frame, params.plane == PlaneFitMethod::mls).solve();
+  out.polynomial = neighbours.polynomial_fit(frame, params.plane == PlaneFitMethod::mls, h).solve();
   out.frame = frame;
   out.t = t;
+  out.width = h;
   out.point = q + out.polynomial.d * n;
   out.normal = n;
   out.status = status;

@@ -1,8 +1,8 @@
 // Intersecting a ray with the PSS of a point cloud (paper §5.2, after Adamson and Alexa
-// [AA03b]): the nearest local polynomial g_i inside its ball B(p_i, b) gives a candidate r;
+// [AA03b]): the nearest local polynomial g_i inside its ball B(p_i, b_i) gives a candidate r;
 // r is projected onto the PSS; if the projection γ is within ε of r, r is the hit;
 // otherwise the ray is intersected with the new polynomial and, while that point stays in
-// B(p_i, b), the projection repeats from it; if it leaves the ball the candidate is
+// B(p_i, b_i), the projection repeats from it; if it leaves the ball the candidate is
 // rejected and the search goes on to the next ball intersection beyond it.
 #pragma once
 
@@ -18,11 +18,13 @@ enum class SecondaryMode : unsigned char {
   full,   // the full projection loop, as for primary rays
 };
 
+// The lengths are at h (ProjectionParams): with adaptive support each sample's b_i, δ_i and
+// ε_i scale with its h_i/h, and a hit's secondary offset with the hit's (Hit::scale).
 struct RayPssParams {
   ProjectionParams projection;  // WLS plane (paper §5.2 uses WLS for r), ρ = 2h
   float ball_radius = 0;        // b
-  // δ: a sample's polynomial is left out where one kept within δ passes within
-  // kThinningTolerance·h of it (points/thinning.hpp); 0 keeps one per sample, as the paper.
+  // δ: a sample's polynomial is left out where one kept within δ_k passes within
+  // kThinningTolerance·h_k of it (points/thinning.hpp); 0 keeps one per sample, as the paper.
   float ball_spacing = 0;
   float epsilon = 0;            // accept r when |γ − r| < ε
   int max_iterations = 2;       // projections per candidate (paper Table 2: 2 and 3)
@@ -65,7 +67,7 @@ inline constexpr int kAutoIterations = 32;
 // projection, the BVH over the balls, the local polynomials in BVH order and, for
 // `--color`, the samples' colours.
 struct PointSurfaceView {
-  GridView grid;
+  SupportGridView grid;
   BvhView bvh;
   const LocalPolynomial* locals = nullptr;  // locals[k] belongs to BVH primitive k
   const vec3* colors = nullptr;  // linear RGB of the grid's sorted samples; null: the shading's albedo
@@ -77,15 +79,14 @@ struct LocalHit {
   int local = -1;  // index into PointSurfaceView::locals; -1 when none
 };
 
-// The ray's first crossing of the local polynomial g of `lp` inside its ball B(p_i, b), in
+// The ray's first crossing of the local polynomial g of `lp` inside its ball B(p_i, b_i), in
 // (t_min, t_best): lowers t_best to it and returns true, or returns false (paper §5.2,
 // "Intersection"). Every search for the nearest local hit runs this one test. `margin`
 // widens the slab by the rounding of the ray origin's coordinates (coordinate_rounding),
 // which z0 and ray.at(lo) below carry; lp.height holds the sample's part.
-PSS_INLINE bool local_hit_before(const LocalPolynomial& lp, float b, const Ray& ray, float margin, float t_min,
-                                 float& t_best) {
+PSS_INLINE bool local_hit_before(const LocalPolynomial& lp, const Ray& ray, float margin, float t_min, float& t_best) {
   float t0, t1;
-  if (!ray_ball(ray, lp.origin, b, t0, t1)) return false;
+  if (!ray_ball(ray, lp.origin, lp.radius, t0, t1)) return false;
   // Plain comparisons: fminf/fmaxf are library calls here, and NaN cannot occur.
   float lo = t0 > t_min ? t0 : t_min;
   float hi = t1 < t_best ? t1 : t_best;
@@ -129,10 +130,9 @@ PSS_INLINE bool local_hit_before(const LocalPolynomial& lp, float b, const Ray& 
 PSS_INLINE LocalHit nearest_local_hit(const PointSurfaceView& s, const Ray& ray, float t_min, float t_max) {
   LocalHit best;
   best.t = t_max;
-  const float b = s.params.ball_radius;
   const float margin = coordinate_rounding(ray.origin);
   s.bvh.closest(ray, t_min, best.t, [&](int k, float& t_best) {
-    if (local_hit_before(s.locals[k], b, ray, margin, t_min, t_best)) best.local = k;
+    if (local_hit_before(s.locals[k], ray, margin, t_min, t_best)) best.local = k;
   });
   if (best.local < 0) best.t = kInfinity;
   return best;
@@ -150,6 +150,7 @@ PSS_INLINE Hit rough_hit(const PointSurfaceView& s, const Ray& ray, float t_min,
   const Frame frame = lp.frame();
   const vec3 l = frame.to_local(hit.point);
   hit.normal = frame.direction_to_world(lp.g.normal(l.x, l.y));
+  hit.scale = lp.radius / s.params.ball_radius;
   hit.flags = kHitFound | kHitRough;
   return hit;
 }
@@ -161,12 +162,14 @@ PSS_INLINE Hit intersect_pss(const PointSurfaceView& s, const Ray& ray, float t_
                              int max_iterations) {
   Hit hit;
   const RayPssParams& prm = s.params;
-  const float b2 = prm.ball_radius * prm.ball_radius;
   float t_from = t_min;
   for (int candidate = 0; candidate < prm.max_candidates; ++candidate) {
     const LocalHit c = nearest_local_hit(s, ray, t_from, t_max);
     if (c.local < 0) break;
     const LocalPolynomial& lp = s.locals[c.local];
+    const float b2 = lp.radius * lp.radius;
+    hit.scale = lp.radius / prm.ball_radius;  // the sample's h_i/h
+    const float epsilon = prm.epsilon * hit.scale;
     float t = c.t;
     vec3 hint = lp.normal;
     for (int it = 1;; ++it) {
@@ -174,7 +177,7 @@ PSS_INLINE Hit intersect_pss(const PointSurfaceView& s, const Ray& ray, float t_
       const Projection p = project_to_pss(s.grid, r, prm.projection, hint);
       ++hit.iterations;
       if (p.status == ProjectionStatus::too_few_neighbours) break;
-      if (length2(p.point - r) < prm.epsilon * prm.epsilon) {
+      if (length2(p.point - r) < epsilon * epsilon) {
         hit.t = t;
         hit.point = r;
         hit.normal = p.normal;  // g has no linear terms: n is the graph's normal at γ
@@ -192,7 +195,7 @@ PSS_INLINE Hit intersect_pss(const PointSurfaceView& s, const Ray& ray, float t_
         if (t + roots[i] > t_min && t + roots[i] < t_max && abs(roots[i]) < abs(step)) step = roots[i];
       if (!(abs(step) < kInfinity)) break;
       const float t_next = t + step;
-      if (length2(ray.at(t_next) - lp.origin) > b2) break;  // left B(p_i, b)
+      if (length2(ray.at(t_next) - lp.origin) > b2) break;  // left B(p_i, b_i)
       t = t_next;
       hint = p.normal;
       if (it >= max_iterations) {

@@ -12,6 +12,7 @@
 #include "pss/points/cloud.hpp"
 #include "pss/points/ray_pss.hpp"
 #include "pss/points/sample_colors.hpp"
+#include "pss/points/support.hpp"
 #include "pss/render/rendered_frame.hpp"
 
 namespace pss {
@@ -26,11 +27,10 @@ struct PointFinder {
   PSS_HOST_DEVICE Hit secondary(const Ray& ray, float t_max) const {
     return intersect_secondary(surface, ray, t_max, surface.params.max_iterations);
   }
-  PSS_HOST_DEVICE float secondary_offset() const { return surface.params.secondary_offset; }
+  PSS_HOST_DEVICE float secondary_offset(const Hit& hit) const { return surface.params.secondary_offset * hit.scale; }
   PSS_HOST_DEVICE vec3 albedo(const Hit& hit, vec3 base) const {
     if (!surface.colors) return base;
-    const ProjectionParams& p = surface.params.projection;
-    return interpolated_color(surface.grid, surface.colors, hit.point, p.rho, p.h, base);
+    return interpolated_color(surface.grid, surface.colors, hit.point, base);
   }
 };
 
@@ -61,13 +61,17 @@ class PreparedCloud {
   PointSurfaceView view_on(Backend backend) const;
   std::span<const LocalPolynomial> locals() const { return locals_; }  // those kept, in BVH order
   std::int64_t left_out() const { return left_out_; }  // samples with < 3 neighbours
+  // The samples' widths h_i: least, median, largest (the per-sample ones live in the grid).
+  const SupportWidths& widths() const { return widths_; }
+  int support_levels() const { return grid_.levels(); }
   const Bvh& bvh() const { return bvh_; }
   const glm::dvec3& origin() const { return origin_; }  // the cloud's (cloud.hpp)
 
  private:
   glm::dvec3 origin_;
   RayPssParams params_;
-  UniformGrid grid_;
+  SupportWidths widths_;
+  SupportGrid grid_;
   std::vector<LocalPolynomial> locals_;
   std::vector<vec3> colors_;  // empty, or linear RGB in the grid's order
   std::int64_t left_out_ = 0;

@@ -4,19 +4,17 @@
 // neighbourhood and weights carried over (docs/paper-notes.md).
 #pragma once
 
-#include "pss/fit/weights.hpp"
-#include "pss/spatial/uniform_grid.hpp"
+#include "pss/spatial/support_grid.hpp"
 
 namespace pss {
 
 // colors[i] is sorted sample i's colour in linear RGB (sums of light, not of sRGB codes).
-// `fallback` where no sample lies within ρ of x.
-PSS_INLINE vec3 interpolated_color(const GridView& grid, const vec3* colors, vec3 x, float rho, float h,
-                                   vec3 fallback) {
+// `fallback` where no sample's support holds x.
+PSS_INLINE vec3 interpolated_color(const SupportGridView& grid, const vec3* colors, vec3 x, vec3 fallback) {
   vec3 sum(0.0f);
   float weight_sum = 0;
-  grid.for_each_in_radius(x, rho, [&](vec3, float d2, int i) {
-    const float w = gaussian_weight(d2, h);
+  grid.for_each_covering(x, [&](vec3, float d2, int i) {
+    const float w = exp_nonpositive(-d2 * grid.inv_h2[i]);
     sum += w * colors[i];
     weight_sum += w;
   });

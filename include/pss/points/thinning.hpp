@@ -14,10 +14,11 @@
 namespace pss {
 
 // Keeps, in order, each polynomial that no polynomial kept before it stands for, where g_k
-// stands for g_j when p_j lies within `spacing` of p_k and within `tolerance` of g_k's graph
-// (along n_k). So every dropped sample is that close to a kept polynomial, and two kept
-// ones within `spacing` of each other are both off each other's graph (the two faces of a
-// thin part). spacing 0 keeps every polynomial. Host only; O(n) expected.
+// stands for g_j when p_j lies within spacing·b_k of p_k and within tolerance·b_k of g_k's
+// graph (along n_k), b_k > 0 its ball's radius: both lengths follow the sample's width. So
+// every dropped sample is that close to a kept polynomial, and two kept ones that near each
+// other are both off each other's graph (the two faces of a thin part). spacing 0 keeps
+// every polynomial. Host only; O(n) expected.
 std::vector<LocalPolynomial> thin_local_polynomials(std::span<const LocalPolynomial> locals, float spacing,
                                                     float tolerance);
 

@@ -5,7 +5,7 @@
 // A Finder is a small struct passed by value (views of its arrays) with
 //   Hit primary(const Ray&) const;                   // the surface along a camera ray
 //   Hit secondary(const Ray&, float t_max) const;    // for reflection and shadow rays
-//   float secondary_offset() const;                  // how far off the surface they start
+//   float secondary_offset(const Hit&) const;        // how far off the surface they start
 //   vec3 albedo(const Hit&, vec3 base) const;        // the surface's colour at a hit, or base
 #pragma once
 
@@ -41,13 +41,14 @@ struct SecondaryHits {
 };
 
 // 1 when the key light is seen from `point` (n facing the viewer), 0 when not. A surface
-// turned away from the light shades to zero key light anyway: no ray is needed.
+// turned away from the light shades to zero key light anyway: no ray is needed. The ray
+// leaves `offset` off the surface (the finder's secondary_offset of the hit).
 template <class Finder>
-PSS_HOST_DEVICE float key_light_visibility(const Finder& f, const TraceSettings& s, vec3 point, vec3 n,
+PSS_HOST_DEVICE float key_light_visibility(const Finder& f, const TraceSettings& s, vec3 point, vec3 n, float offset,
                                            std::int32_t& rays) {
   if (glm::dot(n, s.shading.key_direction) <= 0) return 0.0f;
   ++rays;
-  const Ray shadow_ray{point + f.secondary_offset() * n, s.shading.key_direction};
+  const Ray shadow_ray{point + offset * n, s.shading.key_direction};
   return f.secondary(shadow_ray, kInfinity).found() ? 0.0f : 1.0f;
 }
 
@@ -57,14 +58,16 @@ PSS_HOST_DEVICE SecondaryHits trace_secondary(const Finder& f, const TraceSettin
   SecondaryHits out;
   if (!hit.found()) return out;
   const vec3 n = face_viewer(hit.normal, primary.dir);
-  if (s.shadows) out.shadow = key_light_visibility(f, s, hit.point, n, out.rays);
+  const float offset = f.secondary_offset(hit);
+  if (s.shadows) out.shadow = key_light_visibility(f, s, hit.point, n, offset, out.rays);
   if (s.reflections) {
-    const Ray bounce{hit.point + f.secondary_offset() * n, reflect(primary.dir, n)};
+    const Ray bounce{hit.point + offset * n, reflect(primary.dir, n)};
     ++out.rays;
     out.reflection = f.secondary(bounce, kInfinity);
     if (out.reflection.found() && s.shadows) {
       const vec3 rn = face_viewer(out.reflection.normal, bounce.dir);
-      out.reflection_shadow = key_light_visibility(f, s, out.reflection.point, rn, out.rays);
+      out.reflection_shadow =
+          key_light_visibility(f, s, out.reflection.point, rn, f.secondary_offset(out.reflection), out.rays);
     }
   }
   return out;

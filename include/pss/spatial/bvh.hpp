@@ -1,4 +1,4 @@
-// Bounding volume hierarchy over the balls B(p_i, b): the acceleration structure that
+// Bounding volume hierarchy over the balls B(p_i, b_i): the acceleration structure that
 // finds, for a ray, the nearest intersection with the local polynomials stored at the
 // samples (paper §5.2, "Intersection"), where the paper rasterised one disc per ball.
 //

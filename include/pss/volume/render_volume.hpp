@@ -20,7 +20,7 @@ struct VolumeFinder {
   PSS_HOST_DEVICE Hit secondary(const Ray& ray, float t_max) const { return march_volume(scene, ray, t_max); }
   // Samples within b of the surface pass the fragment test; from 1.5·b away the surface
   // just left projects outside the ball of trust and is not found again.
-  PSS_HOST_DEVICE float secondary_offset() const { return 1.5f * scene.params.step; }
+  PSS_HOST_DEVICE float secondary_offset(const Hit&) const { return 1.5f * scene.params.step; }
   PSS_HOST_DEVICE vec3 albedo(const Hit&, vec3 base) const { return base; }  // a volume has one colour
 };
 

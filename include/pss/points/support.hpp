@@ -1,0 +1,38 @@
+// The width h_i of each sample's weight exp(−‖x − p_i‖²/h_i²) (issue 26): one h for all, as
+// the paper, or adaptive, from the distance to the sample's k-th nearest neighbour (Pauly et
+// al. 2003; MeshLab's APSS and RIMLS filters size their supports the same way), so that the
+// support holds about as many samples where the cloud is sparse as where it is dense.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "pss/points/projection.hpp"
+
+namespace pss {
+
+// The neighbour whose distance sets h_i: the spacing estimate's (spacing.hpp), so that on an
+// evenly sampled cloud h_i is about the global h that pss info suggests.
+inline constexpr int kSupportNeighbour = 15;
+
+// Adaptive widths stay within [h, h·128]: a 60:1 spread of the spacing fits with room, and a
+// stray sample far from the rest cannot spread its weight over the whole cloud.
+inline constexpr float kSupportSpread = 128;
+
+// Where the spacing s_i is wider than 4/3 of the median, h_i = kSupportWidening·h·s_i/median s:
+// the width grows with the spacing but by less, since a wider width rounds creases and thin
+// parts more (measured on the shipped clouds at 1, 0.75 and 0.5; docs/paper-notes.md).
+inline constexpr float kSupportWidening = 0.75f;
+
+struct SupportWidths {
+  std::vector<float> h;  // one per point, in the input's order
+  float least = 0, median = 0, largest = 0;
+};
+
+// params.h for every point (Support::global), or (Support::adaptive) h_i = params.h ·
+// max(1, kSupportWidening·s_i / median s), s_i the median over p_i and its k nearest
+// neighbours of their distances to their own k-th nearest other sample. ρ_i = ρ·h_i/h is kept within the cloud's bounding-box diagonal.
+// Throws Error for a width that is not a positive number.
+SupportWidths support_widths(std::span<const vec3> points, const ProjectionParams& params);
+
+}  // namespace pss

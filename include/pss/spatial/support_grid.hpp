@@ -1,0 +1,88 @@
+// Range queries where every sample has a support of its own (adaptive support, issue 26):
+// sample i takes part at x when ‖x − p_i‖ ≤ ρ_i = κ·h_i, weighted by exp(−‖x − p_i‖²/h_i²).
+// One uniform grid cannot serve widths that vary 60:1 (cells sized to the widest would hold
+// thousands of the narrowest's samples), so the samples are binned by width in levels a
+// factor 2 apart, each level a uniform grid with cells of half its largest ρ; a query walks
+// every level's cells within that level's largest ρ. One global h makes one level: a plain
+// uniform grid, as the paper's 3D neighbourhood texture.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "pss/spatial/uniform_grid.hpp"
+
+namespace pss {
+
+// One level: a uniform grid over the samples of widths in [2^l, 2^(l+1))·the least, whose
+// cell_start holds offsets into the shared sorted points (GridView::points is those).
+struct SupportLevel {
+  GridView grid;
+  float radius = 0;  // the largest ρ_i of the level's samples
+};
+
+// What kernels read, passed by value: the levels themselves are an array of their own (in
+// the backend's memory), so that the view stays a few words however many levels there are
+// (a kernel's by-value views that a thread takes the address of are copied to its stack).
+struct SupportGridView {
+  static constexpr int kMaxLevels = 8;
+
+  const vec3* points = nullptr;   // sorted by level, then by cell
+  const float* inv_h2 = nullptr;  // 1/h_i² of each sorted sample
+  const SupportLevel* level = nullptr;
+  int levels = 0;
+  int count = 0;
+  float kappa2 = 4;  // (ρ_i/h_i)²: sample i covers x when ‖x − p_i‖²/h_i² ≤ kappa2
+
+  // f(point, sorted index) for every sample of the cells within each level's largest ρ of
+  // c: those that cover c and more, for callers that test (covers) without branching.
+  template <class F>
+  PSS_HOST_DEVICE void for_each_near(vec3 c, F&& f) const {
+    for (int l = 0; l < levels; ++l) level[l].grid.for_each_near(c, level[l].radius, f);
+  }
+
+  PSS_HOST_DEVICE bool covers(int i, float distance2) const { return distance2 * inv_h2[i] <= kappa2; }
+
+  // f(point, squared distance, sorted index) for every sample whose support holds c.
+  template <class F>
+  PSS_HOST_DEVICE void for_each_covering(vec3 c, F&& f) const {
+    for_each_near(c, [&](vec3 p, int i) {
+      const float d2 = length2(p - c);
+      if (covers(i, d2)) f(p, d2, i);
+    });
+  }
+};
+
+class SupportGrid {
+ public:
+  // h[i] > 0 is point i's width, kappa = ρ_i/h_i. Each level's grid has at most 32 cells per
+  // sample (4,096 at least) and at most max_cells (UniformGrid).
+  SupportGrid(std::span<const vec3> points, std::span<const float> h, float kappa, long long max_cells = 1ll << 25);
+
+  SupportGrid(const SupportGrid&) = delete;  // the levels point into the arrays
+  SupportGrid& operator=(const SupportGrid&) = delete;
+  SupportGrid(SupportGrid&&) = default;  // vectors keep their buffers when moved
+
+  SupportGridView view() const;  // on the host
+  std::span<const vec3> sorted_points() const { return sorted_; }
+  std::span<const float> inv_h2() const { return inv_h2_; }
+  std::span<const int> cell_starts() const { return cell_start_; }  // every level's, one after another
+  // The levels as on the host; a level's cells begin at level_cell_offset()[l] in cell_starts().
+  std::span<const SupportLevel> levels_on_host() const { return levels_; }
+  std::span<const int> level_cell_offset() const { return level_offset_; }
+  // original_index()[i] is the input index of sorted point i.
+  std::span<const int> original_index() const { return original_index_; }
+  int levels() const { return int(levels_.size()); }
+  float kappa() const { return kappa_; }
+
+ private:
+  std::vector<vec3> sorted_;
+  std::vector<float> inv_h2_;
+  std::vector<int> cell_start_;
+  std::vector<int> level_offset_;
+  std::vector<SupportLevel> levels_;
+  std::vector<int> original_index_;
+  float kappa_ = 2;
+};
+
+}  // namespace pss
