@@ -32,7 +32,6 @@ struct NeighbourhoodOf {
   float dx[kSlots], dy[kSlots], dz[kSlots], weight[kSlots], inv_h2[kSlots];
 
   PSS_HOST_DEVICE NeighbourhoodOf(const SupportGridView& g, vec3 c) : grid(&g), center(c) {
-    const float kappa2 = grid->kappa2;
     grid->for_each_near(center, [&](vec3 p, int i) {
       const vec3 d = p - center;
       const float d2 = length2(d);
@@ -43,7 +42,7 @@ struct NeighbourhoodOf {
       dz[slot] = d.z;
       weight[slot] = d2 * q;
       inv_h2[slot] = q;
-      count += weight[slot] <= kappa2 ? 1 : 0;  // SupportGridView::covers
+      count += grid->covers(i, d2) ? 1 : 0;
     });
     const int n = stored();
     for (int i = 0; i < n; ++i) weight[i] = exp_nonpositive(-weight[i]);
