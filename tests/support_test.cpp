@@ -88,6 +88,22 @@ TEST(SupportWidths, AStraySampleTakesItsNeighboursWidthAndIsLeftOut) {
   for (std::size_t i = 0; i + 1 < points.size(); ++i) EXPECT_LT(std::abs(projected.cloud.positions[i].z), 1e-5f) << i;
 }
 
+// A small cluster apart from the rest (12 samples 0.02 apart, 0.5 above a plane sampled as
+// finely): its 15th neighbours lie across the gap, but a 15th distance beyond twice the 8th is
+// a gap, not spacing, so the cluster keeps about its own spacing's width, not the gap's (~8h),
+// and does not swell into a disc.
+TEST(SupportWidths, ASmallClusterApartKeepsItsOwnSpacing) {
+  std::vector<vec3> points = stepped_plane(0.02f, 1);
+  const std::size_t plane = points.size();
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 3; ++j) points.push_back(vec3(0.4f + 0.02f * float(i), 0.4f + 0.02f * float(j), 0.5f));
+  const float h = float(estimate_spacing(points).suggested_h);
+  ProjectionParams params = ProjectionParams::from_h(h);
+  params.support = Support::adaptive;
+  const SupportWidths w = support_widths(points, params);
+  for (std::size_t i = plane; i < points.size(); ++i) EXPECT_LT(w.h[i], 2.5f * h) << i;
+}
+
 // ρ_i = ρ·h_i/h stays within the cloud's bounding-box diagonal however sparse a sample's
 // neighbourhood: here a row of 30 samples 0.03 apart leaving a dense patch would take
 // h_i ≈ 0.75·h·0.24/0.005 ≈ 36h, and with ρ = 8h a ρ_i of 1.4 beyond the diagonal (0.99).

@@ -33,7 +33,10 @@ std::vector<float> neighbourhood_spacing(std::span<const vec3> input, int k) {
     unsigned index[kSupportNeighbour + 1];
     float d2[kSupportNeighbour + 1];
     const std::size_t found = tree.knnSearch(&unit[std::size_t(i)].x, std::size_t(k + 1), index, d2);
-    own[std::size_t(i)] = float(std::sqrt(double(d2[found - 1])));
+    // A sample of a small cluster, apart from the rest, finds its 15th neighbour beyond the
+    // gap: on an even sampling d_15 ≈ 1.4·d_8, so more than 2·d_8 is a gap, not spacing.
+    const std::size_t eighth = std::min<std::size_t>(8, found - 1);
+    own[std::size_t(i)] = float(std::min(std::sqrt(double(d2[found - 1])), 2 * std::sqrt(double(d2[eighth]))));
   }, &progress);
   cpu::parallel_for(n, [&](std::int64_t i) {
     unsigned index[kSupportNeighbour + 1];
