@@ -52,7 +52,7 @@ void add_support_option(CLI::App& command, std::string& choice) {
 }
 
 Support support_of(const std::string& choice, bool h_given) {
-  if (choice.empty()) return h_given ? Support::global : Support::adaptive;
+  if (choice.empty()) return default_support(h_given);
   return choice == "global" ? Support::global : Support::adaptive;
 }
 

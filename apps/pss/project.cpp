@@ -85,7 +85,7 @@ void run_project(const ProjectOptions& o) {
     v["backend"] = backend_name(backend);
     v["threads"] = cpu_threads();
     v["params"] = {{"h", params.h}, {"rho", params.rho}, {"plane_fit", o.method},
-                   {"support", params.support == Support::global ? "global" : "adaptive"},
+                   {"support", support_name(params.support)},
                    {"h_least", result.widths.least}, {"h_largest", result.widths.largest},
                    {"max_mls_iterations", params.max_mls_iterations}, {"t_tolerance", params.t_tolerance}};
     v["status"] = {{"converged", c.converged}, {"not_converged", c.not_converged},

@@ -89,7 +89,7 @@ void run_render(const RenderCloudOptions& o) {
     v["samples_left_out"] = prepared.left_out();
     v["local_polynomials"] = prepared.locals().size();
     v["params"] = {{"h", params.projection.h}, {"rho", params.projection.rho}, {"b", params.ball_radius},
-                   {"support", params.projection.support == Support::global ? "global" : "adaptive"},
+                   {"support", support_name(params.projection.support)},
                    {"h_least", prepared.widths().least}, {"h_largest", prepared.widths().largest},
                    {"support_levels", prepared.support_levels()},
                    {"ball_spacing", params.ball_spacing},

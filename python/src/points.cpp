@@ -46,7 +46,7 @@ float suggested_h(const std::vector<vec3>& p) {
 
 // support=None: adaptive, unless h fixes one width for every sample (as the CLI's --support).
 Support support_of(const py::dict& o, bool h_given) {
-  if (!is_given(o, "support")) return h_given ? Support::global : Support::adaptive;
+  if (!is_given(o, "support")) return default_support(h_given);
   return choice(o, "support", {"adaptive", "global"}) == "global" ? Support::global : Support::adaptive;
 }
 
@@ -124,7 +124,7 @@ py::object render(const py::handle& points, const py::dict& o) {
                                  cloud.has_colors() ? SurfaceColor::samples : SurfaceColor::albedo);
     stats.values()["local_polynomials"] = prepared.locals().size();
     stats.values()["params"] = {{"h", params.projection.h}, {"rho", params.projection.rho}, {"b", params.ball_radius},
-                                {"support", support == Support::global ? "global" : "adaptive"},
+                                {"support", support_name(support)},
                                 {"h_least", prepared.widths().least}, {"h_largest", prepared.widths().largest},
                                 {"ball_spacing", params.ball_spacing}, {"epsilon", params.epsilon},
                                 {"iterations", params.max_iterations}};

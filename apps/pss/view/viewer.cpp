@@ -53,11 +53,7 @@ std::string choice_of(const Step& s, std::initializer_list<const char*> choices,
   throw file_error(script + ":" + std::to_string(s.line), "expected " + listed + " (got " + quote(s.args[1]) + ")");
 }
 
-bool switch_of(const Step& s, const std::string& script) {
-  if (s.args[1] == "on") return true;
-  if (s.args[1] == "off") return false;
-  throw file_error(script + ":" + std::to_string(s.line), "expected on or off (got " + quote(s.args[1]) + ")");
-}
+bool switch_of(const Step& s, const std::string& script) { return choice_of(s, {"on", "off"}, script) == "on"; }
 
 // A panel value by name, as the script sets it; the render thread checks its range.
 void set_value(ViewSettings& v, const Step& s, const std::string& script) {

@@ -6,7 +6,8 @@
 
 namespace pss {
 
-// θ3(d) = exp(-d²/h²), taking d² so callers never need the square root.
-PSS_INLINE float gaussian_weight(float distance2, float h) { return exp_nonpositive(-distance2 / (h * h)); }
+// θ3(d) = exp(-d²/h²), taking d² so callers never need the square root, and 1/h², what a
+// sample of varying width stores (spatial/support_grid.hpp), so no division either.
+PSS_INLINE float gaussian_weight(float distance2, float inv_h2) { return exp_nonpositive(-distance2 * inv_h2); }
 
 }  // namespace pss

@@ -40,12 +40,12 @@ struct NeighbourhoodOf {
       dx[slot] = d.x;
       dy[slot] = d.y;
       dz[slot] = d.z;
-      weight[slot] = d2 * q;
+      weight[slot] = d2;
       inv_h2[slot] = q;
       count += grid->covers(i, d2) ? 1 : 0;
     });
     const int n = stored();
-    for (int i = 0; i < n; ++i) weight[i] = exp_nonpositive(-weight[i]);
+    for (int i = 0; i < n; ++i) weight[i] = gaussian_weight(weight[i], inv_h2[i]);
     for (int i = n; i % PSS_SUM_LANES != 0; ++i) dx[i] = dy[i] = dz[i] = weight[i] = inv_h2[i] = 0;
   }
 
@@ -60,7 +60,7 @@ struct NeighbourhoodOf {
     } else {
       grid->for_each_covering(center, [&](vec3 p, float d2, int i) {
         const float q = grid->inv_h2[i];
-        f(p, exp_nonpositive(-d2 * q), q);
+        f(p, gaussian_weight(d2, q), q);
       });
     }
   }
@@ -89,13 +89,13 @@ struct NeighbourhoodOf {
       auto local = [&](int i) { return o + frame.direction_to_local(vec3(dx[i], dy[i], dz[i])); };
       if (weights_at_origin)
         // The padding's weight must be 0 (add_all): a factor, not a branch, so it vectorises.
-        fit.add_all(count, local, [&](int i) { return exp_nonpositive(-length2(local(i)) * inv_h2[i]) * (i < count ? 1.0f : 0.0f); });
+        fit.add_all(count, local, [&](int i) { return gaussian_weight(length2(local(i)), inv_h2[i]) * (i < count ? 1.0f : 0.0f); });
       else
         fit.add_all(count, local, [&](int i) { return weight[i]; });
     } else {
       for_each([&](vec3 p, float w_r, float q) {
         const vec3 l = frame.to_local(p);
-        fit.add(l, weights_at_origin ? exp_nonpositive(-length2(l) * q) : w_r);
+        fit.add(l, weights_at_origin ? gaussian_weight(length2(l), q) : w_r);
       });
     }
     return fit;
@@ -132,12 +132,12 @@ struct NeighbourIndicesOf {
         const int i = index[k];
         const vec3 p = grid->points[i];
         const float q = grid->inv_h2[i];
-        f(p, exp_nonpositive(-length2(p - center) * q), q);
+        f(p, gaussian_weight(length2(p - center), q), q);
       }
     } else {
       grid->for_each_covering(center, [&](vec3 p, float d2, int i) {
         const float q = grid->inv_h2[i];
-        f(p, exp_nonpositive(-d2 * q), q);
+        f(p, gaussian_weight(d2, q), q);
       });
     }
   }
@@ -155,7 +155,7 @@ struct NeighbourIndicesOf {
     PolynomialFit fit(scale);
     for_each([&](vec3 p, float w_r, float q) {
       const vec3 l = frame.to_local(p);
-      fit.add(l, weights_at_origin ? exp_nonpositive(-length2(l) * q) : w_r);
+      fit.add(l, weights_at_origin ? gaussian_weight(length2(l), q) : w_r);
     });
     return fit;
   }

@@ -57,7 +57,6 @@ struct Projection {
   Frame frame;  // at q, with n; g lives in it
   Polynomial polynomial;
   float t;
-  float width;  // the local width h(r) (local_width), 0 with too few neighbours
   int neighbours;
   ProjectionStatus status;
 };
@@ -98,7 +97,6 @@ PSS_HOST_DEVICE Projection project_to_pss(const SupportGridView& grid, vec3 r, c
   out.point = r;
   out.normal = length2(normal_hint) > 0 ? glm::normalize(normal_hint) : vec3(0, 0, 1);
   out.t = 0;
-  out.width = 0;
   out.frame = Frame::from_normal(r, out.normal);
   out.status = ProjectionStatus::too_few_neighbours;
 
@@ -126,7 +124,7 @@ PSS_HOST_DEVICE Projection project_to_pss(const SupportGridView& grid, vec3 r, c
       const float t_next = brent_minimize(energy, t - h, t + h, t, t_tolerance).x;
       const vec3 q = r + t_next * n;
       WeightedMoments at_q(q);
-      neighbours.for_each([&](vec3 p, float, float inv_h2) { at_q.add(p, exp_nonpositive(-length2(p - q) * inv_h2)); });
+      neighbours.for_each([&](vec3 p, float, float inv_h2) { at_q.add(p, gaussian_weight(length2(p - q), inv_h2)); });
       eig = smallest_eigenvector(at_q.covariance_about_origin(), n);
       const float moved = abs(t_next - t) + h * glm::length(eig.vector - n);
       n = eig.vector;
@@ -146,7 +144,6 @@ PSS_HOST_DEVICE Projection project_to_pss(const SupportGridView& grid, vec3 r, c
   out.polynomial = neighbours.polynomial_fit(frame, params.plane == PlaneFitMethod::mls, h).solve();
   out.frame = frame;
   out.t = t;
-  out.width = h;
   out.point = q + out.polynomial.d * n;
   out.normal = n;
   out.status = status;

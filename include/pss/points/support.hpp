@@ -24,6 +24,11 @@ inline constexpr float kSupportSpread = 128;
 // parts more (measured on the shipped clouds at 1, 0.75 and 0.5; docs/paper-notes.md).
 inline constexpr float kSupportWidening = 0.75f;
 
+// What the command line and the Python module choose when the support is not named: adaptive,
+// unless an h was given, which fixes one width for every sample (the paper).
+inline Support default_support(bool h_given) { return h_given ? Support::global : Support::adaptive; }
+inline const char* support_name(Support s) { return s == Support::global ? "global" : "adaptive"; }
+
 struct SupportWidths {
   std::vector<float> h;  // one per point, in the input's order
   float least = 0, median = 0, largest = 0;
