@@ -5,9 +5,24 @@
 # then carry .debs/ to the GPU machine and run there:
 #   scripts/gpu-check.sh [DEBS_DIR=.debs] [OUT_DIR=out/gpu-check]
 # It unpacks the packages into a prefix (dpkg -x: nothing is installed), builds against it
-# in build-gpu/, runs the whole suite (the GPU tests compare CUDA with the CPU), runs
-# compute-sanitizer on the GPU tests, and runs the benchmarks on both backends. Logs and
-# JSON go to OUT_DIR; the last lines printed are the summary. Exits non-zero if a stage failed.
+# in build-gpu/, runs the GPU tests (CUDA against the CPU, on every shipped dataset),
+# compute-sanitizer (memcheck, racecheck, initcheck) on the main jobs, renders images from
+# both backends, runs the benchmarks on both, and profiles the hottest kernels with Nsight
+# Compute. Logs and JSON go to OUT_DIR; the last lines printed are the summary. Exits
+# non-zero if a stage failed.
+#
+# Where device time is short, build here instead (same CUDA, one architecture) and carry
+# the build with the packages: PSS_GPU_CHECK_PREBUILT=1 skips the configure and build stages
+# and runs the binaries of build-gpu/ (pss, tests/pss_gpu_tests, bench/*):
+#   cmake -S . -B build-gpu -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CUDA_ARCHITECTURES=90 \
+#     -DPSS_BUILD_VIEWER=OFF -DPSS_BUILD_PYTHON=OFF -DPSS_BUILD_FUZZ=OFF
+#   ninja -C build-gpu pss_cli pss_gpu_tests bench_paper_tables bench_project
+# Other knobs: PSS_GPU_CHECK_STAGE_SECONDS (each stage's limit, default 900),
+# PSS_GPU_CHECK_BENCH (the benchmarks: "tables project", or fewer), PSS_GPU_CHECK_PROJECT_RUNS
+# (runs of each projection, default 5), PSS_GPU_CHECK_PROFILE=0 (no ncu),
+# PSS_GPU_CHECK_SANITIZERS (the compute-sanitizer tools to run, default "memcheck racecheck
+# initcheck"; "" for none), PSS_GPU_CHECK_ARCHIVE=FILE (OUT_DIR packed into FILE after each
+# stage, so that a run cut short still leaves its results).
 set -uo pipefail
 cd "$(dirname "$0")/.."
 
@@ -25,12 +40,17 @@ fi
 
 debs=${1:-.debs}
 out=${2:-out/gpu-check}
-prefix=${PSS_PREFIX:-$PWD/build-gpu/prefix}
+build=build-gpu
+prefix=${PSS_PREFIX:-$PWD/$build/prefix}
+prebuilt=${PSS_GPU_CHECK_PREBUILT:-0}
 mkdir -p "$out" "$prefix"
 out=$(cd "$out" && pwd)
 failed=()
 summary=()
 log() { printf '[gpu-check %(%T)T] %s\n' -1 "$*"; }
+archive() {
+  [[ -z ${PSS_GPU_CHECK_ARCHIVE:-} ]] || tar -czf "$PSS_GPU_CHECK_ARCHIVE" -C "$(dirname "$out")" "$(basename "$out")"
+}
 # stage NAME COMMAND...: runs one stage, its output in OUT_DIR/NAME.log, and records the outcome.
 # Each stage is stopped after PSS_GPU_CHECK_STAGE_SECONDS (default 900).
 stage() {
@@ -46,7 +66,9 @@ stage() {
     summary+=("FAILED $name ($((SECONDS - start)) s): see $name.log")
     tail -n 30 "$out/$name.log"
   fi
+  archive
 }
+limited() { timeout "${PSS_GPU_CHECK_STAGE_SECONDS:-900}" "$@"; }
 
 # 1. The packages, unpacked into the prefix: nothing is installed, nothing outside
 #    build-gpu/ changes, and the programs built find the prefix's libraries on the library
@@ -71,26 +93,31 @@ export LD_LIBRARY_PATH="$prefix/usr/lib/x86_64-linux-gnu${LD_LIBRARY_PATH:+:$LD_
 
 # 2. Build for this machine's GPU only (the default builds three architectures).
 arch=$(nvidia-smi --query-gpu=compute_cap --format=csv,noheader 2>/dev/null | head -n1 | tr -d ' .')
-nvidia-smi --query-gpu=name,driver_version,memory.total,compute_cap --format=csv >"$out/device.txt" 2>&1
+nvidia-smi --query-gpu=name,driver_version,memory.total,compute_cap,clocks.max.sm --format=csv >"$out/device.txt" 2>&1
 nvcc --version >>"$out/device.txt" 2>&1
-stage configure cmake -S . -B build-gpu -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$prefix/usr" \
-  -DCMAKE_CUDA_ARCHITECTURES="${arch:-90}"
-stage build cmake --build build-gpu -j"$(nproc)"
-grep -q "CUDA backend ON" "$out/configure.log" || { failed+=(cuda); summary+=("FAILED the CUDA backend was not configured"); }
+if [[ $prebuilt == 1 ]]; then
+  summary+=("ok     prebuilt $build/ (configure and build skipped)")
+else
+  stage configure cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$prefix/usr" \
+    -DCMAKE_CUDA_ARCHITECTURES="${arch:-90}"
+  stage build cmake --build "$build" -j"$(nproc)"
+  grep -q "CUDA backend ON" "$out/configure.log" || { failed+=(cuda); summary+=("FAILED the CUDA backend was not configured"); }
+  # 3a. The whole suite (the CPU tests too).
+  stage tests ctest --test-dir "$build" --output-on-failure -j"$(nproc)"
+fi
+pss=(limited "$build/pss")
 
-# 3. The whole suite; the GPU tests compare CUDA with the CPU on the same inputs.
-stage tests ctest --test-dir build-gpu --output-on-failure -j"$(nproc)"
-stage gpu-tests-verbose build-gpu/tests/pss_gpu_tests
+# 3. The GPU tests: CUDA against the CPU on synthetic shapes with exact truth and on every
+#    shipped dataset (each case prints its figures); none may skip.
+gpu_tests() {
+  limited "$build/tests/pss_gpu_tests" || return 1
+  ! grep -q '\[  SKIPPED \]' "$out/gpu-tests.log"
+}
+stage gpu-tests gpu_tests
 
-# 4. compute-sanitizer on every GPU test: out-of-bounds and misaligned accesses, then reads of
-#    device memory nothing wrote.
-for tool in memcheck initcheck; do
-  stage "sanitizer-$tool" compute-sanitizer --tool "$tool" --error-exitcode 1 build-gpu/tests/pss_gpu_tests
-done
-
-# 5. Images to look at, from both backends.
+# 4. Images to look at, from both backends, with their stats.
 images() {
-  local pss=(timeout "${PSS_GPU_CHECK_STAGE_SECONDS:-900}" build-gpu/pss) b
+  local b
   for b in cuda cpu; do
     "${pss[@]}" render data/bun_zipper.ply -o "$out/bunny-$b.png" --iterations 2 --shadows --reflections --backend $b \
       --stats "$out/bunny-$b.json" || return 1
@@ -100,29 +127,70 @@ images() {
 }
 stage images images
 
-# 6. Benchmarks, both backends of the same build side by side (PSS_GPU_CHECK_BENCH=0 skips them).
-[[ ${PSS_GPU_CHECK_BENCH:-1} == 0 ]] || {
-stage bench-tables-cuda build-gpu/bench/bench_paper_tables --backend cuda --runs 3 --frames 10 --json "$out/paper_tables_cuda.json"
-stage bench-tables-cpu build-gpu/bench/bench_paper_tables --backend cpu --runs "${PSS_GPU_CHECK_CPU_RUNS:-3}" --json "$out/paper_tables_cpu.json"
-# The point kernels walking the grid again at each pass against the default that keeps the
-# neighbours' indices (include/pss/points/neighbourhood.hpp): Table 2 side by side
-# (PSS_GPU_CHECK_VARIANT=0 skips it).
-variant() {
-  cmake -S . -B build-gpu-walked -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$prefix/usr" \
-    -DCMAKE_CUDA_ARCHITECTURES="${arch:-90}" -DPSS_BUILD_TESTS=OFF \
-    "-DCMAKE_CUDA_FLAGS=-DPSS_DEVICE_NEIGHBOURS=0" >/dev/null &&
-    cmake --build build-gpu-walked -j"$(nproc)" --target bench_paper_tables >/dev/null &&
-    timeout "${PSS_GPU_CHECK_STAGE_SECONDS:-900}" build-gpu-walked/bench/bench_paper_tables --backend cuda --runs 3 \
-      --frames 10 --only table2 --json "$out/paper_tables_cuda_walked.json"
+# 5. Nsight Compute on the hottest kernels, one launch each after two warm frames: speed of
+#    light (against the memory's bandwidth), occupancy, registers, local-memory traffic.
+profile() {
+  # The kernels are one template (for_each_index) instantiated per kernel struct: match the
+  # demangled name.
+  local ncu=(ncu --clock-control none --kernel-name-base demangled --launch-count 1 --section SpeedOfLight
+             --section Occupancy --section LaunchStats --section MemoryWorkloadAnalysis --section WarpStateStats)
+  limited "${ncu[@]}" --launch-skip 2 -k regex:PrimaryRays "$build/pss" render data/bun_zipper.ply -o "$out/ncu.png" --size 512x512 \
+    --reflections --frames 3 --backend cuda || return 1
+  limited "${ncu[@]}" --launch-skip 2 -k regex:SecondaryRays "$build/pss" render data/bun_zipper.ply -o "$out/ncu.png" --size 512x512 \
+    --reflections --frames 3 --backend cuda || return 1
+  limited "${ncu[@]}" --launch-skip 2 -k regex:PrimaryRays "$build/pss" volume data/engine_256x256x128_uint8.nrrd --iso 90 \
+    --size 512x512 --frames 3 -o "$out/ncu.png" --backend cuda || return 1
+  limited "${ncu[@]}" -k regex:ProjectPoints "$build/pss" project data/bun_zipper.ply \
+    -o "$out/ncu.ply" --backend cuda || return 1
 }
-[[ ${PSS_GPU_CHECK_VARIANT:-1} == 0 ]] || stage bench-tables-cuda-walked-neighbourhoods variant
-stage bench-project build-gpu/bench/bench_project --runs 5 --large --json "$out/project.json"
+[[ ${PSS_GPU_CHECK_PROFILE:-1} == 0 ]] || stage profile profile
+
+# 6. Benchmarks, both backends of the same build side by side (PSS_GPU_CHECK_BENCH names the
+#    parts: "tables project" by default, "" for none). The CPU runs one frame per run: a rough
+#    guide beside the GPU's median of ten.
+bench=" ${PSS_GPU_CHECK_BENCH-tables project} "
+if [[ $bench == *" tables "* ]]; then
+  for part in table2 table1 scaling; do
+    stage "bench-$part-cuda" "$build/bench/bench_paper_tables" --backend cuda --runs 3 --frames 10 --only $part \
+      --json "$out/paper_${part}_cuda.json"
+  done
+  for part in table2 table1; do
+    stage "bench-$part-cpu" "$build/bench/bench_paper_tables" --backend cpu --runs 1 --frames 1 --only $part \
+      --json "$out/paper_${part}_cpu.json"
+  done
+fi
+[[ $bench != *" project "* ]] || stage bench-project "$build/bench/bench_project" \
+  --runs "${PSS_GPU_CHECK_PROJECT_RUNS:-5}" --large --json "$out/project.json"
+
+# 7. compute-sanitizer on the main jobs, small: out-of-bounds and misaligned accesses, shared
+#    memory races, reads of device memory nothing wrote.
+jobs() {
+  local wrap=("$@")
+  "${wrap[@]}" "$build/pss" render data/bun_zipper.ply -o "$out/sanitized.png" --size 96x96 --shadows --reflections \
+    --backend cuda || return 1
+  "${wrap[@]}" "$build/pss" render data/bun_zipper.ply -o "$out/sanitized.png" --size 96x96 --h 0.003 \
+    --backend cuda || return 1
+  "${wrap[@]}" "$build/pss" volume data/bucky_32x32x32_uint8.raw --dims 32x32x32 --type uint8 --iso 100 \
+    --size 96x96 --shadows --reflections -o "$out/sanitized.png" --backend cuda || return 1
+  "${wrap[@]}" "$build/pss" volume data/fuel_64x64x64_uint8.raw --dims 64x64x64 --type uint8 --gradient \
+    --method predictor -o "$out/sanitized.png" --size 96x96 --backend cuda || return 1
+  "${wrap[@]}" "$build/pss" extract data/bucky_32x32x32_uint8.raw --dims 32x32x32 --type uint8 --iso 100 \
+    -o "$out/sanitized.ply" --backend cuda || return 1
+  "${wrap[@]}" "$build/pss" project data/bun_zipper.ply -o "$out/sanitized.ply" --backend cuda || return 1
 }
+for tool in ${PSS_GPU_CHECK_SANITIZERS-memcheck racecheck initcheck}; do
+  stage "sanitizer-$tool" jobs limited compute-sanitizer --tool "$tool" --error-exitcode 1
+done
+
 for f in "$out"/bench-*.log; do
+  [[ -e $f ]] || continue
   echo "== $(basename "$f" .log)"
   grep '^|' "$f"
 done
+echo "== GPU tests"
+grep -E '^\S.*: [0-9]+ (hits|points)|^\[  (FAILED|PASSED|SKIPPED)' "$out/gpu-tests.log" | head -n 80
 
 echo "== gpu-check on $(head -n2 "$out/device.txt" | tail -n1)"
 printf '%s\n' "${summary[@]}"
+archive
 ((${#failed[@]} == 0))
