@@ -1,7 +1,7 @@
 // Projection throughput of `pss project` (points per second): the bunny and a 10⁶-point
 // torus (with --large also 10⁷, run once on the CPU), on the CPU and, when there is one, the
-// GPU. Median of --runs runs.
-//   build/bench/bench_project [--runs 5] [--large] [--json out/bench/project.json]
+// GPU (--backend picks one). Median of --runs runs.
+//   build/bench/bench_project [--runs 5] [--large] [--backend all] [--json out/bench/project.json]
 #include <algorithm>
 #include <cstdio>
 #include <string>
@@ -22,11 +22,14 @@ int main(int argc, char** argv) {
   int runs = 5;
   std::string json_path = "out/bench/project.json";
   bool large = false;
+  std::string backend_choice = "all";
   CLI::App app{"pss project's throughput on the bunny and sampled tori"};
   app.add_option("--runs", runs, "runs per row (the median is reported)")
       ->check(CLI::Range(1, 100))->capture_default_str();
   app.add_option("--json", json_path, "the rows as JSON")->capture_default_str();
   app.add_flag("--large", large, "add a torus of 10^7 points");
+  app.add_option("--backend", backend_choice, "the backends measured: cpu, cuda (when there is a device), or all")
+      ->check(CLI::IsMember({"cpu", "cuda", "all"}))->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   struct Dataset {
     std::string name;
@@ -48,8 +51,9 @@ int main(int argc, char** argv) {
     datasets.push_back({"torus, 10^7 points, noise 0.5%, input normals", std::move(cloud)});
   }
 
-  std::vector<Backend> backends{Backend::cpu};
-  if (cuda::built() && cuda::device_count() > 0) backends.push_back(Backend::cuda);
+  std::vector<Backend> backends;
+  if (backend_choice != "cuda") backends.push_back(Backend::cpu);
+  if (backend_choice != "cpu" && cuda::built() && cuda::device_count() > 0) backends.push_back(Backend::cuda);
 
   nlohmann::json rows = nlohmann::json::array();
   std::printf("| dataset | points | backend | h | median s | points/s |\n|---|---|---|---|---|---|\n");

@@ -273,6 +273,26 @@ TEST(Projection, ResultDoesNotDependOnThreadCount) {
   EXPECT_EQ(one.cloud.normals, three.cloud.normals);
 }
 
+// The points are projected in the grid's order (project_cloud.cpp) and handed back in the
+// input's: a cloud reversed projects to the reversed projections (to rounding: a cell's
+// samples are summed in their input order, which the fit may amplify to 10⁻³h).
+TEST(Projection, ResultsFollowTheInputOrder) {
+  test::SampleOptions o;
+  o.noise = 0.005f;
+  o.count = 3000;
+  const PointCloud cloud = test::sample(test::Torus{}, o);
+  PointCloud reversed = cloud;
+  std::reverse(reversed.positions.begin(), reversed.positions.end());
+  const float h = test::suggested_h(cloud);
+  const CloudProjection forward = run(cloud, h, PlaneFitMethod::mls);
+  const CloudProjection backward = run(reversed, h, PlaneFitMethod::mls);
+  const std::size_t n = cloud.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    ASSERT_LT(glm::length(forward.cloud.positions[i] - backward.cloud.positions[n - 1 - i]), 0.02f * h) << i;
+    ASSERT_EQ(forward.status[i], backward.status[n - 1 - i]) << i;
+  }
+}
+
 TEST(Projection, NormalsAreConsistentlyOrientedOutward) {
   // Without input normals the eigenvectors' signs are arbitrary; the spanning-tree pass
   // must make all of them agree. On a sphere that means all outward or all inward, and

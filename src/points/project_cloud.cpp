@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <span>
 #include <string>
 
 #include "pss/backend/mirror.hpp"
@@ -70,15 +71,23 @@ CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& p
     ScopedPhase phase(stats, "spatial index");
     const SupportGrid grid(positions, widths.h, unit_params.rho / unit_params.h);
     phase.stop();
-    // Without input normals the eigenvector's sign is arbitrary; orientation comes after.
-    const std::vector<vec3> hints = input.has_normals() ? input.normals : std::vector<vec3>(n, vec3(0.0f));
+    // The points are projected in the grid's order, so that neighbouring threads gather
+    // neighbouring samples from the cache; in a scan's random order, 10⁷ points projected at
+    // a fifth of the rate of 10⁶ on a GPU (docs/benchmarks.md, issue 29). Without input
+    // normals the eigenvector's sign is arbitrary; orientation comes after.
+    const std::span<const int> original = grid.original_index();
+    std::vector<vec3> hints(n, vec3(0.0f));
+    if (input.has_normals())
+      for (std::size_t k = 0; k < n; ++k) hints[k] = input.normals[std::size_t(original[k])];
     const GridMirror g(backend, grid);
-    const Mirror<vec3> r(backend, positions), hint(backend, hints);
+    const Mirror<vec3> hint(backend, hints);
     Mirror<ProjectedPoint> out(backend, n);
     Progress progress("projecting", std::int64_t(n));
     parallel_for(backend, "projection", std::int64_t(n),
-                 ProjectPointsKernel{g.view(), r.data(), hint.data(), out.data(), unit_params}, stats, &progress);
-    projected = out.take();
+                 ProjectPointsKernel{g.view(), g.view().points, hint.data(), out.data(), unit_params}, stats, &progress);
+    const std::vector<ProjectedPoint> in_grid_order = out.take();
+    projected.resize(n);
+    for (std::size_t k = 0; k < n; ++k) projected[std::size_t(original[k])] = in_grid_order[k];
   }
 
   CloudProjection out;
