@@ -30,6 +30,7 @@
 
 #include "pss/io/ply.hpp"
 #include "pss/points/render_cloud.hpp"
+#include "pss/render/frame_kernels.hpp"
 #include "pss/render/frame_outputs.hpp"
 #include "support/shapes.hpp"
 
@@ -338,6 +339,27 @@ SquareCoverage cover_square(const RenderedFrame& frame, vec3 centre, vec3 u, vec
       c.holes += !frame.hits[std::size_t(y) * camera.width + x].found();
     }
   return c;
+}
+
+// The rays run in tiles of 8×4 pixels (frame_kernels.hpp): every pixel exactly once, at any
+// size, and the 32 items of an aligned warp one compact tile where the tile is whole.
+TEST(Render, TiledWorkOrderCoversEachPixelOnce) {
+  for (const auto [width, height] : {std::pair{1, 1}, std::pair{7, 3}, std::pair{8, 4}, std::pair{13, 9},
+                                     std::pair{64, 48}, std::pair{67, 50}, std::pair{3, 17}}) {
+    std::vector<int> seen(std::size_t(width) * height, 0);
+    for (std::int64_t i = 0; i < std::int64_t(seen.size()); ++i) {
+      const std::int64_t p = tiled_pixel(i, width, height);
+      ASSERT_GE(p, 0);
+      ASSERT_LT(p, std::int64_t(seen.size()));
+      ++seen[std::size_t(p)];
+    }
+    EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), std::ptrdiff_t(seen.size())) << width << "x" << height;
+  }
+  // 64×48: item 32·k + l is pixel (8·(k mod 8) + l mod 8, 4·(k div 8) + l div 8).
+  for (std::int64_t i = 0; i < 64 * 48; ++i) {
+    const std::int64_t k = i / 32, l = i % 32;
+    ASSERT_EQ(tiled_pixel(i, 64, 48), (4 * (k / 8) + l / 8) * 64 + 8 * (k % 8) + l % 8) << i;
+  }
 }
 
 TEST(Render, PlanarCloudIsAFlatSurface) {
