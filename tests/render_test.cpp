@@ -341,6 +341,37 @@ SquareCoverage cover_square(const RenderedFrame& frame, vec3 centre, vec3 u, vec
   return c;
 }
 
+// 1 % of the points strewn around a noisy sphere: adaptive support must not widen
+// them into sheets (points/support.hpp). Hits away from the sphere (more than 5 % of its
+// radius, the noise being 0.3 %) are the strays' surface: no more than with one global h,
+// which leaves each stray too few neighbours.
+TEST(Render, StrewnOutliersMakeNoMoreSurfaceThanWithOneH) {
+  test::SampleOptions o;
+  o.count = 12000;
+  o.noise = 0.003f;
+  PointCloud cloud = test::sample(test::Sphere{}, o);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> coordinate(-1.5f, 1.5f);  // as around the bunny: mostly far off it
+  for (int i = 0; i < 120; ++i) cloud.positions.push_back(vec3(coordinate(rng), coordinate(rng), coordinate(rng)));
+  const float h = test::suggested_h(cloud);
+  const auto off_surface = [&](Support support) {
+    RayPssParams params = RayPssParams::from_h(h);
+    params.projection.support = support;
+    Stats stats;
+    const PreparedCloud prepared(cloud, params, Backend::cpu, stats);
+    CameraSettings view = small_view();
+    view.width = view.height = 128;
+    const RenderedFrame frame = render(prepared, Camera::framing(cloud.bounds(), view));
+    std::int64_t off = 0;
+    for (const Hit& hit : frame.hits) off += hit.found() && std::abs(test::Sphere{}.distance(hit.point)) > 0.05f;
+    return off;
+  };
+  const std::int64_t global = off_surface(Support::global), adaptive = off_surface(Support::adaptive);
+  std::printf("hits off the sphere: global %lld, adaptive %lld of %d pixels\n", (long long)global,
+              (long long)adaptive, 128 * 128);
+  EXPECT_LE(adaptive, global + 16);  // 0.1 % of the pixels
+}
+
 // The rays run in tiles of 8×4 pixels (frame_kernels.hpp): every pixel exactly once, at any
 // size, and the 32 items of an aligned warp one compact tile where the tile is whole.
 TEST(Render, TiledWorkOrderCoversEachPixelOnce) {

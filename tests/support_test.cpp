@@ -12,6 +12,7 @@
 #include "pss/points/spacing.hpp"
 #include "pss/points/support.hpp"
 #include "pss/spatial/support_grid.hpp"
+#include "support/shapes.hpp"
 
 namespace pss {
 namespace {
@@ -107,6 +108,30 @@ TEST(SupportWidths, ASmallClusterApartKeepsItsOwnSpacing) {
 // ρ_i = ρ·h_i/h stays within the cloud's bounding-box diagonal however sparse a sample's
 // neighbourhood: here a row of 30 samples 0.03 apart leaving a dense patch would take
 // h_i ≈ 0.75·h·0.24/0.005 ≈ 36h, and with ρ = 8h a ρ_i of 1.4 beyond the diagonal (0.99).
+// Outliers strewn through the box of a noisy sphere (1 %, as a scanner's strays) are sparse
+// and each other's neighbours, but fill a volume, or sit next to the denser surface: none
+// widens (each would make a sheet of its own), while the sparse half of a stepped sphere
+// does (AdaptiveWidensWithTheSpacing..., render_test's DensitySteps).
+TEST(SupportWidths, OutliersStrewnAroundASurfaceDoNotWiden) {
+  for (const std::uint32_t seed : {1u, 2u, 3u, 4u}) {
+    test::SampleOptions o;
+    o.count = 20000;
+    o.noise = 0.003f;
+    o.seed = seed;
+    std::vector<vec3> points = test::sample(test::Sphere{}, o).positions;
+    const std::size_t surface = points.size();
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> coordinate(-1, 1);
+    for (std::size_t i = 0; i < surface / 100 * seed / 2; ++i)  // 0.5 %, 1 %, 1.5 %, 2 %
+      points.push_back(vec3(coordinate(rng), coordinate(rng), coordinate(rng)));
+    const float h = float(estimate_spacing(points).suggested_h);
+    ProjectionParams params = ProjectionParams::from_h(h);
+    params.support = Support::adaptive;
+    const SupportWidths w = support_widths(points, params);
+    for (std::size_t i = surface; i < points.size(); ++i) EXPECT_EQ(w.h[i], h) << "seed " << seed << ", outlier " << i;
+  }
+}
+
 TEST(SupportWidths, NoSupportReachesBeyondTheCloud) {
   std::vector<vec3> points;
   for (int i = 0; i < 45; ++i)

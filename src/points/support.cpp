@@ -14,19 +14,37 @@ namespace pss {
 
 namespace {
 
+// The smallest eigenvalue of a symmetric 3×3 matrix over its trace (Smith 1961), for the
+// surface variation of kVolumeNeighbour neighbours.
+double surface_variation(const double c[6]) {  // xx, yy, zz, xy, xz, yz
+  const double trace = c[0] + c[1] + c[2];
+  if (!(trace > 0)) return 0;
+  const double q = trace / 3, off = c[3] * c[3] + c[4] * c[4] + c[5] * c[5];
+  const double p2 = (c[0] - q) * (c[0] - q) + (c[1] - q) * (c[1] - q) + (c[2] - q) * (c[2] - q) + 2 * off;
+  if (!(p2 > 1e-30 * trace * trace)) return 1.0 / 3;  // isotropic
+  const double p = std::sqrt(p2 / 6);
+  const double b0 = (c[0] - q) / p, b1 = (c[1] - q) / p, b2 = (c[2] - q) / p;
+  const double bxy = c[3] / p, bxz = c[4] / p, byz = c[5] / p;
+  const double det = b0 * (b1 * b2 - byz * byz) - bxy * (bxy * b2 - byz * bxz) + bxz * (bxy * byz - b1 * bxz);
+  const double phi = std::acos(std::clamp(det / 2, -1.0, 1.0)) / 3;
+  return std::max(0.0, q + 2 * p * std::cos(phi + 2.0943951023931957)) / trace;
+}
+
 // For every point, the median of d_k over it and its k nearest neighbours, d_k(j) the distance
 // from p_j to its k-th nearest other sample. The median, not p_i's own d_k: a stray sample
 // far from the rest has a large d_k but takes its neighbours' width, which leaves it too few
 // samples to make a surface of its own (no floating blob); and widths vary smoothly, so the
-// surface does not pucker where two neighbours' widths differ by chance.
-std::vector<float> neighbourhood_spacing(std::span<const vec3> input, int k) {
-  const points_detail::UnitFrame frame = points_detail::unit_frame(input);
-  const std::vector<vec3> unit = points_detail::to_unit(input, frame);
-  const points_detail::CloudAdaptor adaptor{unit};
-  points_detail::KdTree tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(16));
-  tree.buildIndex();
+// surface does not pucker where two neighbours' widths differ by chance. Beside it, the least
+// d_k of p_i's neighbours, in the unit frame.
+struct NeighbourhoodSpacing {
+  std::vector<float> spacing;  // s_i, in the input's units
+  std::vector<float> least;    // min over the k nearest neighbours of d_k, over s_i
+};
+NeighbourhoodSpacing neighbourhood_spacing(std::span<const vec3> unit, double scale, const points_detail::KdTree& tree,
+                                           int k) {
   const auto n = std::int64_t(unit.size());
-  std::vector<float> own(unit.size()), out(unit.size());
+  std::vector<float> own(unit.size());
+  NeighbourhoodSpacing out{std::vector<float>(unit.size()), std::vector<float>(unit.size())};
   Progress progress("support widths", 2 * n);
   // k + 1 below: each query finds its own point at distance 0.
   cpu::parallel_for(n, [&](std::int64_t i) {
@@ -42,12 +60,32 @@ std::vector<float> neighbourhood_spacing(std::span<const vec3> input, int k) {
     unsigned index[kSupportNeighbour + 1];
     float d2[kSupportNeighbour + 1];
     const std::size_t found = tree.knnSearch(&unit[std::size_t(i)].x, std::size_t(k + 1), index, d2);
-    float d[kSupportNeighbour + 1];
-    for (std::size_t j = 0; j < found; ++j) d[j] = own[index[j]];
+    float d[kSupportNeighbour + 1], least = kInfinity;
+    for (std::size_t j = 0; j < found; ++j) {
+      d[j] = own[index[j]];
+      if (index[j] != unsigned(i)) least = std::min(least, d[j]);
+    }
     std::nth_element(d, d + found / 2, d + found);
-    out[std::size_t(i)] = float(double(d[found / 2]) * frame.scale);
+    out.spacing[std::size_t(i)] = float(double(d[found / 2]) * scale);
+    out.least[std::size_t(i)] = d[found / 2] > 0 ? least / d[found / 2] : 1.0f;
   }, &progress);
   return out;
+}
+
+// Whether p_i's kVolumeNeighbour nearest neighbours fill a volume (kVolumeVariation).
+bool fills_a_volume(std::span<const vec3> unit, const points_detail::KdTree& tree, std::size_t i) {
+  unsigned index[kVolumeNeighbour + 1];
+  float d2[kVolumeNeighbour + 1];
+  const std::size_t found = tree.knnSearch(&unit[i].x, std::size_t(kVolumeNeighbour + 1), index, d2);
+  glm::dvec3 mean(0.0);
+  for (std::size_t j = 0; j < found; ++j) mean += glm::dvec3(unit[index[j]]);
+  mean /= double(found);
+  double c[6] = {0, 0, 0, 0, 0, 0};
+  for (std::size_t j = 0; j < found; ++j) {
+    const glm::dvec3 d = glm::dvec3(unit[index[j]]) - mean;
+    c[0] += d.x * d.x, c[1] += d.y * d.y, c[2] += d.z * d.z, c[3] += d.x * d.y, c[4] += d.x * d.z, c[5] += d.y * d.z;
+  }
+  return surface_variation(c) > kVolumeVariation;
 }
 
 }  // namespace
@@ -61,7 +99,13 @@ SupportWidths support_widths(std::span<const vec3> points, const ProjectionParam
   const int k = std::min<int>(kSupportNeighbour, int(points.size()) - 1);
   if (params.support == Support::global || k < 1) return out;
 
-  const std::vector<float> d = neighbourhood_spacing(points, k);
+  const points_detail::UnitFrame frame = points_detail::unit_frame(points);
+  const std::vector<vec3> unit = points_detail::to_unit(points, frame);
+  const points_detail::CloudAdaptor adaptor{unit};
+  points_detail::KdTree tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+  tree.buildIndex();
+  const NeighbourhoodSpacing spacing = neighbourhood_spacing(unit, frame.scale, tree, k);
+  const std::vector<float>& d = spacing.spacing;
   std::vector<float> sorted = d;
   std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(sorted.size() / 2), sorted.end());
   const float median_d = sorted[sorted.size() / 2];
@@ -70,13 +114,30 @@ SupportWidths support_widths(std::span<const vec3> points, const ProjectionParam
   // Never narrower than h: where the cloud is denser than its median the paper's width stays
   // (a narrower one only shows the scanner's noise and opens holes where dense rows leave
   // gaps); where it is sparser the width grows with the spacing (kSupportWidening), up to
-  // kSupportSpread·h and to ρ_i within the cloud's diagonal.
-  const double diagonal = points_detail::unit_frame(points).diagonal;
-  const float widest = std::max(h, std::min(h * kSupportSpread, float(diagonal * double(h) / double(params.rho))));
+  // kSupportSpread·h and to ρ_i within the cloud's diagonal, on a sparse surface.
+  const float widest =
+      std::max(h, std::min(h * kSupportSpread, float(frame.diagonal * double(h) / double(params.rho))));
+  // A sample widens where it lies on a sparse surface (support.hpp): sparse, with no denser
+  // sample among its neighbours, flat, and kSparseNeighbours of its neighbours alike.
+  std::vector<char> sparse(points.size(), 0), wide(points.size(), 0);
+  cpu::parallel_for(std::int64_t(points.size()), [&](std::int64_t i) {
+    const auto j = std::size_t(i);
+    sparse[j] = kSupportWidening * d[j] > median_d && spacing.least[j] >= kSparseEvenness &&
+                !fills_a_volume(unit, tree, j);
+  });
+  cpu::parallel_for(std::int64_t(points.size()), [&](std::int64_t i) {
+    if (!sparse[std::size_t(i)]) return;
+    unsigned index[kSupportNeighbour + 1];
+    float d2[kSupportNeighbour + 1];
+    const std::size_t found = tree.knnSearch(&unit[std::size_t(i)].x, std::size_t(k + 1), index, d2);
+    int alike = 0;
+    for (std::size_t j = 0; j < found; ++j) alike += index[j] != unsigned(i) && sparse[index[j]];
+    wide[std::size_t(i)] = alike >= kSparseNeighbours;
+  });
   out.least = kInfinity;
   out.largest = 0;
-  for (std::size_t i = 0; i < d.size(); ++i) {
-    out.h[i] = std::clamp(kSupportWidening * h * (d[i] / median_d), h, widest);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (wide[i]) out.h[i] = std::clamp(kSupportWidening * h * (d[i] / median_d), h, widest);
     out.least = std::min(out.least, out.h[i]);
     out.largest = std::max(out.largest, out.h[i]);
   }
