@@ -54,6 +54,10 @@ int main(int argc, char** argv) {
   std::vector<Backend> backends;
   if (backend_choice != "cuda") backends.push_back(Backend::cpu);
   if (backend_choice != "cpu" && cuda::built() && cuda::device_count() > 0) backends.push_back(Backend::cuda);
+  if (backends.empty()) {
+    std::fprintf(stderr, "bench_project: --backend cuda: no CUDA device (or a build without CUDA)\n");
+    return 1;
+  }
 
   nlohmann::json rows = nlohmann::json::array();
   std::printf("| dataset | points | backend | h | median s | points/s |\n|---|---|---|---|---|---|\n");

@@ -8,6 +8,13 @@
 # PSS_COMPARE_RUNS (default 3), PSS_COMPARE_FRAMES (default 10) and PSS_COMPARE_BACKEND
 # (default cuda; cpu tries the script where there is no device).
 set -euo pipefail
+(($# > 0)) || { echo "usage: $0 NAME=PATH/TO/pss [NAME=PATH ...]" >&2; exit 2; }
+builds=()
+for build in "$@"; do  # the paths as given, from the caller's folder
+  [[ -x ${build#*=} && $build == *=* ]] || { echo "$0: not NAME=an executable: $build" >&2; exit 2; }
+  builds+=("${build%%=*}=$(realpath "${build#*=}")")
+done
+set -- "${builds[@]}"
 cd "$(dirname "$0")/.."
 runs=${PSS_COMPARE_RUNS:-3}
 scratch=$(mktemp -d)

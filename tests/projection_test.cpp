@@ -293,6 +293,21 @@ TEST(Projection, ResultsFollowTheInputOrder) {
   }
 }
 
+// Input normals orient each projection (and no orientation pass runs): the file's normal of
+// each point, through the grid's order, must reach that point. On a sphere, every third
+// point's normal inward and the others outward: each projection follows its own point's.
+TEST(Projection, InputNormalsOrientTheirOwnPoints) {
+  test::SampleOptions o;
+  o.noise = 0.005f;
+  o.count = 3000;
+  PointCloud cloud = test::sample(test::Sphere{}, o);
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    cloud.normals.push_back((i % 3 == 0 ? -1.0f : 1.0f) * glm::normalize(cloud.positions[i]));
+  const CloudProjection out = run(cloud, test::suggested_h(cloud), PlaneFitMethod::mls);
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    ASSERT_GT(glm::dot(out.cloud.normals[i], cloud.normals[i]), 0.9f) << i;
+}
+
 TEST(Projection, NormalsAreConsistentlyOrientedOutward) {
   // Without input normals the eigenvectors' signs are arbitrary; the spanning-tree pass
   // must make all of them agree. On a sphere that means all outward or all inward, and

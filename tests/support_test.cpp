@@ -105,9 +105,6 @@ TEST(SupportWidths, ASmallClusterApartKeepsItsOwnSpacing) {
   for (std::size_t i = plane; i < points.size(); ++i) EXPECT_LT(w.h[i], 2.5f * h) << i;
 }
 
-// ρ_i = ρ·h_i/h stays within the cloud's bounding-box diagonal however sparse a sample's
-// neighbourhood: here a row of 30 samples 0.03 apart leaving a dense patch would take
-// h_i ≈ 0.75·h·0.24/0.005 ≈ 36h, and with ρ = 8h a ρ_i of 1.4 beyond the diagonal (0.99).
 // Outliers strewn through the box of a noisy sphere (1 %, as a scanner's strays) are sparse
 // and each other's neighbours, but fill a volume, or sit next to the denser surface: none
 // widens (each would make a sheet of its own), while the sparse half of a stepped sphere
@@ -132,6 +129,9 @@ TEST(SupportWidths, OutliersStrewnAroundASurfaceDoNotWiden) {
   }
 }
 
+// ρ_i = ρ·h_i/h stays within the cloud's bounding-box diagonal however sparse a sample's
+// neighbourhood: here a row of 30 samples 0.03 apart leaving a dense patch would take
+// h_i ≈ 0.75·h·0.24/0.005 ≈ 36h, and with ρ = 8h a ρ_i of 1.4 beyond the diagonal (0.99).
 TEST(SupportWidths, NoSupportReachesBeyondTheCloud) {
   std::vector<vec3> points;
   for (int i = 0; i < 45; ++i)

@@ -5,6 +5,7 @@
 #include <span>
 #include <string>
 
+#include "pss/backend/cpu/parallel_for.hpp"
 #include "pss/backend/mirror.hpp"
 #include "pss/backend/parallel_for.hpp"
 #include "pss/core/error.hpp"
@@ -78,7 +79,7 @@ CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& p
     const std::span<const int> original = grid.original_index();
     std::vector<vec3> hints(n, vec3(0.0f));
     if (input.has_normals())
-      for (std::size_t k = 0; k < n; ++k) hints[k] = input.normals[std::size_t(original[k])];
+      cpu::parallel_for(std::int64_t(n), [&](std::int64_t k) { hints[k] = input.normals[std::size_t(original[k])]; });
     const GridMirror g(backend, grid);
     const Mirror<vec3> hint(backend, hints);
     Mirror<ProjectedPoint> out(backend, n);
@@ -87,7 +88,7 @@ CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& p
                  ProjectPointsKernel{g.view(), g.view().points, hint.data(), out.data(), unit_params}, stats, &progress);
     const std::vector<ProjectedPoint> in_grid_order = out.take();
     projected.resize(n);
-    for (std::size_t k = 0; k < n; ++k) projected[std::size_t(original[k])] = in_grid_order[k];
+    cpu::parallel_for(std::int64_t(n), [&](std::int64_t k) { projected[std::size_t(original[k])] = in_grid_order[k]; });
   }
 
   CloudProjection out;

@@ -49,8 +49,9 @@ struct SupportWidths {
 };
 
 // params.h for every point (Support::global), or (Support::adaptive) h_i = params.h ·
-// max(1, kSupportWidening·s_i / median s), s_i the median over p_i and its k nearest
-// neighbours of their distances to their own k-th nearest other sample. ρ_i = ρ·h_i/h is kept within the cloud's bounding-box diagonal.
+// max(1, kSupportWidening·s_i / median s) where p_i lies on a sparse surface (above), else
+// params.h; s_i the median over p_i and its k nearest neighbours of their distances to their
+// own k-th nearest other sample. ρ_i = ρ·h_i/h is kept within the cloud's bounding-box diagonal.
 // Throws Error for a width that is not a positive number.
 SupportWidths support_widths(std::span<const vec3> points, const ProjectionParams& params);
 
