@@ -275,7 +275,8 @@ TEST(Projection, ResultDoesNotDependOnThreadCount) {
 
 // The points are projected in the grid's order (project_cloud.cpp) and handed back in the
 // input's: a cloud reversed projects to the reversed projections (to rounding: a cell's
-// samples are summed in their input order, which the fit may amplify to 10⁻³h).
+// samples are summed in their input order, which the fit may amplify to 10⁻³h, and which
+// may end a projection that stops at its last iteration on the other side of the tolerance).
 TEST(Projection, ResultsFollowTheInputOrder) {
   test::SampleOptions o;
   o.noise = 0.005f;
@@ -287,10 +288,12 @@ TEST(Projection, ResultsFollowTheInputOrder) {
   const CloudProjection forward = run(cloud, h, PlaneFitMethod::mls);
   const CloudProjection backward = run(reversed, h, PlaneFitMethod::mls);
   const std::size_t n = cloud.size();
+  std::size_t other_status = 0;
   for (std::size_t i = 0; i < n; ++i) {
     ASSERT_LT(glm::length(forward.cloud.positions[i] - backward.cloud.positions[n - 1 - i]), 0.02f * h) << i;
-    ASSERT_EQ(forward.status[i], backward.status[n - 1 - i]) << i;
+    other_status += forward.status[i] != backward.status[n - 1 - i];
   }
+  EXPECT_LE(other_status, n / 500);
 }
 
 // Input normals orient each projection (and no orientation pass runs): the file's normal of
