@@ -35,7 +35,7 @@ double surface_variation(const double c[6]) {  // xx, yy, zz, xy, xz, yz
 // far from the rest has a large d_k but takes its neighbours' width, which leaves it too few
 // samples to make a surface of its own (no floating blob); and widths vary smoothly, so the
 // surface does not pucker where two neighbours' widths differ by chance. Beside it, the least
-// d_k of p_i's neighbours, in the unit frame.
+// d_k of p_i's neighbours over that median (kSparseEvenness).
 struct NeighbourhoodSpacing {
   std::vector<float> spacing;  // s_i, in the input's units
   std::vector<float> least;    // min over the k nearest neighbours of d_k, over s_i

@@ -27,13 +27,19 @@ PSS_INLINE std::int64_t tiled_pixel(std::int64_t i, int width, int height) {
   return (band * kTileHeight + k / columns) * width + x0 + k % columns;
 }
 
+// The pixel of work item i for a finder's rays: tiled or row by row (kTiledRays).
+template <class Finder>
+PSS_INLINE std::int64_t ray_pixel(std::int64_t i, const Camera& camera) {
+  return Finder::kTiledRays ? tiled_pixel(i, camera.width, camera.height) : i;
+}
+
 template <class Finder>
 struct PrimaryRaysKernel {
   Finder finder;
   Camera camera;
   Hit* hits;
   PSS_HOST_DEVICE void operator()(std::int64_t i) const {
-    const std::int64_t p = Finder::kTiledRays ? tiled_pixel(i, camera.width, camera.height) : i;
+    const std::int64_t p = ray_pixel<Finder>(i, camera);
     hits[p] = finder.primary(camera.primary_ray(int(p % camera.width), int(p / camera.width)));
   }
 };
@@ -46,7 +52,7 @@ struct SecondaryRaysKernel {
   const Hit* hits;
   SecondaryHits* out;
   PSS_HOST_DEVICE void operator()(std::int64_t i) const {
-    const std::int64_t p = Finder::kTiledRays ? tiled_pixel(i, camera.width, camera.height) : i;
+    const std::int64_t p = ray_pixel<Finder>(i, camera);
     out[p] = trace_secondary(finder, settings, camera.primary_ray(int(p % camera.width), int(p / camera.width)), hits[p]);
   }
 };
