@@ -152,6 +152,31 @@ TEST_F(Viewer, SupportIsTheRenderedOne) {
   EXPECT_NE(read(path("a.png")), read(path("g.png")));
 }
 
+// The panel's surface: MLS by default, as pss render's; APSS and RIMLS when set, as
+// --surface's (the cloud prepared again with its normals, then switched back without).
+TEST_F(Viewer, SurfaceIsTheRenderedOne) {
+  test::SampleOptions o;
+  o.count = 6000;
+  {
+    std::ofstream xyz(path("sphere.xyz"));
+    xyz.precision(9);
+    for (const vec3& p : test::sample(test::Sphere{}, o).positions) xyz << p.x << ' ' << p.y << ' ' << p.z << '\n';
+  }
+  const test::CliResult r = view(path("sphere.xyz") + " --size 96x96",
+                                 "view 30 20\nscreenshot m\nset surface rimls\nscreenshot r\nset surface apss\n"
+                                 "screenshot a\nset surface mls\nscreenshot m2\n");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string render = "render " + path("sphere.xyz") + " --size 96x96 --view 30,20 -o ";
+  for (const char* surface : {"mls", "rimls", "apss"})
+    ASSERT_EQ(test::run_pss(render + path(std::string("r_") + surface + ".png") + " --surface " + surface).exit_code, 0);
+  EXPECT_EQ(read(path("m.png")), read(path("r_mls.png")));
+  EXPECT_EQ(read(path("r.png")), read(path("r_rimls.png")));
+  EXPECT_EQ(read(path("a.png")), read(path("r_apss.png")));
+  EXPECT_EQ(read(path("m2.png")), read(path("r_mls.png")));
+  EXPECT_NE(read(path("m.png")), read(path("r.png")));
+  EXPECT_NE(read(path("m.png")), read(path("a.png")));
+}
+
 TEST_F(Viewer, VolumeScreenshotsAreThoseOfPssVolume) {
   write("ball.raw", test::uint8_raw_bytes(test::sphere_distance(vec3(15.0f, 16.0f, 14.0f), 8.0f), ivec3(32)));
   const std::string volume = path("ball.raw") + " --dims 32x32x32 --type uint8";

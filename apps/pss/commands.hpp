@@ -6,6 +6,7 @@
 
 #include "pss/points/cloud.hpp"
 #include "pss/points/projection.hpp"
+#include "pss/points/sample_normals.hpp"
 #include "pss/points/spacing.hpp"
 #include "pss/points/support.hpp"
 
@@ -31,6 +32,17 @@ void add_support_option(CLI::App& command, std::string& choice);
 Support support_of(const std::string& choice, bool h_given);
 // "global support", or "adaptive support, h_i from X to Y", for the summary line.
 std::string support_text(Support support, const SupportWidths& widths);
+
+// --surface mls|apss|rimls and --normals file|estimate (points/projection.hpp).
+struct SurfaceOptions {
+  std::string surface = "mls";
+  std::string normals = "file";
+};
+void add_surface_options(CLI::App& command, SurfaceOptions& options);
+void apply_surface_options(const SurfaceOptions& options, ProjectionParams& params);
+SurfaceOperator surface_operator_of(const std::string& name);  // "mls", "apss" or "rimls"
+// " (the file's normals)", " (estimated normals)" or "", after "<surface> surface".
+const char* normals_text(NormalsUsed used);
 
 // What a chosen subcommand does once CLI11 has parsed and validated its options: run, or
 // only check the options that need more than one flag's validator (the --iso/--gradient

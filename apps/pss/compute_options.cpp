@@ -63,4 +63,36 @@ std::string support_text(Support support, const SupportWidths& widths) {
   return text;
 }
 
+void add_surface_options(CLI::App& command, SurfaceOptions& options) {
+  command
+      .add_option("--surface", options.surface,
+                  "the surface the points define: mls (the paper's plane and polynomial), apss (algebraic spheres "
+                  "fitted to the points and their normals: holds sparse, thin and curved parts) or rimls (robust "
+                  "implicit MLS: keeps sharp creases, ignores outliers); apss and rimls use the file's normals, or "
+                  "estimate them")
+      ->check(CLI::IsMember({"mls", "apss", "rimls"}))
+      ->capture_default_str();
+  command
+      .add_option("--normals", options.normals,
+                  "the points' normals: file (the file's, when it has them; else estimated) or estimate (from the "
+                  "points, the file's ignored)")
+      ->check(CLI::IsMember({"file", "estimate"}))
+      ->capture_default_str();
+}
+
+void apply_surface_options(const SurfaceOptions& options, ProjectionParams& params) {
+  params.surface = surface_operator_of(options.surface);
+  params.normals = options.normals == "estimate" ? NormalSource::estimate : NormalSource::file;
+}
+
+const char* normals_text(NormalsUsed used) {
+  return used == NormalsUsed::file ? " (the file's normals)" : used == NormalsUsed::estimated ? " (estimated normals)" : "";
+}
+
+SurfaceOperator surface_operator_of(const std::string& name) {
+  if (name == "apss") return SurfaceOperator::apss;
+  if (name == "rimls") return SurfaceOperator::rimls;
+  return SurfaceOperator::mls;
+}
+
 }  // namespace pss::app

@@ -23,6 +23,7 @@ struct ProjectOptions {
   float h = 0, rho = 0;
   std::string method = "mls";
   std::string support;  // empty: support_of's default
+  SurfaceOptions surface;
   int iterations = 4;
   ComputeOptions compute;
 };
@@ -47,6 +48,7 @@ void run_project(const ProjectOptions& o) {
       ProjectionParams::from_h(h, o.method == "wls" ? PlaneFitMethod::wls : PlaneFitMethod::mls);
   if (o.rho != 0) params.rho = o.rho;
   params.support = support_of(o.support, o.h != 0);
+  apply_surface_options(o.surface, params);
   params.max_mls_iterations = o.iterations;
 
   const CloudProjection result = project_cloud(cloud, params, backend, stats);
@@ -70,8 +72,8 @@ void run_project(const ProjectOptions& o) {
   std::printf("projected %zu points onto the PSS in %.3f s (projection %.3f s, %.0f points/s, %s backend, %d threads)\n",
               cloud.size(), total, projection_s, double(cloud.size()) / projection_s, backend_name(backend),
               cpu_threads());
-  std::printf("h = %g (%s), rho = %g, plane fit %s; converged %lld, not converged %lld, too few neighbours %lld, "
-              "degenerate normal %lld\n", params.h, support_text(params.support, result.widths).c_str(), params.rho,
+  std::printf("%s surface%s, h = %g (%s), rho = %g, plane fit %s; converged %lld, not converged %lld, too few neighbours %lld, "
+              "degenerate normal %lld\n", surface_name(params.surface), normals_text(result.normals), params.h, support_text(params.support, result.widths).c_str(), params.rho,
               o.method.c_str(), (long long)c.converged, (long long)c.not_converged, (long long)c.too_few_neighbours,
               (long long)c.degenerate_normal);
 
@@ -86,6 +88,7 @@ void run_project(const ProjectOptions& o) {
     v["threads"] = cpu_threads();
     v["params"] = {{"h", params.h}, {"rho", params.rho}, {"plane_fit", o.method},
                    {"support", support_name(params.support)},
+                   {"surface", surface_name(params.surface)}, {"normals", normals_used_name(result.normals)},
                    {"h_least", result.widths.least}, {"h_largest", result.widths.largest},
                    {"max_mls_iterations", params.max_mls_iterations}, {"t_tolerance", params.t_tolerance}};
     v["status"] = {{"converged", c.converged}, {"not_converged", c.not_converged},
@@ -118,10 +121,13 @@ void add_project_command(CLI::App& app, Action action) {
       ->check(finite_positive());
   command->add_option("--rho", o->rho, "range-query radius (default 2h; with adaptive support, at h)")->check(finite_positive());
   add_support_option(*command, o->support);
-  command->add_option("--method", o->method, "plane fit: mls (Eq. 2, default) or wls (Eq. 1)")
+  add_surface_options(*command, o->surface);
+  command->add_option("--method", o->method,
+                      "plane fit: mls (Eq. 2, default) or wls (Eq. 1); with --surface apss or rimls, mls moves the "
+                      "fit to the projected point up to --iterations times, wls fits once at the point")
       ->check(CLI::IsMember({"mls", "wls"}))
       ->capture_default_str();
-  command->add_option("--iterations", o->iterations, "most MLS alternations of t and n")
+  command->add_option("--iterations", o->iterations, "most MLS alternations of t and n (apss, rimls: fits)")
       ->check(finite_range(1, 100))
       ->capture_default_str();
   add_compute_options(*command, o->compute);

@@ -24,6 +24,7 @@ struct RenderCloudOptions {
   std::string iterations = "2";
   std::string secondary = "full";
   std::string support;  // empty: support_of's default
+  SurfaceOptions surface;
   bool color = false;  // shade with the samples' colours
   RenderOptions render;
 };
@@ -56,6 +57,7 @@ void run_render(const RenderCloudOptions& o) {
   RayPssParams params = RayPssParams::from_h(h);
   if (o.rho != 0) params.projection.rho = o.rho;
   params.projection.support = support_of(o.support, o.h != 0);
+  apply_surface_options(o.surface, params.projection);
   if (o.b != 0) params.ball_radius = o.b;
   params.ball_spacing = o.ball_spacing >= 0 ? o.ball_spacing : 0.5f * params.ball_radius;
   if (o.epsilon != 0) params.epsilon = o.epsilon;
@@ -78,8 +80,10 @@ void run_render(const RenderCloudOptions& o) {
               "BVH %.3f s (%s backend, %d threads)\n", o.input.c_str(), cloud.size(), camera.width, camera.height,
               seconds, frame_s, 1.0 / frame_s, stats.time("preprocess"), stats.time("acceleration structure"),
               backend_name(backend), cpu_threads());
-  std::printf("%lld rays, %lld hits, %.2f projections per hit, %lld secondary rays; h = %g (%s), b = %g, eps = %g\n",
-              (long long)s.rays, (long long)s.hits, s.mean_iterations, (long long)s.secondary_rays, params.projection.h,
+  std::printf("%lld rays, %lld hits, %.2f projections per hit, %lld secondary rays; %s surface%s, h = %g (%s), "
+              "b = %g, eps = %g\n",
+              (long long)s.rays, (long long)s.hits, s.mean_iterations, (long long)s.secondary_rays,
+              surface_name(params.projection.surface), normals_text(prepared.normals_used()), params.projection.h,
               support_text(params.projection.support, prepared.widths()).c_str(), params.ball_radius, params.epsilon);
 
   if (!o.render.compute.stats_path.empty()) {
@@ -90,6 +94,8 @@ void run_render(const RenderCloudOptions& o) {
     v["local_polynomials"] = prepared.locals().size();
     v["params"] = {{"h", params.projection.h}, {"rho", params.projection.rho}, {"b", params.ball_radius},
                    {"support", support_name(params.projection.support)},
+                   {"surface", surface_name(params.projection.surface)},
+                   {"normals", normals_used_name(prepared.normals_used())},
                    {"h_least", prepared.widths().least}, {"h_largest", prepared.widths().largest},
                    {"support_levels", prepared.support_levels()},
                    {"ball_spacing", params.ball_spacing},
@@ -127,6 +133,7 @@ void add_render_command(CLI::App& app, Action action) {
   command->add_option("--rho", o->rho, "range-query radius of the projection (default 2h; with adaptive support, at h)")
       ->check(finite_positive());
   add_support_option(*command, o->support);
+  add_surface_options(*command, o->surface);
   command->add_option("--b", o->b, "ball radius b around each sample's local polynomial (default h)")
       ->check(finite_positive());
   command->add_option("--ball-spacing", o->ball_spacing,

@@ -50,6 +50,11 @@ Support support_of(const py::dict& o, bool h_given) {
   return choice(o, "support", {"adaptive", "global"}) == "global" ? Support::global : Support::adaptive;
 }
 
+SurfaceOperator surface_of(const py::dict& o) {
+  const std::string name = choice(o, "surface", {"mls", "apss", "rimls"});
+  return name == "apss" ? SurfaceOperator::apss : name == "rimls" ? SurfaceOperator::rimls : SurfaceOperator::mls;
+}
+
 float estimate_h(const py::handle& points) {
   const PointCloud cloud = cloud_of_rows(points, "points");
   py::gil_scoped_release release;
@@ -62,6 +67,7 @@ py::tuple project(const py::handle& points, const py::dict& o) {
   const std::optional<float> h = positive_or_none(o, "h"), rho = positive_or_none(o, "rho");
   const int iterations = integer_in(o, "iterations", 1, 100);
   const Support support = support_of(o, h.has_value());
+  const SurfaceOperator surface = surface_of(o);
   const Backend backend = backend_of(o);
   CloudProjection result = run_interruptibly([&] {
     Stats stats;
@@ -69,6 +75,7 @@ py::tuple project(const py::handle& points, const py::dict& o) {
         h ? *h : suggested_h(cloud.positions), method == "wls" ? PlaneFitMethod::wls : PlaneFitMethod::mls);
     if (rho) params.rho = *rho;
     params.support = support;
+    params.surface = surface;
     params.max_mls_iterations = iterations;
     CloudProjection projection = project_cloud(cloud, params, backend, stats);
     check_some_projected(projection, params);
@@ -103,6 +110,7 @@ py::object render(const py::handle& points, const py::dict& o) {
                                            ? std::optional<float>(float(number_in(o, "ball_spacing", 0, 1e30)))
                                            : std::nullopt;
   const Support support = support_of(o, h.has_value());
+  const SurfaceOperator surface = surface_of(o);
   const Backend backend = backend_of(o);
   const FrameRequest request = frame_request(o);
   const Camera camera = make_camera(request, cloud.bounds(), cloud.origin);
@@ -114,6 +122,7 @@ py::object render(const py::handle& points, const py::dict& o) {
         h ? *h : h_from_spacing(cloud.positions, [](const auto& q) { return default_h(q); }));
     if (rho) params.projection.rho = *rho;
     params.projection.support = support;
+    params.projection.surface = surface;
     if (b) params.ball_radius = *b;
     params.ball_spacing = spacing ? *spacing : 0.5f * params.ball_radius;
     if (epsilon) params.epsilon = *epsilon;
@@ -124,7 +133,8 @@ py::object render(const py::handle& points, const py::dict& o) {
                                  cloud.has_colors() ? SurfaceColor::samples : SurfaceColor::albedo);
     stats.values()["local_polynomials"] = prepared.locals().size();
     stats.values()["params"] = {{"h", params.projection.h}, {"rho", params.projection.rho}, {"b", params.ball_radius},
-                                {"support", support_name(support)},
+                                {"support", support_name(support)}, {"surface", surface_name(surface)},
+                                {"normals", normals_used_name(prepared.normals_used())},
                                 {"h_least", prepared.widths().least}, {"h_largest", prepared.widths().largest},
                                 {"ball_spacing", params.ball_spacing}, {"epsilon", params.epsilon},
                                 {"iterations", params.max_iterations}};

@@ -3,7 +3,7 @@
 // by the host compiler where they are launched (project_cloud.cpp, render_cloud.cpp).
 #include "pss/backend/cuda/launch.cuh"
 #include "pss/points/local_polynomials.hpp"
-#include "pss/points/project_cloud.hpp"
+#include "pss/points/project_points.hpp"
 #include "pss/points/render_cloud.hpp"
 #include "pss/render/frame_kernels.hpp"
 

@@ -10,6 +10,7 @@
 #include "pss/backend/parallel_for.hpp"
 #include "pss/core/error.hpp"
 #include "pss/points/orient_normals.hpp"
+#include "pss/points/sample_normals.hpp"
 #include "pss/points/support.hpp"
 #include "pss/spatial/grid_mirror.hpp"
 #include "unit_frame.hpp"
@@ -64,21 +65,24 @@ CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& p
   unit_params.t_tolerance = float(double(params.t_tolerance) / frame.scale);
   std::vector<ProjectedPoint> projected;
   SupportWidths widths;
+  NormalsUsed normals_used = NormalsUsed::none;
+  const bool file_hints = input.has_normals() && params.normals == NormalSource::file;
   {
     {
       ScopedPhase phase(stats, "support widths", params.support == Support::global);  // else its Progress shows it
       widths = support_widths(positions, unit_params);
     }
     ScopedPhase phase(stats, "spatial index");
-    const SupportGrid grid(positions, widths.h, unit_params.rho / unit_params.h);
+    SupportGrid grid(positions, widths.h, unit_params.rho / unit_params.h);
     phase.stop();
+    prepare_sample_normals(grid, input.normals, unit_params, backend, stats, normals_used);
     // The points are projected in the grid's order, so that neighbouring threads gather
     // neighbouring samples from the cache; in a scan's random order, 10⁷ points projected at
     // a fifth of the rate of 10⁶ on a GPU (docs/benchmarks.md, issue 29). Without input
     // normals the eigenvector's sign is arbitrary; orientation comes after.
     const std::span<const int> original = grid.original_index();
     std::vector<vec3> hints(n, vec3(0.0f));
-    if (input.has_normals())
+    if (file_hints)
       cpu::parallel_for(std::int64_t(n), [&](std::int64_t k) { hints[k] = input.normals[std::size_t(original[k])]; });
     const GridMirror g(backend, grid);
     const Mirror<vec3> hint(backend, hints);
@@ -113,7 +117,9 @@ CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& p
       case ProjectionStatus::degenerate_normal: ++out.counts.degenerate_normal; break;
     }
   }
-  if (!input.has_normals()) {
+  out.normals = normals_used;
+  // APSS's and RIMLS's normals follow the samples' oriented ones already.
+  if (!file_hints && params.surface == SurfaceOperator::mls) {
     ScopedPhase phase(stats, "orient normals", false);  // its Progress shows it
     std::vector<float> support(n);  // ρ_i: the orientation links the samples of each N(p_i)
     for (std::size_t i = 0; i < n; ++i) support[i] = widths.h[i] * (unit_params.rho / unit_params.h);

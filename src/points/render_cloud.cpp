@@ -8,6 +8,7 @@
 #include "pss/backend/parallel_for.hpp"
 #include "pss/core/error.hpp"
 #include "pss/points/project_cloud.hpp"
+#include "pss/points/sample_normals.hpp"
 #include "pss/points/thinning.hpp"
 #include "pss/render/image.hpp"
 #include "pss/render/render_frame.hpp"
@@ -36,7 +37,7 @@ std::vector<LocalFit> fit_all(const SupportGrid& grid, const PointCloud& cloud, 
   // In the grid's (cell-sorted) order, so that neighbouring samples share cached cells.
   const std::size_t n = grid.sorted_points().size();
   std::vector<vec3> hints(n, vec3(0.0f));
-  if (cloud.has_normals())
+  if (cloud.has_normals() && params.projection.normals == NormalSource::file)
     for (std::size_t i = 0; i < n; ++i) hints[i] = cloud.normals[grid.original_index()[i]];
   const GridMirror g(backend, grid);
   const Mirror<vec3> hint(backend, hints);
@@ -125,6 +126,7 @@ PreparedCloud::PreparedCloud(const PointCloud& cloud, const RayPssParams& params
       params_((validate(params), params)),
       grid_(timed_grid(cloud, params.projection, stats, widths_)),
       bvh_(std::span<const Aabb>{}) {
+  prepare_sample_normals(grid_, cloud.normals, params.projection, backend, stats, normals_used_);
   {
     ScopedPhase phase(stats, "preprocess");
     if (color == SurfaceColor::samples) colors_ = linear_colors(grid_, cloud);
@@ -152,6 +154,9 @@ void PreparedCloud::set_search(const RayPssParams& p) {
   params_.max_candidates = p.max_candidates;
   params_.secondary = p.secondary;
   params_.secondary_offset = p.secondary_offset;
+  if (p.projection.surface != SurfaceOperator::mls && grid_.normals().empty())
+    throw Error("the cloud was prepared without the samples' normals that APSS and RIMLS need; prepare it again");
+  params_.projection.surface = p.projection.surface;
 }
 
 PointSurfaceView PreparedCloud::view() const {

@@ -63,11 +63,17 @@ SupportGridView SupportGrid::view() const {
   SupportGridView v;
   v.points = sorted_.data();
   v.inv_h2 = inv_h2_.data();
+  v.normals = normals_.empty() ? nullptr : normals_.data();
   v.level = levels_.data();
   v.levels = int(levels_.size());
   v.count = int(sorted_.size());
   v.kappa2 = kappa_ * kappa_;
   return v;
+}
+
+void SupportGrid::set_normals(std::vector<vec3> sorted_normals) {
+  if (sorted_normals.size() != sorted_.size()) throw Error("SupportGrid::set_normals: one normal per sample");
+  normals_ = std::move(sorted_normals);
 }
 
 }  // namespace pss

@@ -71,6 +71,43 @@ def test_support_is_adaptive_by_default_and_global_with_h():
     assert stats["params"]["support"] == "global" and stats["params"]["h_largest"] == pytest.approx(h)
 
 
+def unit_sphere(count=8000):
+    rng = np.random.default_rng(2)
+    d = rng.normal(size=(count, 3))
+    return (d / np.linalg.norm(d, axis=1, keepdims=True)).astype(np.float32)
+
+
+@pytest.mark.parametrize("surface", ["mls", "apss", "rimls"])
+def test_surface_is_the_cli_s(tmp_path, surface):
+    points = unit_sphere()
+    cloud = tmp_path / "sphere.xyz"
+    np.savetxt(cloud, np.hstack([points, points]), fmt="%.9g")  # with its exact normals
+    out = tmp_path / "projected.ply"
+    cli_ok("project", cloud, "--surface", surface, "-o", out)
+    cli = read_binary_ply(out)
+    projected, normals, _ = pss.project(points, normals=points, surface=surface)
+    assert np.array_equal(projected, np.stack([cli["x"], cli["y"], cli["z"]], 1))
+    assert np.array_equal(normals, np.stack([cli["nx"], cli["ny"], cli["nz"]], 1))
+    # APSS's spheres reproduce the sphere to rounding; MLS and RIMLS keep a bias.
+    error = np.abs(np.linalg.norm(projected, axis=1) - 1).max()
+    assert (error < 2e-6) == (surface == "apss")
+
+
+def test_surface_fits_the_given_normals_or_estimates_them():
+    points = unit_sphere()
+    wrong = np.tile(np.float32([1, 0, 0]), (len(points), 1))
+    off = lambda p: np.abs(np.linalg.norm(p, axis=1) - 1).mean()
+    bias = 2 * pss.estimate_h(points) ** 4  # MLS's bound on a sphere (tests/projection_test.cpp)
+    assert off(pss.project(points, normals=wrong, surface="apss")[0]) > 20 * bias
+    assert off(pss.project(points, surface="apss")[0]) < bias  # estimated when none are given
+    _, _, stats = pss.render(points, normals=points, surface="rimls", size=(32, 32), full_output=True)
+    assert stats["params"]["surface"] == "rimls" and stats["params"]["normals"] == "file"
+    _, _, stats = pss.render(points, surface="apss", size=(32, 32), full_output=True)
+    assert stats["params"]["surface"] == "apss" and stats["params"]["normals"] == "estimated"
+    _, _, stats = pss.render(points, size=(32, 32), full_output=True)
+    assert stats["params"]["surface"] == "mls" and stats["params"]["normals"] == "none"
+
+
 def test_project_takes_any_array_like_and_hands_back_arrays_it_does_not_copy(bunny):
     as_list = bunny[:2000].astype(np.float64).tolist()
     points, _, _ = pss.project(as_list, 0.004)

@@ -40,12 +40,18 @@ class CloudScene : public Scene {
     RayPssParams params = RayPssParams::from_h(s.h);
     if (s.rho != 0) params.projection.rho = s.rho;
     params.projection.support = s.adaptive_support ? Support::adaptive : Support::global;
+    params.projection.surface = s.surface;
+    params.projection.normals = s.normals;
     params.epsilon = s.epsilon;
     params.max_iterations = s.iterations;
     params.secondary = s.secondary_full ? SecondaryMode::full : SecondaryMode::paper;
     validate(params);
+    // APSS and RIMLS need the samples' normals, which a cloud prepared for MLS lacks; once
+    // there, every operator renders from the same preparation.
+    const bool needs_normals = s.surface != SurfaceOperator::mls &&
+                               (!prepared_ || prepared_->normals_used() == NormalsUsed::none);
     if (!prepared_ || s.h != prepared_h_ || s.rho != prepared_rho_ || s.adaptive_support != prepared_adaptive_ ||
-        s.backend != prepared_backend_) {
+        s.backend != prepared_backend_ || needs_normals) {
       prepared_.reset();
       prepared_ = std::make_unique<PreparedCloud>(cloud_, params, s.backend, stats);
       prepared_h_ = s.h;

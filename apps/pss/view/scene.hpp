@@ -13,6 +13,7 @@
 
 #include "pss/backend/backend.hpp"
 #include "pss/core/stats.hpp"
+#include "pss/points/projection.hpp"
 #include "pss/render/camera.hpp"
 #include "pss/render/rendered_frame.hpp"
 #include "pss/render/trace.hpp"
@@ -31,6 +32,8 @@ struct ViewSettings {
   float h = 0;
   float rho = 0;  // the projection's range-query radius (0: 2h)
   bool adaptive_support = true;  // each sample's width from its spacing (points/support.hpp)
+  SurfaceOperator surface = SurfaceOperator::mls;  // --surface (points/projection.hpp)
+  NormalSource normals = NormalSource::file;       // --normals
   float epsilon = 0;
   int iterations = 2;
   bool secondary_full = true;

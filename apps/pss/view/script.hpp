@@ -4,7 +4,8 @@
 //   view AZ EL           orbit to azimuth and elevation (degrees)
 //   zoom Z | pan X Y | fov DEG
 //   camera FILE.json     the camera of a file (--camera's format), until the next move
-//   set NAME VALUE       a panel value: h, rho, support (adaptive|global), epsilon,
+//   set NAME VALUE       a panel value: h, rho, support (adaptive|global), surface
+//                        (mls|apss|rimls), epsilon,
 //                        iterations, secondary (full|paper),
 //                        shadows, reflections, debug (on|off), iso, threshold, gradient
 //                        (on|off), method (predictor|predictor-corrector)

@@ -49,12 +49,14 @@ void add_view_command(CLI::App& app) {
   command->add_flag("--reflections", o->settings.reflections, "one mirror reflection per primary hit");
   auto support = std::make_shared<std::string>();
   add_support_option(*command, *support);
+  auto surface = std::make_shared<SurfaceOptions>();
+  add_surface_options(*command, *surface);
   command->add_option("--script", o->script, "run these steps (one a line: view, zoom, set, wait, screenshot, ...), then quit");
   command->add_option("--screenshot-dir", o->screenshot_dir, "where the script's screenshots go (default .)");
   auto backend = std::make_shared<std::string>("auto");
   command->add_option("--backend", *backend, "cpu, cuda, or auto")->check(CLI::IsMember({"cpu", "cuda", "auto"}));
   const CLI::Option* h_option = command->get_option("--h");
-  command->callback([o, backend, support, h_option] {
+  command->callback([o, backend, support, surface, h_option] {
     o->settings.backend = select_backend(*backend);
     o->settings.volume = o->file.settings;
     o->settings.volume.method =
@@ -62,6 +64,10 @@ void add_view_command(CLI::App& app) {
     // For a point cloud --h is in its own units (0: estimated); the volume default is 2 voxels.
     o->settings.h = h_option->count() ? o->file.settings.h : 0;
     o->settings.adaptive_support = support_of(*support, h_option->count() > 0) == Support::adaptive;
+    ProjectionParams chosen;
+    apply_surface_options(*surface, chosen);
+    o->settings.surface = chosen.surface;
+    o->settings.normals = chosen.normals;
     // The window shows each frame's progress; bars on the terminal behind it would only flicker.
     set_progress_mode(ProgressMode::never);
     if (const int status = view::run_viewer(*o); status != 0) std::exit(status);

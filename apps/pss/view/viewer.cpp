@@ -62,6 +62,7 @@ void set_value(ViewSettings& v, const Step& s, const std::string& script) {
   if (name == "h") v.h = number_of(s, 1, script);
   else if (name == "rho") v.rho = number_of(s, 1, script);
   else if (name == "support") v.adaptive_support = choice_of(s, {"adaptive", "global"}, script) == "adaptive";
+  else if (name == "surface") v.surface = surface_operator_of(choice_of(s, {"mls", "apss", "rimls"}, script));
   else if (name == "epsilon") v.epsilon = number_of(s, 1, script);
   else if (name == "iterations") v.iterations = int(number_of(s, 1, script));
   else if (name == "secondary") v.secondary_full = value != "paper";
@@ -281,6 +282,9 @@ class Viewer {
     int support = s.adaptive_support ? 0 : 1;
     const char* supports[] = {"adaptive", "global"};
     if (ImGui::Combo("support", &support, supports, 2)) s.adaptive_support = support == 0;
+    int surface = int(s.surface);
+    const char* surfaces[] = {"mls", "apss", "rimls"};  // SurfaceOperator's order
+    if (ImGui::Combo("surface", &surface, surfaces, 3)) s.surface = SurfaceOperator(surface);
     ImGui::InputFloat("epsilon", &s.epsilon, 0, 0, "%.3g", ImGuiInputTextFlags_EnterReturnsTrue);
     ImGui::SliderInt("iterations", &s.iterations, 1, 8);
     int secondary = s.secondary_full ? 0 : 1;

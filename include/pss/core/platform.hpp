@@ -21,6 +21,14 @@
 #define PSS_SUM_LANES 8
 #endif
 
+// Before a loop whose body a GPU kernel must hold once (a finder's search, whose stack
+// would be counted per copy): nvcc unrolls short constant loops otherwise.
+#if defined(__CUDA_ARCH__)
+#define PSS_NO_UNROLL _Pragma("unroll 1")
+#else
+#define PSS_NO_UNROLL
+#endif
+
 namespace pss {
 
 PSS_INLINE float sqrt(float x) { return ::sqrtf(x); }

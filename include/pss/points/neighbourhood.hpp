@@ -124,22 +124,24 @@ struct NeighbourIndicesOf {
 
   PSS_HOST_DEVICE bool overflowed() const { return count > Capacity; }
 
+  // f(p, sorted index) for every sample again, in the same order: for the fits that read
+  // more of a sample than its position (its normal) and weigh it from elsewhere than r.
+  template <class F>
+  PSS_HOST_DEVICE void for_each_sample(F&& f) const {
+    if (!overflowed()) {
+      for (int k = 0; k < count; ++k) f(grid->points[index[k]], index[k]);
+    } else {
+      grid->for_each_covering(center, [&](vec3 p, float, int i) { f(p, i); });
+    }
+  }
+
   // f(p, w, 1/h²) for every sample again, in the same order.
   template <class F>
   PSS_HOST_DEVICE void for_each(F&& f) const {
-    if (!overflowed()) {
-      for (int k = 0; k < count; ++k) {
-        const int i = index[k];
-        const vec3 p = grid->points[i];
-        const float q = grid->inv_h2[i];
-        f(p, gaussian_weight(length2(p - center), q), q);
-      }
-    } else {
-      grid->for_each_covering(center, [&](vec3 p, float d2, int i) {
-        const float q = grid->inv_h2[i];
-        f(p, gaussian_weight(d2, q), q);
-      });
-    }
+    for_each_sample([&](vec3 p, int i) {
+      const float q = grid->inv_h2[i];
+      f(p, gaussian_weight(length2(p - center), q), q);
+    });
   }
 
   PSS_HOST_DEVICE WeightedMoments moments() const {
@@ -178,8 +180,12 @@ PSS_INLINE float local_width(const WeightedMoments& m) {
 #endif
 #if defined(__CUDA_ARCH__)
 using Neighbourhood = NeighbourIndicesOf<PSS_DEVICE_NEIGHBOURS>;
+using SampleIndices = Neighbourhood;
 #else
 using Neighbourhood = NeighbourhoodOf<128>;
+// What APSS and RIMLS gather: they read each sample's normal and weigh it from points other
+// than r, so the samples' indices serve them better than offsets and weights from r.
+using SampleIndices = NeighbourIndicesOf<128>;
 #endif
 
 }  // namespace pss

@@ -9,32 +9,11 @@
 #include "pss/core/progress.hpp"
 #include "pss/core/stats.hpp"
 #include "pss/points/cloud.hpp"
-#include "pss/points/projection.hpp"
+#include "pss/points/project_points.hpp"
+#include "pss/points/sample_normals.hpp"
 #include "pss/points/support.hpp"
 
 namespace pss {
-
-struct ProjectedPoint {
-  vec3 point;
-  vec3 normal;
-  ProjectionStatus status;
-};
-
-// The per-point kernel both backends run.
-PSS_INLINE ProjectedPoint project_point(const SupportGridView& grid, vec3 r, vec3 hint, const ProjectionParams& params) {
-  const Projection p = project_to_pss(grid, r, params, hint);
-  return {p.point, p.normal, p.status};
-}
-
-// out[i] = the projection of points[i] (backend/parallel_for.hpp).
-struct ProjectPointsKernel {
-  SupportGridView grid;
-  const vec3* points;
-  const vec3* hints;  // the file's normals, or zeros
-  ProjectedPoint* out;
-  ProjectionParams params;
-  PSS_HOST_DEVICE void operator()(std::int64_t i) const { out[i] = project_point(grid, points[i], hints[i], params); }
-};
 
 struct StatusCounts {
   std::int64_t converged = 0, not_converged = 0, too_few_neighbours = 0, degenerate_normal = 0;
@@ -45,6 +24,7 @@ struct CloudProjection {
   std::vector<ProjectionStatus> status;  // one per point
   StatusCounts counts;
   SupportWidths widths;  // least, median, largest h_i (h is not kept)
+  NormalsUsed normals = NormalsUsed::none;  // the samples' normals APSS and RIMLS fitted
 };
 
 // Throws Error for invalid parameters (h or ρ not positive and finite, ρ beyond the cloud's

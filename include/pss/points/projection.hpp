@@ -32,11 +32,31 @@ enum class ProjectionStatus : unsigned char {
 // with h_i/h.
 enum class Support : unsigned char { global, adaptive };
 
+// The surface a cloud defines (issue 26): the paper's MLS plane and polynomial, or an
+// algebraic sphere fitted to the samples and their normals (APSS, points/algebraic_sphere.hpp),
+// or the robust implicit MLS that keeps creases and refuses outliers (RIMLS,
+// points/robust_implicit.hpp). The last two read the samples' oriented normals
+// (points/sample_normals.hpp) and are dispatched by points/surface_projection.hpp.
+enum class SurfaceOperator : unsigned char { mls, apss, rimls };
+
+inline const char* surface_name(SurfaceOperator s) {
+  return s == SurfaceOperator::apss ? "apss" : s == SurfaceOperator::rimls ? "rimls" : "mls";
+}
+
+// Where the samples' normals come from: the file's, when it has them (hints of MLS's
+// orientation, what APSS and RIMLS fit), or estimated from the points and oriented
+// consistently, the file's ignored (`--normals file|estimate`).
+enum class NormalSource : unsigned char { file, estimate };
+
 struct ProjectionParams {
   float h = 0;    // Gaussian width of θ3, the local level of detail (with adaptive support, the least h_i)
   float rho = 0;  // range-query radius, 2h in the paper
   PlaneFitMethod plane = PlaneFitMethod::mls;
   Support support = Support::global;
+  SurfaceOperator surface = SurfaceOperator::mls;
+  NormalSource normals = NormalSource::file;  // read on the host, before any kernel
+  // The MLS alternations of t and n; for APSS and RIMLS, the fits moved to the last point
+  // (with PlaneFitMethod::wls, one fit at r, as the ray tracer's loop takes).
   int max_mls_iterations = 4;
   float t_tolerance = 0;  // MLS stops when t moves less than this (default 1e-3·h), at h
 
@@ -60,6 +80,18 @@ struct Projection {
   int neighbours;
   ProjectionStatus status;
 };
+
+// What a projection that cannot start returns: r itself, with the hint's normal (or +z).
+PSS_INLINE Projection unprojected(vec3 r, vec3 normal_hint) {
+  Projection out;
+  out.point = r;
+  out.normal = length2(normal_hint) > 0 ? glm::normalize(normal_hint) : vec3(0, 0, 1);
+  out.t = 0;
+  out.frame = Frame::from_normal(r, out.normal);
+  out.neighbours = 0;
+  out.status = ProjectionStatus::too_few_neighbours;
+  return out;
+}
 
 namespace detail {
 
@@ -90,20 +122,16 @@ struct MlsEnergy {
 // Nb is the neighbourhood's storage (neighbourhood.hpp); every capacity gives the same result.
 // The grid holds the samples' widths; params' lengths are taken at params.h and scaled to
 // the local width h(r) (local_width).
-template <class Nb = Neighbourhood>
-PSS_HOST_DEVICE Projection project_to_pss(const SupportGridView& grid, vec3 r, const ProjectionParams& params,
-                                          vec3 normal_hint) {
-  Projection out;
-  out.point = r;
-  out.normal = length2(normal_hint) > 0 ? glm::normalize(normal_hint) : vec3(0, 0, 1);
-  out.t = 0;
-  out.frame = Frame::from_normal(r, out.normal);
-  out.status = ProjectionStatus::too_few_neighbours;
+// project_mls is P(r) over N(r) gathered already (`neighbours`, centred at r), which every
+// later pass reads again.
+template <class Nb>
+PSS_HOST_DEVICE Projection project_mls(const Nb& neighbours, vec3 r, const ProjectionParams& params,
+                                       vec3 normal_hint) {
+  Projection out = unprojected(r, normal_hint);
 
   // Eq. 1 with the weighter at r: for fixed weights the best plane passes through the
   // weighted mean m, its normal is the smallest eigenvector of the covariance about m.
-  // N(r) is gathered once, with its weights θ3(‖pᵢ − r‖); every later pass reads it again.
-  const Nb neighbours(grid, r);
+  // N(r) is gathered once, with its weights θ3(‖pᵢ − r‖).
   const WeightedMoments moments = neighbours.moments();
   out.neighbours = moments.count;
   if (moments.count < 3 || !(moments.weight_sum > 0)) return out;
@@ -148,6 +176,13 @@ PSS_HOST_DEVICE Projection project_to_pss(const SupportGridView& grid, vec3 r, c
   out.normal = n;
   out.status = status;
   return out;
+}
+
+template <class Nb = Neighbourhood>
+PSS_HOST_DEVICE Projection project_to_pss(const SupportGridView& grid, vec3 r, const ProjectionParams& params,
+                                          vec3 normal_hint) {
+  const Nb neighbours(grid, r);
+  return project_mls(neighbours, r, params, normal_hint);
 }
 
 }  // namespace pss

@@ -7,7 +7,7 @@
 #pragma once
 
 #include "pss/points/local_polynomials.hpp"
-#include "pss/points/projection.hpp"
+#include "pss/points/surface_projection.hpp"
 #include "pss/core/hit.hpp"
 #include "pss/spatial/bvh.hpp"
 
@@ -174,7 +174,7 @@ PSS_INLINE Hit intersect_pss(const PointSurfaceView& s, const Ray& ray, float t_
     vec3 hint = lp.normal;
     for (int it = 1;; ++it) {
       const vec3 r = ray.at(t);
-      const Projection p = project_to_pss(s.grid, r, prm.projection, hint);
+      const Projection p = project_onto_surface(s.grid, r, prm.projection, hint);
       ++hit.iterations;
       if (p.status == ProjectionStatus::too_few_neighbours) break;
       if (length2(p.point - r) < epsilon * epsilon) {

@@ -12,6 +12,7 @@
 #include "pss/points/cloud.hpp"
 #include "pss/points/ray_pss.hpp"
 #include "pss/points/sample_colors.hpp"
+#include "pss/points/sample_normals.hpp"
 #include "pss/points/support.hpp"
 #include "pss/render/rendered_frame.hpp"
 
@@ -53,8 +54,10 @@ class PreparedCloud {
   ~PreparedCloud();
 
   // Takes the parameters of `params` that the preparation does not depend on: ε, the
-  // iterations and candidates per ray, the secondary rays' mode and offset (a viewer changes
-  // them without preparing again). validate(params) first.
+  // iterations and candidates per ray, the secondary rays' mode and offset, and the surface
+  // operator among those prepared for (MLS always; APSS and RIMLS when the cloud was
+  // prepared with one of them, which gives the grid the samples' normals; an Error
+  // otherwise). A viewer changes them without preparing again. validate(params) first.
   void set_search(const RayPssParams& params);
 
   PointSurfaceView view() const;  // on the host
@@ -65,6 +68,7 @@ class PreparedCloud {
   // The samples' widths h_i: least, median, largest (the per-sample ones live in the grid).
   const SupportWidths& widths() const { return widths_; }
   int support_levels() const { return grid_.levels(); }
+  NormalsUsed normals_used() const { return normals_used_; }  // the samples' normals, for APSS and RIMLS
   const Bvh& bvh() const { return bvh_; }
   const glm::dvec3& origin() const { return origin_; }  // the cloud's (cloud.hpp)
 
@@ -76,6 +80,7 @@ class PreparedCloud {
   std::vector<LocalPolynomial> locals_;
   std::vector<vec3> colors_;  // empty, or linear RGB in the grid's order
   std::int64_t left_out_ = 0;
+  NormalsUsed normals_used_ = NormalsUsed::none;
   Bvh bvh_;
   struct DeviceCopy;
   mutable std::unique_ptr<DeviceCopy> device_;

@@ -40,35 +40,49 @@ struct SecondaryHits {
   std::int32_t rays = 0;        // secondary rays traced for this pixel
 };
 
-// 1 when the key light is seen from `point` (n facing the viewer), 0 when not. A surface
-// turned away from the light shades to zero key light anyway: no ray is needed. The ray
-// leaves `offset` off the surface (the finder's secondary_offset of the hit).
-template <class Finder>
-PSS_HOST_DEVICE float key_light_visibility(const Finder& f, const TraceSettings& s, vec3 point, vec3 n, float offset,
-                                           std::int32_t& rays) {
-  if (glm::dot(n, s.shading.key_direction) <= 0) return 0.0f;
-  ++rays;
-  const Ray shadow_ray{point + offset * n, s.shading.key_direction};
-  return f.secondary(shadow_ray, kInfinity).found() ? 0.0f : 1.0f;
-}
-
+// A pixel's secondary rays, in order: the primary hit's shadow ray toward the key light, the
+// mirror bounce, and the shadow ray of the bounce's hit. A surface turned away from the light
+// shades to zero key light anyway: no ray is needed. Each ray leaves the finder's
+// secondary_offset off its surface. The three go through one call of the finder in a loop
+// that is not unrolled, so that a GPU kernel holds one copy of the finder's search and its
+// stack one neighbourhood (tests/gpu/kernel_stacks.py), not three.
 template <class Finder>
 PSS_HOST_DEVICE SecondaryHits trace_secondary(const Finder& f, const TraceSettings& s, const Ray& primary,
                                               const Hit& hit) {
   SecondaryHits out;
   if (!hit.found()) return out;
+  const vec3 key = s.shading.key_direction;
   const vec3 n = face_viewer(hit.normal, primary.dir);
   const float offset = f.secondary_offset(hit);
-  if (s.shadows) out.shadow = key_light_visibility(f, s, hit.point, n, offset, out.rays);
-  if (s.reflections) {
-    const Ray bounce{hit.point + offset * n, reflect(primary.dir, n)};
-    ++out.rays;
-    out.reflection = f.secondary(bounce, kInfinity);
-    if (out.reflection.found() && s.shadows) {
+  const Ray bounce{hit.point + offset * n, reflect(primary.dir, n)};
+  PSS_NO_UNROLL
+  for (int step = 0; step < 3; ++step) {
+    Ray ray;
+    if (step == 0) {  // the primary hit's shadow
+      if (!s.shadows) continue;
+      if (glm::dot(n, key) <= 0) {
+        out.shadow = 0;
+        continue;
+      }
+      ray = Ray{hit.point + offset * n, key};
+    } else if (step == 1) {  // the mirror bounce
+      if (!s.reflections) break;
+      ray = bounce;
+    } else {  // the bounce's shadow
+      if (!s.shadows || !out.reflection.found()) break;
       const vec3 rn = face_viewer(out.reflection.normal, bounce.dir);
-      out.reflection_shadow =
-          key_light_visibility(f, s, out.reflection.point, rn, f.secondary_offset(out.reflection), out.rays);
+      if (glm::dot(rn, key) <= 0) {
+        out.reflection_shadow = 0;
+        break;
+      }
+      ray = Ray{out.reflection.point + f.secondary_offset(out.reflection) * rn, key};
     }
+    ++out.rays;
+    const Hit found = f.secondary(ray, kInfinity);
+    if (step == 1)
+      out.reflection = found;
+    else
+      (step == 0 ? out.shadow : out.reflection_shadow) = found.found() ? 0.0f : 1.0f;
   }
   return out;
 }

@@ -29,6 +29,9 @@ struct SupportGridView {
 
   const vec3* points = nullptr;   // sorted by level, then by cell
   const float* inv_h2 = nullptr;  // 1/h_i² of each sorted sample
+  // Unit normals of the sorted samples, consistently oriented: what APSS and RIMLS fit
+  // (points/algebraic_sphere.hpp, points/robust_implicit.hpp); null for the paper's MLS.
+  const vec3* normals = nullptr;
   const SupportLevel* level = nullptr;
   int levels = 0;
   int count = 0;
@@ -66,6 +69,9 @@ class SupportGrid {
   SupportGridView view() const;  // on the host
   std::span<const vec3> sorted_points() const { return sorted_; }
   std::span<const float> inv_h2() const { return inv_h2_; }
+  // The samples' oriented unit normals in sorted order (points/sample_normals.hpp), or none.
+  std::span<const vec3> normals() const { return normals_; }
+  void set_normals(std::vector<vec3> sorted_normals);
   std::span<const int> cell_starts() const { return cell_start_; }  // every level's, one after another
   // The levels as on the host; a level's cells begin at level_cell_offset()[l] in cell_starts().
   std::span<const SupportLevel> levels_on_host() const { return levels_; }
@@ -78,6 +84,7 @@ class SupportGrid {
  private:
   std::vector<vec3> sorted_;
   std::vector<float> inv_h2_;
+  std::vector<vec3> normals_;
   std::vector<int> cell_start_;
   std::vector<int> level_offset_;
   std::vector<SupportLevel> levels_;

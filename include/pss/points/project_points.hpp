@@ -1,0 +1,34 @@
+// The kernel that projects points onto the surface of a cloud, on either backend: what
+// `pss project` runs over the input, and the normal estimate over the samples
+// (sample_normals.hpp).
+#pragma once
+
+#include <cstdint>
+
+#include "pss/points/surface_projection.hpp"
+
+namespace pss {
+
+struct ProjectedPoint {
+  vec3 point;
+  vec3 normal;
+  ProjectionStatus status;
+};
+
+// The per-point kernel both backends run.
+PSS_INLINE ProjectedPoint project_point(const SupportGridView& grid, vec3 r, vec3 hint, const ProjectionParams& params) {
+  const Projection p = project_onto_surface(grid, r, params, hint);
+  return {p.point, p.normal, p.status};
+}
+
+// out[i] = the projection of points[i] (backend/parallel_for.hpp).
+struct ProjectPointsKernel {
+  SupportGridView grid;
+  const vec3* points;
+  const vec3* hints;  // the file's normals, or zeros
+  ProjectedPoint* out;
+  ProjectionParams params;
+  PSS_HOST_DEVICE void operator()(std::int64_t i) const { out[i] = project_point(grid, points[i], hints[i], params); }
+};
+
+}  // namespace pss

@@ -1,0 +1,40 @@
+// The projection onto the surface a cloud defines, whichever operator `--surface` chose
+// (ProjectionParams::surface): what `pss project` and the ray tracer call.
+#pragma once
+
+#include <type_traits>
+
+#include "pss/points/algebraic_sphere.hpp"
+#include "pss/points/projection.hpp"
+#include "pss/points/robust_implicit.hpp"
+
+namespace pss {
+
+// MLS is the paper's P(r) (projection.hpp). APSS and RIMLS fit at r once with
+// PlaneFitMethod::wls (the ray tracer iterates itself, as the paper's §5.2 loop) and move
+// their fit to the last point up to max_mls_iterations times with PlaneFitMethod::mls, as
+// MLS moves its weights to q. Every operator reads N(r), gathered once here: Nb is MLS's
+// storage of it (neighbourhood.hpp); APSS and RIMLS read the samples' indices. Where the
+// two are one type (on the GPU) one gather serves all three, so that a kernel's stack holds
+// one neighbourhood, not one per operator.
+template <class Nb = Neighbourhood>
+PSS_HOST_DEVICE Projection project_onto_surface(const SupportGridView& grid, vec3 r, const ProjectionParams& params,
+                                                vec3 normal_hint) {
+  const int steps = params.plane == PlaneFitMethod::mls ? params.max_mls_iterations : 1;
+  if constexpr (std::is_same_v<Nb, SampleIndices>) {
+    const Nb samples(grid, r);
+    switch (params.surface) {
+      case SurfaceOperator::apss: return project_apss(samples, r, params, normal_hint, steps);
+      case SurfaceOperator::rimls: return project_rimls(samples, r, params, normal_hint, steps);
+      case SurfaceOperator::mls: break;
+    }
+    return project_mls(samples, r, params, normal_hint);
+  } else {
+    if (params.surface == SurfaceOperator::mls) return project_to_pss<Nb>(grid, r, params, normal_hint);
+    const SampleIndices samples(grid, r);
+    return params.surface == SurfaceOperator::apss ? project_apss(samples, r, params, normal_hint, steps)
+                                                   : project_rimls(samples, r, params, normal_hint, steps);
+  }
+}
+
+}  // namespace pss

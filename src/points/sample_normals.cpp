@@ -1,0 +1,79 @@
+#include "pss/points/sample_normals.hpp"
+
+#include <cmath>
+
+#include "pss/backend/mirror.hpp"
+#include "pss/backend/parallel_for.hpp"
+#include "pss/points/orient_normals.hpp"
+#include "pss/points/project_points.hpp"
+#include "pss/spatial/grid_mirror.hpp"
+
+namespace pss {
+
+namespace {
+
+// The file's normals in the grid's order, normalised; false when one has no direction
+// (zero, or not finite): a file that lies about some cannot be trusted for any.
+bool file_normals_in_grid_order(const SupportGrid& grid, std::span<const vec3> file_normals, std::vector<vec3>& out) {
+  const std::span<const int> original = grid.original_index();
+  out.resize(original.size());
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const vec3 n = file_normals[std::size_t(original[i])];
+    const float length = glm::length(n);
+    if (!(length > 0) || !std::isfinite(length)) return false;
+    out[i] = n / length;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::vector<vec3> sample_normals(const SupportGrid& grid, std::span<const vec3> file_normals,
+                                 const ProjectionParams& params, Backend backend, Stats& stats, NormalsUsed& used) {
+  std::vector<vec3> normals;
+  const bool have_file = !file_normals.empty() && file_normals_in_grid_order(grid, file_normals, normals);
+  if (have_file && params.normals == NormalSource::file) {
+    used = NormalsUsed::file;
+    return normals;
+  }
+  used = NormalsUsed::estimated;
+  const std::size_t n = grid.sorted_points().size();
+  const std::vector<vec3> hints(n, vec3(0.0f));
+  ProjectionParams plane = params;
+  plane.surface = SurfaceOperator::mls;
+  plane.plane = PlaneFitMethod::wls;
+  {
+    const GridMirror g(backend, grid);
+    const Mirror<vec3> hint(backend, hints);
+    Mirror<ProjectedPoint> out(backend, n);
+    Progress progress("sample normals", std::int64_t(n));
+    parallel_for(backend, "sample normals", std::int64_t(n),
+                 ProjectPointsKernel{g.view(), g.view().points, hint.data(), out.data(), plane}, stats, &progress);
+    const std::vector<ProjectedPoint> fitted = out.take();
+    normals.resize(n);
+    for (std::size_t i = 0; i < n; ++i) normals[i] = fitted[i].normal;
+  }
+  ScopedPhase phase(stats, "orient normals", false);  // its Progress shows it
+  std::vector<float> support(n);  // ρ_i: the orientation links the samples of each N(p_i)
+  for (std::size_t i = 0; i < n; ++i) support[i] = grid.kappa() / std::sqrt(grid.inv_h2()[i]);
+  orient_normals_consistently(grid.sorted_points(), normals, support);
+  return normals;
+}
+
+void prepare_sample_normals(SupportGrid& grid, std::span<const vec3> file_normals, const ProjectionParams& params,
+                            Backend backend, Stats& stats, NormalsUsed& used) {
+  used = NormalsUsed::none;
+  if (params.surface == SurfaceOperator::mls) return;
+  grid.set_normals(sample_normals(grid, file_normals, params, backend, stats, used));
+}
+
+const char* normals_used_name(NormalsUsed used) {
+  switch (used) {
+    case NormalsUsed::file: return "file";
+    case NormalsUsed::estimated: return "estimated";
+    case NormalsUsed::none: break;
+  }
+  return "none";
+}
+
+}  // namespace pss

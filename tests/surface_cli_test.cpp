@@ -1,0 +1,100 @@
+// --surface and --normals of `pss project` and `pss render` end to end (issue 26): MLS by
+// default; APSS reproduces a sphere sampled with its exact normals to rounding, which MLS
+// cannot; the normals' source is the file's unless --normals estimate, and both are named
+// in the summary and --stats; bad values are refused.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "support/cli.hpp"
+#include "support/output_readers.hpp"
+#include "support/shapes.hpp"
+
+namespace pss {
+namespace {
+
+using SurfaceCli = test::CliTest;
+
+nlohmann::json read_json(const std::string& file) { return nlohmann::json::parse(std::ifstream(file)); }
+
+// A unit sphere as XYZ, with its exact normals (six columns) or wrong ones (+x everywhere).
+std::string sphere(const std::string& file, const char* normals) {
+  test::SampleOptions o;
+  o.count = 6000;
+  std::ofstream out(file);
+  out.precision(9);
+  for (const vec3& p : test::sample(test::Sphere{}, o).positions) {
+    out << p.x << ' ' << p.y << ' ' << p.z;
+    if (normals == std::string("exact")) out << ' ' << p.x << ' ' << p.y << ' ' << p.z;
+    if (normals == std::string("wrong")) out << " 1 0 0";
+    out << '\n';
+  }
+  return file;
+}
+
+double worst_radius_error(const std::string& ply) {
+  const test::PlyColumns c = test::read_ply_columns(ply);
+  double worst = 0;
+  for (std::size_t i = 0; i < c.columns.at("x").size(); ++i)
+    worst = std::max(worst, std::abs(std::hypot(c.columns.at("x")[i], c.columns.at("y")[i], c.columns.at("z")[i]) - 1));
+  return worst;
+}
+
+TEST_F(SurfaceCli, ProjectFitsTheChosenSurfaceWithTheChosenNormals) {
+  const std::string exact = sphere(path("exact.xyz"), "exact"), wrong = sphere(path("wrong.xyz"), "wrong");
+  const auto project = [&](const std::string& cloud, const std::string& flags, const std::string& name) {
+    const test::CliResult r =
+        test::run_pss("project " + cloud + " -o " + path(name + ".ply") + " --stats " + path(name + ".json") + flags);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return r.out;
+  };
+  EXPECT_NE(project(exact, "", "mls").find("mls surface, h ="), std::string::npos);
+  EXPECT_EQ(read_json(path("mls.json"))["params"]["surface"], "mls");
+  EXPECT_EQ(read_json(path("mls.json"))["params"]["normals"], "none");
+  EXPECT_NE(project(exact, " --surface apss", "apss").find("apss surface (the file's normals)"), std::string::npos);
+  EXPECT_EQ(read_json(path("apss.json"))["params"]["surface"], "apss");
+  EXPECT_EQ(read_json(path("apss.json"))["params"]["normals"], "file");
+  const double mls_error = worst_radius_error(path("mls.ply")), apss_error = worst_radius_error(path("apss.ply"));
+  EXPECT_LT(apss_error, 2e-6);
+  EXPECT_GT(mls_error, 10 * apss_error);
+  // The file's wrong normals bend APSS's spheres; estimated ones do not.
+  project(wrong, " --surface apss", "wrong_file");
+  EXPECT_NE(project(wrong, " --surface apss --normals estimate", "wrong_estimated").find("(estimated normals)"),
+            std::string::npos);
+  EXPECT_EQ(read_json(path("wrong_estimated.json"))["params"]["normals"], "estimated");
+  EXPECT_GT(worst_radius_error(path("wrong_file.ply")), 0.01);
+  EXPECT_LT(worst_radius_error(path("wrong_estimated.ply")), 10 * mls_error);
+  project(exact, " --surface rimls", "rimls");
+  EXPECT_EQ(read_json(path("rimls.json"))["params"]["surface"], "rimls");
+}
+
+TEST_F(SurfaceCli, RenderRecordsAndShowsTheChosenSurface) {
+  const std::string cloud = sphere(path("plain.xyz"), "none");
+  const auto render = [&](const std::string& flags, const std::string& name) {
+    const test::CliResult r = test::run_pss("render " + cloud + " --size 64x64 -o " + path(name + ".png") + " --stats " +
+                                            path(name + ".json") + flags);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return read_json(path(name + ".json"));
+  };
+  EXPECT_EQ(render("", "mls")["params"]["surface"], "mls");
+  const nlohmann::json rimls = render(" --surface rimls", "rimls");
+  EXPECT_EQ(rimls["params"]["surface"], "rimls");
+  EXPECT_EQ(rimls["params"]["normals"], "estimated");
+  EXPECT_EQ(render(" --surface apss", "apss")["params"]["surface"], "apss");
+  EXPECT_NE(read(path("mls.png")), read(path("rimls.png")));
+  EXPECT_NE(read(path("mls.png")), read(path("apss.png")));
+}
+
+TEST_F(SurfaceCli, BadValuesAreRefused) {
+  const std::string cloud = sphere(path("plain.xyz"), "none");
+  expect_clean_failure("render " + cloud + " --surface rbf -o " + path("o.png"), "--surface", path("o.png"));
+  expect_clean_failure("project " + cloud + " --surface rbf -o " + path("o.ply"), "--surface", path("o.ply"));
+  expect_clean_failure("project " + cloud + " --normals guess -o " + path("o.ply"), "--normals", path("o.ply"));
+}
+
+}  // namespace
+}  // namespace pss
