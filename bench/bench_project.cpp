@@ -1,7 +1,10 @@
 // Projection throughput of `pss project` (points per second): the bunny and a 10⁶-point
 // torus (with --large also 10⁷, run once on the CPU), on the CPU and, when there is one, the
-// GPU (--backend picks one). Median of --runs runs.
-//   build/bench/bench_project [--runs 5] [--large] [--backend all] [--json out/bench/project.json]
+// GPU (--backend picks one), for each surface of --surfaces (issue 26). Median of --runs
+// runs of the projection phase; APSS and RIMLS first need the samples' normals: the tori
+// carry their exact ones, the bunny's are estimated and oriented (the "normals s" column).
+//   build/bench/bench_project [--runs 5] [--large] [--backend all] [--surfaces mls,apss,rimls]
+//                             [--json out/bench/project.json]
 #include <algorithm>
 #include <cstdio>
 #include <string>
@@ -23,6 +26,7 @@ int main(int argc, char** argv) {
   std::string json_path = "out/bench/project.json";
   bool large = false;
   std::string backend_choice = "all";
+  std::vector<std::string> surfaces{"mls", "apss", "rimls"};
   CLI::App app{"pss project's throughput on the bunny and sampled tori"};
   app.add_option("--runs", runs, "runs per row (the median is reported)")
       ->check(CLI::Range(1, 100))->capture_default_str();
@@ -30,6 +34,8 @@ int main(int argc, char** argv) {
   app.add_flag("--large", large, "add a torus of 10^7 points");
   app.add_option("--backend", backend_choice, "the backends measured: cpu, cuda (when there is a device), or all")
       ->check(CLI::IsMember({"cpu", "cuda", "all"}))->capture_default_str();
+  app.add_option("--surfaces", surfaces, "the surfaces measured (--surface of pss project)")
+      ->delimiter(',')->check(CLI::IsMember({"mls", "apss", "rimls"}))->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   struct Dataset {
     std::string name;
@@ -40,15 +46,17 @@ int main(int argc, char** argv) {
   test::SampleOptions torus;
   torus.count = 1000000;
   torus.noise = 0.005f * test::Torus{}.minor;
-  datasets.push_back({"torus, 10^6 points, noise 0.5%", test::sample(test::Torus{}, torus)});
-  if (large) {
-    // With the exact normals as input normals: orienting 10⁷ unoriented normals (a serial
-    // spanning tree, after the projection) would take longer than the projection itself.
-    torus.count = 10000000;
-    PointCloud cloud = test::sample(test::Torus{}, torus);
+  // With the exact normals as input normals: orienting 10⁶ and more unoriented normals (a
+  // serial spanning tree) would take longer than the projection itself.
+  const auto with_normals = [](PointCloud cloud) {
     cloud.normals.resize(cloud.size());
     for (std::size_t i = 0; i < cloud.size(); ++i) cloud.normals[i] = test::Torus{}.normal(cloud.positions[i]);
-    datasets.push_back({"torus, 10^7 points, noise 0.5%, input normals", std::move(cloud)});
+    return cloud;
+  };
+  datasets.push_back({"torus, 10^6 points, noise 0.5%, input normals", with_normals(test::sample(test::Torus{}, torus))});
+  if (large) {
+    torus.count = 10000000;
+    datasets.push_back({"torus, 10^7 points, noise 0.5%, input normals", with_normals(test::sample(test::Torus{}, torus))});
   }
 
   std::vector<Backend> backends;
@@ -60,28 +68,35 @@ int main(int argc, char** argv) {
   }
 
   nlohmann::json rows = nlohmann::json::array();
-  std::printf("| dataset | points | backend | h | median s | points/s |\n|---|---|---|---|---|---|\n");
+  std::printf("| dataset | points | surface | backend | h | normals s | median s | points/s |\n"
+              "|---|---|---|---|---|---|---|---|\n");
   for (const Dataset& d : datasets) {
     const float h = float(estimate_spacing(d.cloud.positions).suggested_h);
-    const ProjectionParams params = ProjectionParams::from_h(h);
-    for (Backend b : backends) {
-      std::vector<double> seconds;
-      const int n_runs = d.cloud.size() <= 1000000 ? runs : b == Backend::cpu ? 1 : std::min(runs, 3);
-      for (int r = 0; r < n_runs; ++r) {
-        Stats stats;
-        project_cloud(d.cloud, params, b, stats);
-        seconds.push_back(stats.time("projection"));
+    for (const std::string& surface : surfaces) {
+      ProjectionParams params = ProjectionParams::from_h(h);
+      params.surface = surface == "apss" ? SurfaceOperator::apss : surface == "rimls" ? SurfaceOperator::rimls
+                                                                                       : SurfaceOperator::mls;
+      for (Backend b : backends) {
+        std::vector<double> seconds;
+        double normals = 0;
+        const int n_runs = d.cloud.size() <= 1000000 ? runs : b == Backend::cpu ? 1 : std::min(runs, 3);
+        for (int r = 0; r < n_runs; ++r) {
+          Stats stats;
+          project_cloud(d.cloud, params, b, stats);
+          seconds.push_back(stats.time("projection"));
+          normals = stats.time("sample normals") + stats.time("orient normals");
+        }
+        std::sort(seconds.begin(), seconds.end());
+        const double median = seconds[seconds.size() / 2];
+        const std::string backend = b == Backend::cuda ? "cuda (" + cuda::device_name() + ")"
+                                                       : "cpu (" + std::to_string(cpu_threads()) + " threads)";
+        std::printf("| %s | %zu | %s | %s | %.5g | %.3f | %.4f | %.0f |\n", d.name.c_str(), d.cloud.size(),
+                    surface.c_str(), backend.c_str(), h, normals, median, double(d.cloud.size()) / median);
+        std::fflush(stdout);
+        rows.push_back({{"dataset", d.name}, {"points", d.cloud.size()}, {"surface", surface}, {"backend", backend},
+                        {"h", h}, {"runs", n_runs}, {"normals_seconds", normals}, {"median_seconds", median},
+                        {"points_per_second", d.cloud.size() / median}, {"all_seconds", seconds}});
       }
-      std::sort(seconds.begin(), seconds.end());
-      const double median = seconds[seconds.size() / 2];
-      const std::string backend = b == Backend::cuda ? "cuda (" + cuda::device_name() + ")"
-                                                     : "cpu (" + std::to_string(cpu_threads()) + " threads)";
-      std::printf("| %s | %zu | %s | %.5g | %.4f | %.0f |\n", d.name.c_str(), d.cloud.size(), backend.c_str(), h,
-                  median, double(d.cloud.size()) / median);
-      std::fflush(stdout);
-      rows.push_back({{"dataset", d.name}, {"points", d.cloud.size()}, {"backend", backend}, {"h", h},
-                      {"runs", n_runs}, {"median_seconds", median}, {"points_per_second", d.cloud.size() / median},
-                      {"all_seconds", seconds}});
     }
   }
   std::filesystem::create_directories(std::filesystem::path(json_path).parent_path());

@@ -30,5 +30,32 @@ TEST(GpuProjection, MatchesCpu) {
   EXPECT_EQ(cpu.counts.too_few_neighbours, gpu.counts.too_few_neighbours);
 }
 
+// APSS on the device (issue 26): a sphere sampled with its exact normals is reproduced to
+// rounding, as on the CPU (tests/surface_operators_test.cpp); RIMLS agrees with the CPU.
+TEST(GpuProjection, EverySurfaceMatchesCpuAndApssTheSphere) {
+  if (cuda::device_count() == 0) GTEST_SKIP() << "no CUDA device";
+  test::SampleOptions o;
+  o.count = 20000;
+  PointCloud cloud = test::sample(test::Sphere{}, o);
+  cloud.normals = cloud.positions;
+  for (SurfaceOperator surface : {SurfaceOperator::apss, SurfaceOperator::rimls}) {
+    SCOPED_TRACE(surface_name(surface));
+    ProjectionParams params = ProjectionParams::from_h(test::suggested_h(cloud));
+    params.surface = surface;
+    Stats stats;
+    const CloudProjection cpu = project_cloud(cloud, params, Backend::cpu, stats);
+    const CloudProjection gpu = project_cloud(cloud, params, Backend::cuda, stats);
+    std::size_t far = 0;
+    float worst = 0;
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+      if (glm::length(cpu.cloud.positions[i] - gpu.cloud.positions[i]) > 1e-5f) ++far;
+      EXPECT_GT(glm::dot(cpu.cloud.normals[i], gpu.cloud.normals[i]), 0.9999f) << i;
+      worst = std::max(worst, std::abs(glm::length(gpu.cloud.positions[i]) - 1));
+    }
+    EXPECT_LT(far, cloud.size() / 1000);
+    if (surface == SurfaceOperator::apss) EXPECT_LT(worst, 2e-6f);
+  }
+}
+
 }  // namespace
 }  // namespace pss

@@ -17,9 +17,11 @@ PointCloud noisy_torus() {
 
 // The cloud rendered on both backends, prepared on each (the GPU's preprocessing on the
 // device), with shadows and reflections; hits and image compared.
-void expect_backends_agree(const PointCloud& cloud, SurfaceColor color) {
+void expect_backends_agree(const PointCloud& cloud, SurfaceColor color,
+                           SurfaceOperator surface = SurfaceOperator::mls) {
   const float h = test::suggested_h(cloud);
-  const RayPssParams params = RayPssParams::from_h(h);
+  RayPssParams params = RayPssParams::from_h(h);
+  params.projection.surface = surface;
   CameraSettings view;
   view.width = view.height = 128;
   view.azimuth_deg = 20;
@@ -54,6 +56,16 @@ void expect_backends_agree(const PointCloud& cloud, SurfaceColor color) {
 TEST(GpuRender, MatchesCpu) {
   if (cuda::device_count() == 0) GTEST_SKIP() << "no CUDA device";
   expect_backends_agree(noisy_torus(), SurfaceColor::albedo);
+}
+
+// APSS and RIMLS (issue 26): the samples' normals estimated and oriented on each backend,
+// then the same kernels.
+TEST(GpuRender, EverySurfaceMatchesCpu) {
+  if (cuda::device_count() == 0) GTEST_SKIP() << "no CUDA device";
+  for (SurfaceOperator surface : {SurfaceOperator::apss, SurfaceOperator::rimls}) {
+    SCOPED_TRACE(surface_name(surface));
+    expect_backends_agree(noisy_torus(), SurfaceColor::albedo, surface);
+  }
 }
 
 // --color: the colours reach the device in the grid's order and interpolate as on the CPU.
