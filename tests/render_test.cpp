@@ -268,7 +268,10 @@ TEST(Render, OnePointCloudRendersTheBackground) {
   cloud.positions = {vec3(1, 2, 3)};
   Stats stats;
   const PreparedCloud prepared(cloud, RayPssParams::from_h(1.0f), Backend::cpu, stats);
-  EXPECT_EQ(prepared.left_out(), 1);  // no neighbours, no surface
+  EXPECT_EQ(prepared.outliers().set_aside, 1);  // no neighbours, no sample (points/outliers.hpp)
+  RayPssParams keep = RayPssParams::from_h(1.0f);
+  keep.projection.outliers = OutlierPolicy::keep;
+  EXPECT_EQ(PreparedCloud(cloud, keep, Backend::cpu, stats).left_out(), 1);  // kept: no neighbours, no polynomial
   const RenderedFrame frame = render(prepared, Camera::framing(cloud.bounds(), small_view()), true, true);
   EXPECT_EQ(summarize(frame).hits, 0);
 }
@@ -357,6 +360,7 @@ TEST(Render, StrewnOutliersMakeNoMoreSurfaceThanWithOneH) {
   const auto off_surface = [&](Support support) {
     RayPssParams params = RayPssParams::from_h(h);
     params.projection.support = support;
+    params.projection.outliers = OutlierPolicy::keep;  // the widths alone (outliers_test.cpp sets them aside)
     Stats stats;
     const PreparedCloud prepared(cloud, params, Backend::cpu, stats);
     CameraSettings view = small_view();

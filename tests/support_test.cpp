@@ -81,6 +81,8 @@ TEST(SupportWidths, AStraySampleTakesItsNeighboursWidthAndIsLeftOut) {
   cloud.positions = points;
   RayPssParams ray = RayPssParams::from_h(h);
   ray.projection.support = Support::adaptive;
+  ray.projection.outliers = OutlierPolicy::keep;  // the widths alone (outliers_test.cpp sets it aside)
+  params.outliers = OutlierPolicy::keep;
   Stats stats;
   const PreparedCloud prepared(cloud, ray, Backend::cpu, stats);
   EXPECT_EQ(prepared.left_out(), 1);

@@ -1,4 +1,4 @@
-// --surface and --normals of `pss project` and `pss render` end to end (issue 26): MLS by
+// --surface, --normals and --outliers of `pss project` and `pss render` end to end (issue 26): MLS by
 // default; APSS reproduces a sphere sampled with its exact normals to rounding, which MLS
 // cannot; the normals' source is the file's unless --normals estimate, and both are named
 // in the summary and --stats; bad values are refused.
@@ -89,11 +89,65 @@ TEST_F(SurfaceCli, RenderRecordsAndShowsTheChosenSurface) {
   EXPECT_NE(read(path("mls.png")), read(path("apss.png")));
 }
 
+// --outliers: strays 1.5h to 3h off the sphere are set aside by default (counted in the
+// summary and --stats), kept with --outliers keep, where they bend the projected sphere.
+TEST_F(SurfaceCli, OutliersAreSetAsideUnlessKept) {
+  test::SampleOptions o;
+  o.count = 6000;
+  const PointCloud sphere = test::sample(test::Sphere{}, o);
+  const float h = test::suggested_h(sphere);
+  {
+    std::ofstream out(path("strays.xyz"));
+    out.precision(9);
+    for (const vec3& p : sphere.positions) out << p.x << ' ' << p.y << ' ' << p.z << '\n';
+    for (int i = 0; i < 40; ++i) {
+      const vec3 p = sphere.positions[std::size_t(i) * 100] * (1 + (1.5f + 0.04f * i) * h);
+      out << p.x << ' ' << p.y << ' ' << p.z << '\n';
+    }
+  }
+  const auto run = [&](const std::string& command, const std::string& flags, const std::string& name) {
+    const test::CliResult r = test::run_pss(command + " " + path("strays.xyz") + " -o " + path(name) + " --stats " +
+                                            path(name + ".json") + flags);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return std::make_pair(r.out, read_json(path(name + ".json")));
+  };
+  const auto [render_out, render_stats] = run("render", " --size 64x64", "r.png");
+  EXPECT_EQ(render_stats["outliers_set_aside"], 40);
+  EXPECT_EQ(render_stats["params"]["outliers"], "set-aside");
+  EXPECT_NE(render_out.find("40 outliers set aside"), std::string::npos) << render_out;
+  EXPECT_EQ(run("render", " --size 64x64 --outliers keep", "k.png").second["outliers_set_aside"], 0);
+  const auto [project_out, project_stats] = run("project", "", "p.ply");
+  EXPECT_EQ(project_stats["outliers_set_aside"], 40);
+  EXPECT_NE(project_out.find("40 outliers set aside"), std::string::npos) << project_out;
+  EXPECT_EQ(run("project", " --outliers keep", "pk.ply").second["outliers_set_aside"], 0);
+  // With one h, the sphere's own points project as without the strays when they are set
+  // aside (to rounding: the grid's order differs), and not when they are kept.
+  {
+    std::ofstream out(path("sphere.xyz"));
+    out.precision(9);
+    for (const vec3& p : sphere.positions) out << p.x << ' ' << p.y << ' ' << p.z << '\n';
+  }
+  const std::string hh = " --h " + std::to_string(h);
+  ASSERT_EQ(test::run_pss("project " + path("sphere.xyz") + " -o " + path("alone.ply") + hh).exit_code, 0);
+  run("project", hh, "ph.ply");
+  run("project", hh + " --outliers keep", "pkh.ply");
+  const auto moved = [&](const std::string& ply) {
+    const test::PlyColumns a = test::read_ply_columns(path("alone.ply")), c = test::read_ply_columns(path(ply));
+    double w = 0;
+    for (const char* k : {"x", "y", "z"})
+      for (std::size_t i = 0; i < sphere.size(); ++i) w = std::max(w, std::abs(c.columns.at(k)[i] - a.columns.at(k)[i]));
+    return w;
+  };
+  EXPECT_LT(moved("ph.ply"), 1e-6);
+  EXPECT_GT(moved("pkh.ply"), 1e-4) << "the strays do not bend the sphere: the test shows nothing";
+}
+
 TEST_F(SurfaceCli, BadValuesAreRefused) {
   const std::string cloud = sphere(path("plain.xyz"), "none");
   expect_clean_failure("render " + cloud + " --surface rbf -o " + path("o.png"), "--surface", path("o.png"));
   expect_clean_failure("project " + cloud + " --surface rbf -o " + path("o.ply"), "--surface", path("o.ply"));
   expect_clean_failure("project " + cloud + " --normals guess -o " + path("o.ply"), "--normals", path("o.ply"));
+  expect_clean_failure("render " + cloud + " --outliers drop -o " + path("o.png"), "--outliers", path("o.png"));
 }
 
 }  // namespace

@@ -33,10 +33,12 @@ Support support_of(const std::string& choice, bool h_given);
 // "global support", or "adaptive support, h_i from X to Y", for the summary line.
 std::string support_text(Support support, const SupportWidths& widths);
 
-// --surface mls|apss|rimls and --normals file|estimate (points/projection.hpp).
+// --surface mls|apss|rimls, --normals file|estimate and --outliers set-aside|keep
+// (points/projection.hpp): which surface the samples define, and which points are samples.
 struct SurfaceOptions {
   std::string surface = "mls";
   std::string normals = "file";
+  std::string outliers = "set-aside";
 };
 void add_surface_options(CLI::App& command, SurfaceOptions& options);
 void apply_surface_options(const SurfaceOptions& options, ProjectionParams& params);

@@ -68,7 +68,7 @@ void add_surface_options(CLI::App& command, SurfaceOptions& options) {
       .add_option("--surface", options.surface,
                   "the surface the points define: mls (the paper's plane and polynomial), apss (algebraic spheres "
                   "fitted to the points and their normals: holds sparse, thin and curved parts) or rimls (robust "
-                  "implicit MLS: keeps sharp creases, ignores outliers); apss and rimls use the file's normals, or "
+                  "implicit MLS: keeps sharp creases); apss and rimls use the file's normals, or "
                   "estimate them")
       ->check(CLI::IsMember({"mls", "apss", "rimls"}))
       ->capture_default_str();
@@ -78,11 +78,19 @@ void add_surface_options(CLI::App& command, SurfaceOptions& options) {
                   "points, the file's ignored)")
       ->check(CLI::IsMember({"file", "estimate"}))
       ->capture_default_str();
+  command
+      .add_option("--outliers", options.outliers,
+                  "set-aside (points farther from their neighbours' plane than the cloud's noise allows, at least h/2, "
+                  "or with fewer than 3 neighbours, are not samples of the surface: no floating flakes from strays) or "
+                  "keep (every point a sample, as the paper)")
+      ->check(CLI::IsMember({"set-aside", "keep"}))
+      ->capture_default_str();
 }
 
 void apply_surface_options(const SurfaceOptions& options, ProjectionParams& params) {
   params.surface = surface_operator_of(options.surface);
   params.normals = options.normals == "estimate" ? NormalSource::estimate : NormalSource::file;
+  params.outliers = options.outliers == "keep" ? OutlierPolicy::keep : OutlierPolicy::set_aside;
 }
 
 const char* normals_text(NormalsUsed used) {

@@ -73,9 +73,9 @@ void run_project(const ProjectOptions& o) {
               cloud.size(), total, projection_s, double(cloud.size()) / projection_s, backend_name(backend),
               cpu_threads());
   std::printf("%s surface%s, h = %g (%s), rho = %g, plane fit %s; converged %lld, not converged %lld, too few neighbours %lld, "
-              "degenerate normal %lld\n", surface_name(params.surface), normals_text(result.normals), params.h, support_text(params.support, result.widths).c_str(), params.rho,
+              "degenerate normal %lld; %lld outliers set aside (projected, not samples)\n", surface_name(params.surface), normals_text(result.normals), params.h, support_text(params.support, result.widths).c_str(), params.rho,
               o.method.c_str(), (long long)c.converged, (long long)c.not_converged, (long long)c.too_few_neighbours,
-              (long long)c.degenerate_normal);
+              (long long)c.degenerate_normal, (long long)result.outliers.set_aside);
 
   if (!o.compute.stats_path.empty()) {
     auto& v = stats.values();
@@ -89,10 +89,12 @@ void run_project(const ProjectOptions& o) {
     v["params"] = {{"h", params.h}, {"rho", params.rho}, {"plane_fit", o.method},
                    {"support", support_name(params.support)},
                    {"surface", surface_name(params.surface)}, {"normals", normals_used_name(result.normals)},
+                   {"outliers", o.surface.outliers},
                    {"h_least", result.widths.least}, {"h_largest", result.widths.largest},
                    {"max_mls_iterations", params.max_mls_iterations}, {"t_tolerance", params.t_tolerance}};
     v["status"] = {{"converged", c.converged}, {"not_converged", c.not_converged},
                    {"too_few_neighbours", c.too_few_neighbours}, {"degenerate_normal", c.degenerate_normal}};
+    v["outliers_set_aside"] = result.outliers.set_aside;
     v["points_per_second"] = double(cloud.size()) / projection_s;
     stats.write(o.compute.stats_path);
   }

@@ -80,10 +80,11 @@ void run_render(const RenderCloudOptions& o) {
               "BVH %.3f s (%s backend, %d threads)\n", o.input.c_str(), cloud.size(), camera.width, camera.height,
               seconds, frame_s, 1.0 / frame_s, stats.time("preprocess"), stats.time("acceleration structure"),
               backend_name(backend), cpu_threads());
-  std::printf("%lld rays, %lld hits, %.2f projections per hit, %lld secondary rays; %s surface%s, h = %g (%s), "
-              "b = %g, eps = %g\n",
+  std::printf("%lld rays, %lld hits, %.2f projections per hit, %lld secondary rays; %s surface%s, %lld outliers set "
+              "aside, h = %g (%s), b = %g, eps = %g\n",
               (long long)s.rays, (long long)s.hits, s.mean_iterations, (long long)s.secondary_rays,
-              surface_name(params.projection.surface), normals_text(prepared.normals_used()), params.projection.h,
+              surface_name(params.projection.surface), normals_text(prepared.normals_used()),
+              (long long)prepared.outliers().set_aside, params.projection.h,
               support_text(params.projection.support, prepared.widths()).c_str(), params.ball_radius, params.epsilon);
 
   if (!o.render.compute.stats_path.empty()) {
@@ -91,11 +92,13 @@ void run_render(const RenderCloudOptions& o) {
     auto& v = stats.values();
     v["points"] = cloud.size();
     v["samples_left_out"] = prepared.left_out();
+    v["outliers_set_aside"] = prepared.outliers().set_aside;
     v["local_polynomials"] = prepared.locals().size();
     v["params"] = {{"h", params.projection.h}, {"rho", params.projection.rho}, {"b", params.ball_radius},
                    {"support", support_name(params.projection.support)},
                    {"surface", surface_name(params.projection.surface)},
-                   {"normals", normals_used_name(prepared.normals_used())},
+                   {"normals", normals_used_name(prepared.normals_used())}, {"outliers", o.surface.outliers},
+                   {"outlier_threshold", prepared.outliers().threshold},
                    {"h_least", prepared.widths().least}, {"h_largest", prepared.widths().largest},
                    {"support_levels", prepared.support_levels()},
                    {"ball_spacing", params.ball_spacing},

@@ -104,8 +104,8 @@ def estimate_h(points):
     return _pss.estimate_h(points)
 
 
-def project(points, h=None, *, normals=None, surface="mls", method="mls", rho=None, support=None, iterations=4,
-            backend="auto"):
+def project(points, h=None, *, normals=None, surface="mls", outliers="set-aside", method="mls", rho=None, support=None,
+            iterations=4, backend="auto"):
     """Move every point onto the point set surface, as `pss project`.
 
     points: (N, 3). h: the Gaussian width (default: estimate_h(points)); rho: the
@@ -116,21 +116,25 @@ def project(points, h=None, *, normals=None, surface="mls", method="mls", rho=No
     iterations: the most MLS alternations; normals: (N, 3) hints of the side each point's
     normal faces (without them the normals are oriented consistently over the cloud).
     surface: 'mls' (the paper's), 'apss' (algebraic spheres fitted to the points and their
-    normals) or 'rimls' (robust implicit MLS: sharp creases, outliers ignored), as the CLI's
+    normals) or 'rimls' (robust implicit MLS: keeps sharp creases), as the CLI's
     --surface; apss and rimls fit the given normals, or estimate them when none are given
     (the CLI's --normals estimate); with them, iterations counts the fits moved to the point.
+    outliers: 'set-aside' (points off their neighbours' plane by more than the cloud's noise
+    allows, or with fewer than 3 neighbours, are not samples of the surface, though projected
+    onto it like the rest) or 'keep', as the CLI's --outliers.
 
     Returns (points, normals, status): (N, 3) float32 (float64 for points far from zero, see
     above), (N, 3) float32 unit normals, and (N,)
     int32 status: 0 converged, 1 not converged within `iterations`, 2 too few neighbours
     within rho (point and normal unchanged), 3 degenerate normal (neighbours on a line).
     """
-    return _pss.project(points, {"normals": normals, "surface": surface, "h": h, "method": method, "rho": rho,
+    return _pss.project(points, {"normals": normals, "surface": surface, "outliers": outliers, "h": h, "method": method,
+                                 "rho": rho,
                                  "support": support, "iterations": iterations, "backend": backend})
 
 
-def render(points, h=None, *, normals=None, colors=None, surface="mls", rho=None, support=None, b=None, epsilon=None,
-           ball_spacing=None,
+def render(points, h=None, *, normals=None, colors=None, surface="mls", outliers="set-aside", rho=None, support=None,
+           b=None, epsilon=None, ball_spacing=None,
            iterations=2, secondary="full", size=None, view=None, fov=None, look_at=None, up=None, distance=None,
            zoom=None, roll=None, camera=None, shadows=False, reflections=False, reflectivity=None,
            transparent=False, backend="auto", full_output=False):
@@ -142,13 +146,15 @@ def render(points, h=None, *, normals=None, colors=None, surface="mls", rho=None
     ball_spacing (default b/2; 0 keeps one polynomial per sample, as the paper),
     iterations: projections per ray candidate, 1 to 32 or 'auto' (default 2, the paper's),
     secondary: 'full' or 'paper' (the paper's rough secondary hits); normals: optional hints.
-    surface: 'mls', 'apss' or 'rimls', as for project (the given normals fitted, or estimated).
+    surface: 'mls', 'apss' or 'rimls', as for project (the given normals fitted, or estimated);
+    outliers: 'set-aside' or 'keep', as for project (full_output's stats: outliers_set_aside).
     colors: (N, 3) sRGB colours of the points (uint8 0..255, or floats 0..1) to shade with, as
     `pss render --color`: averaged at each hit with the projection's weights, in linear light.
     """
     options = _frame_options(size, view, fov, look_at, up, distance, zoom, roll, camera, shadows, reflections,
                              reflectivity, transparent, backend, full_output)
-    options.update({"normals": normals, "colors": colors, "surface": surface, "h": h, "rho": rho, "support": support,
+    options.update({"normals": normals, "colors": colors, "surface": surface, "outliers": outliers, "h": h, "rho": rho,
+                    "support": support,
                     "b": b,
                     "epsilon": epsilon, "ball_spacing": ball_spacing, "iterations": iterations, "secondary": secondary})
     return _pss.render(points, options)

@@ -55,6 +55,10 @@ SurfaceOperator surface_of(const py::dict& o) {
   return name == "apss" ? SurfaceOperator::apss : name == "rimls" ? SurfaceOperator::rimls : SurfaceOperator::mls;
 }
 
+OutlierPolicy outliers_of(const py::dict& o) {
+  return choice(o, "outliers", {"set-aside", "keep"}) == "keep" ? OutlierPolicy::keep : OutlierPolicy::set_aside;
+}
+
 float estimate_h(const py::handle& points) {
   const PointCloud cloud = cloud_of_rows(points, "points");
   py::gil_scoped_release release;
@@ -68,6 +72,7 @@ py::tuple project(const py::handle& points, const py::dict& o) {
   const int iterations = integer_in(o, "iterations", 1, 100);
   const Support support = support_of(o, h.has_value());
   const SurfaceOperator surface = surface_of(o);
+  const OutlierPolicy outliers = outliers_of(o);
   const Backend backend = backend_of(o);
   CloudProjection result = run_interruptibly([&] {
     Stats stats;
@@ -76,6 +81,7 @@ py::tuple project(const py::handle& points, const py::dict& o) {
     if (rho) params.rho = *rho;
     params.support = support;
     params.surface = surface;
+    params.outliers = outliers;
     params.max_mls_iterations = iterations;
     CloudProjection projection = project_cloud(cloud, params, backend, stats);
     check_some_projected(projection, params);
@@ -111,6 +117,7 @@ py::object render(const py::handle& points, const py::dict& o) {
                                            : std::nullopt;
   const Support support = support_of(o, h.has_value());
   const SurfaceOperator surface = surface_of(o);
+  const OutlierPolicy outliers = outliers_of(o);
   const Backend backend = backend_of(o);
   const FrameRequest request = frame_request(o);
   const Camera camera = make_camera(request, cloud.bounds(), cloud.origin);
@@ -123,6 +130,7 @@ py::object render(const py::handle& points, const py::dict& o) {
     if (rho) params.projection.rho = *rho;
     params.projection.support = support;
     params.projection.surface = surface;
+    params.projection.outliers = outliers;
     if (b) params.ball_radius = *b;
     params.ball_spacing = spacing ? *spacing : 0.5f * params.ball_radius;
     if (epsilon) params.epsilon = *epsilon;
@@ -132,6 +140,7 @@ py::object render(const py::handle& points, const py::dict& o) {
     const PreparedCloud prepared(cloud, params, backend, stats,
                                  cloud.has_colors() ? SurfaceColor::samples : SurfaceColor::albedo);
     stats.values()["local_polynomials"] = prepared.locals().size();
+    stats.values()["outliers_set_aside"] = prepared.outliers().set_aside;
     stats.values()["params"] = {{"h", params.projection.h}, {"rho", params.projection.rho}, {"b", params.ball_radius},
                                 {"support", support_name(support)}, {"surface", surface_name(surface)},
                                 {"normals", normals_used_name(prepared.normals_used())},

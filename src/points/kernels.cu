@@ -3,12 +3,14 @@
 // by the host compiler where they are launched (project_cloud.cpp, render_cloud.cpp).
 #include "pss/backend/cuda/launch.cuh"
 #include "pss/points/local_polynomials.hpp"
+#include "pss/points/outliers.hpp"
 #include "pss/points/project_points.hpp"
 #include "pss/points/render_cloud.hpp"
 #include "pss/render/frame_kernels.hpp"
 
 PSS_CUDA_KERNEL(pss::ProjectPointsKernel)
 PSS_CUDA_KERNEL(pss::FitLocalPolynomialsKernel)
+PSS_CUDA_KERNEL(pss::OutlierDistanceKernel)
 PSS_CUDA_KERNEL(pss::PrimaryRaysKernel<pss::PointFinder>)
 PSS_CUDA_KERNEL(pss::SecondaryRaysKernel<pss::PointFinder>)
 PSS_CUDA_KERNEL(pss::ShadePixelsKernel<pss::PointFinder>)

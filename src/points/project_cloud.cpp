@@ -10,6 +10,7 @@
 #include "pss/backend/parallel_for.hpp"
 #include "pss/core/error.hpp"
 #include "pss/points/orient_normals.hpp"
+#include "pss/points/outliers.hpp"
 #include "pss/points/sample_normals.hpp"
 #include "pss/points/support.hpp"
 #include "pss/spatial/grid_mirror.hpp"
@@ -66,6 +67,7 @@ CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& p
   std::vector<ProjectedPoint> projected;
   SupportWidths widths;
   NormalsUsed normals_used = NormalsUsed::none;
+  OutlierReport outliers;
   const bool file_hints = input.has_normals() && params.normals == NormalSource::file;
   {
     {
@@ -73,26 +75,44 @@ CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& p
       widths = support_widths(positions, unit_params);
     }
     ScopedPhase phase(stats, "spatial index");
-    SupportGrid grid(positions, widths.h, unit_params.rho / unit_params.h);
+    SupportGrid grid =
+        grid_of_samples(positions, widths.h, unit_params.rho / unit_params.h, params.outliers, backend, stats, outliers);
     phase.stop();
     prepare_sample_normals(grid, input.normals, unit_params, backend, stats, normals_used);
-    // The points are projected in the grid's order, so that neighbouring threads gather
+    // The samples are projected in the grid's order, so that neighbouring threads gather
     // neighbouring samples from the cache; in a scan's random order, 10⁷ points projected at
     // a fifth of the rate of 10⁶ on a GPU (docs/benchmarks.md, issue 29). Without input
-    // normals the eigenvector's sign is arbitrary; orientation comes after.
+    // normals the eigenvector's sign is arbitrary; orientation comes after. The points set
+    // aside follow (below).
     const std::span<const int> original = grid.original_index();
-    std::vector<vec3> hints(n, vec3(0.0f));
+    const std::size_t m = original.size();
+    std::vector<vec3> hints(m, vec3(0.0f));
     if (file_hints)
-      cpu::parallel_for(std::int64_t(n), [&](std::int64_t k) { hints[k] = input.normals[std::size_t(original[k])]; });
+      cpu::parallel_for(std::int64_t(m), [&](std::int64_t k) { hints[k] = input.normals[std::size_t(original[k])]; });
+    // The points set aside are not samples, but points all the same: projected after.
+    std::vector<int> set_aside;
+    if (m < n) {
+      std::vector<char> sample(n, 0);
+      for (int i : original) sample[std::size_t(i)] = 1;
+      for (std::size_t i = 0; i < n; ++i)
+        if (!sample[i]) set_aside.push_back(int(i));
+    }
+    std::vector<vec3> queries(grid.sorted_points().begin(), grid.sorted_points().end());
+    for (int i : set_aside) {
+      queries.push_back(positions[std::size_t(i)]);
+      hints.push_back(file_hints ? input.normals[std::size_t(i)] : vec3(0.0f));
+    }
     const GridMirror g(backend, grid);
+    const Mirror<vec3> query(backend, queries);
     const Mirror<vec3> hint(backend, hints);
     Mirror<ProjectedPoint> out(backend, n);
     Progress progress("projecting", std::int64_t(n));
     parallel_for(backend, "projection", std::int64_t(n),
-                 ProjectPointsKernel{g.view(), g.view().points, hint.data(), out.data(), unit_params}, stats, &progress);
-    const std::vector<ProjectedPoint> in_grid_order = out.take();
+                 ProjectPointsKernel{g.view(), query.data(), hint.data(), out.data(), unit_params}, stats, &progress);
+    const std::vector<ProjectedPoint> ordered = out.take();
     projected.resize(n);
-    cpu::parallel_for(std::int64_t(n), [&](std::int64_t k) { projected[std::size_t(original[k])] = in_grid_order[k]; });
+    cpu::parallel_for(std::int64_t(m), [&](std::int64_t k) { projected[std::size_t(original[k])] = ordered[k]; });
+    for (std::size_t k = 0; k < set_aside.size(); ++k) projected[std::size_t(set_aside[k])] = ordered[m + k];
   }
 
   CloudProjection out;
@@ -118,6 +138,7 @@ CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& p
     }
   }
   out.normals = normals_used;
+  out.outliers = outliers;
   // APSS's and RIMLS's normals follow the samples' oriented ones already.
   if (!file_hints && params.surface == SurfaceOperator::mls) {
     ScopedPhase phase(stats, "orient normals", false);  // its Progress shows it

@@ -7,6 +7,7 @@
 #include "pss/backend/mirror.hpp"
 #include "pss/backend/parallel_for.hpp"
 #include "pss/core/error.hpp"
+#include "pss/points/outliers.hpp"
 #include "pss/points/project_cloud.hpp"
 #include "pss/points/sample_normals.hpp"
 #include "pss/points/thinning.hpp"
@@ -51,15 +52,17 @@ std::vector<LocalFit> fit_all(const SupportGrid& grid, const PointCloud& cloud, 
 
 // The samples' widths and the range-query grid are part of the preprocessing (the paper's 3D
 // neighbourhood texture).
-SupportGrid timed_grid(const PointCloud& cloud, const ProjectionParams& projection, Stats& stats,
-                       SupportWidths& widths) {
+SupportGrid timed_grid(const PointCloud& cloud, const ProjectionParams& projection, Backend backend, Stats& stats,
+                       SupportWidths& widths, OutlierReport& outliers) {
   check_neighbourhood(projection, points_detail::unit_frame(cloud.positions).diagonal);
   {
     ScopedPhase phase(stats, "support widths", projection.support == Support::global);  // else its Progress shows it
     widths = support_widths(cloud.positions, projection);
   }
-  ScopedPhase phase(stats, "preprocess", false);  // counting sorts: the fits after them are what takes time
-  SupportGrid grid(cloud.positions, widths.h, projection.rho / projection.h);
+  // Counting sorts (not timed: the fits after them are what takes time), and the outliers'
+  // test, timed by its kernel.
+  SupportGrid grid = grid_of_samples(cloud.positions, widths.h, projection.rho / projection.h, projection.outliers,
+                                     backend, stats, outliers);
   widths.h = {};  // the grid keeps them
   return grid;
 }
@@ -124,7 +127,7 @@ PreparedCloud::PreparedCloud(const PointCloud& cloud, const RayPssParams& params
                              SurfaceColor color)
     : origin_(cloud.origin),
       params_((validate(params), params)),
-      grid_(timed_grid(cloud, params.projection, stats, widths_)),
+      grid_(timed_grid(cloud, params.projection, backend, stats, widths_, outliers_)),
       bvh_(std::span<const Aabb>{}) {
   prepare_sample_normals(grid_, cloud.normals, params.projection, backend, stats, normals_used_);
   {

@@ -76,4 +76,8 @@ void SupportGrid::set_normals(std::vector<vec3> sorted_normals) {
   normals_ = std::move(sorted_normals);
 }
 
+void SupportGrid::renumber(std::span<const int> input_index) {
+  for (int& i : original_index_) i = input_index[std::size_t(i)];
+}
+
 }  // namespace pss

@@ -49,12 +49,13 @@ def test_support_is_the_cli_s(tmp_path, support):
     cloud = tmp_path / "step.xyz"
     np.savetxt(cloud, points, fmt="%.9g")
     out = tmp_path / "projected.ply"
-    cli_ok("project", cloud, "--support", support, "-o", out)
+    cli_ok("project", cloud, "--support", support, "--outliers", "keep", "-o", out)
     cli = read_binary_ply(out)
-    projected, _, status = pss.project(np.loadtxt(cloud, dtype=np.float32), support=support)
+    projected, _, status = pss.project(np.loadtxt(cloud, dtype=np.float32), support=support, outliers="keep")
     assert np.array_equal(projected, np.stack([cli["x"], cli["y"], cli["z"]], 1))
     assert np.array_equal(status, cli["status"])
-    # One global h leaves the sparse half's points with too few neighbours (status 2).
+    # One global h leaves the sparse half's points with too few neighbours (status 2). (The
+    # widths alone: set aside, a sample with only 2 others at the step is not one.)
     assert (np.count_nonzero(status == 2) == 0) == (support == "adaptive")
 
 
@@ -91,6 +92,23 @@ def test_surface_is_the_cli_s(tmp_path, surface):
     # APSS's spheres reproduce the sphere to rounding; MLS and RIMLS keep a bias.
     error = np.abs(np.linalg.norm(projected, axis=1) - 1).max()
     assert (error < 2e-6) == (surface == "apss")
+
+
+def test_outliers_are_the_cli_s_and_set_aside_by_default(tmp_path):
+    points = unit_sphere()
+    rng = np.random.default_rng(3)
+    strays = (points[:50] * (1 + 0.1 + 0.1 * rng.random((50, 1)))).astype(np.float32)  # 1.2h to 2.3h off
+    cloud = np.vstack([points, strays])
+    np.savetxt(tmp_path / "strays.xyz", cloud, fmt="%.9g")
+    for outliers in ["set-aside", "keep"]:
+        cli_ok("project", tmp_path / "strays.xyz", "--outliers", outliers, "-o", tmp_path / "p.ply")
+        cli = read_binary_ply(tmp_path / "p.ply")
+        projected, _, _ = pss.project(cloud, outliers=outliers)
+        assert np.array_equal(projected, np.stack([cli["x"], cli["y"], cli["z"]], 1))
+    _, _, stats = pss.render(cloud, size=(32, 32), full_output=True)
+    assert stats["outliers_set_aside"] >= 50
+    _, _, stats = pss.render(cloud, size=(32, 32), outliers="keep", full_output=True)
+    assert stats["outliers_set_aside"] == 0
 
 
 def test_surface_fits_the_given_normals_or_estimates_them():

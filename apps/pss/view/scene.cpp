@@ -42,6 +42,7 @@ class CloudScene : public Scene {
     params.projection.support = s.adaptive_support ? Support::adaptive : Support::global;
     params.projection.surface = s.surface;
     params.projection.normals = s.normals;
+    params.projection.outliers = s.outliers;
     params.epsilon = s.epsilon;
     params.max_iterations = s.iterations;
     params.secondary = s.secondary_full ? SecondaryMode::full : SecondaryMode::paper;

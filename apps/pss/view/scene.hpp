@@ -34,6 +34,7 @@ struct ViewSettings {
   bool adaptive_support = true;  // each sample's width from its spacing (points/support.hpp)
   SurfaceOperator surface = SurfaceOperator::mls;  // --surface (points/projection.hpp)
   NormalSource normals = NormalSource::file;       // --normals
+  OutlierPolicy outliers = OutlierPolicy::set_aside;  // --outliers
   float epsilon = 0;
   int iterations = 2;
   bool secondary_full = true;

@@ -68,6 +68,7 @@ void add_view_command(CLI::App& app) {
     apply_surface_options(*surface, chosen);
     o->settings.surface = chosen.surface;
     o->settings.normals = chosen.normals;
+    o->settings.outliers = chosen.outliers;
     // The window shows each frame's progress; bars on the terminal behind it would only flicker.
     set_progress_mode(ProgressMode::never);
     if (const int status = view::run_viewer(*o); status != 0) std::exit(status);

@@ -9,6 +9,7 @@
 #include "pss/core/progress.hpp"
 #include "pss/core/stats.hpp"
 #include "pss/points/cloud.hpp"
+#include "pss/points/outliers.hpp"
 #include "pss/points/project_points.hpp"
 #include "pss/points/sample_normals.hpp"
 #include "pss/points/support.hpp"
@@ -25,6 +26,7 @@ struct CloudProjection {
   StatusCounts counts;
   SupportWidths widths;  // least, median, largest h_i (h is not kept)
   NormalsUsed normals = NormalsUsed::none;  // the samples' normals APSS and RIMLS fitted
+  OutlierReport outliers;  // the points that are not samples (points/outliers.hpp); projected all the same
 };
 
 // Throws Error for invalid parameters (h or ρ not positive and finite, ρ beyond the cloud's

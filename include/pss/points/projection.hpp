@@ -48,6 +48,10 @@ inline const char* surface_name(SurfaceOperator s) {
 // consistently, the file's ignored (`--normals file|estimate`).
 enum class NormalSource : unsigned char { file, estimate };
 
+// Whether the samples off the surface the others define are set aside before any fit
+// (points/outliers.hpp, `--outliers set-aside|keep`).
+enum class OutlierPolicy : unsigned char { set_aside, keep };
+
 struct ProjectionParams {
   float h = 0;    // Gaussian width of θ3, the local level of detail (with adaptive support, the least h_i)
   float rho = 0;  // range-query radius, 2h in the paper
@@ -55,6 +59,7 @@ struct ProjectionParams {
   Support support = Support::global;
   SurfaceOperator surface = SurfaceOperator::mls;
   NormalSource normals = NormalSource::file;  // read on the host, before any kernel
+  OutlierPolicy outliers = OutlierPolicy::set_aside;  // likewise
   // The MLS alternations of t and n; for APSS and RIMLS, the fits moved to the last point
   // (with PlaneFitMethod::wls, one fit at r, as the ray tracer's loop takes).
   int max_mls_iterations = 4;

@@ -11,6 +11,7 @@
 #include "pss/core/stats.hpp"
 #include "pss/points/cloud.hpp"
 #include "pss/points/ray_pss.hpp"
+#include "pss/points/outliers.hpp"
 #include "pss/points/sample_colors.hpp"
 #include "pss/points/sample_normals.hpp"
 #include "pss/points/support.hpp"
@@ -68,7 +69,9 @@ class PreparedCloud {
   // The samples' widths h_i: least, median, largest (the per-sample ones live in the grid).
   const SupportWidths& widths() const { return widths_; }
   int support_levels() const { return grid_.levels(); }
-  NormalsUsed normals_used() const { return normals_used_; }  // the samples' normals, for APSS and RIMLS
+  NormalsUsed normals_used() const { return normals_used_; }
+  // The samples set aside as off the surface (points/outliers.hpp), none with OutlierPolicy::keep.
+  const OutlierReport& outliers() const { return outliers_; }  // the samples' normals, for APSS and RIMLS
   const Bvh& bvh() const { return bvh_; }
   const glm::dvec3& origin() const { return origin_; }  // the cloud's (cloud.hpp)
 
@@ -76,6 +79,7 @@ class PreparedCloud {
   glm::dvec3 origin_;
   RayPssParams params_;
   SupportWidths widths_;
+  OutlierReport outliers_;
   SupportGrid grid_;
   std::vector<LocalPolynomial> locals_;
   std::vector<vec3> colors_;  // empty, or linear RGB in the grid's order

@@ -65,6 +65,7 @@ class SupportGrid {
   SupportGrid(const SupportGrid&) = delete;  // the levels point into the arrays
   SupportGrid& operator=(const SupportGrid&) = delete;
   SupportGrid(SupportGrid&&) = default;  // vectors keep their buffers when moved
+  SupportGrid& operator=(SupportGrid&&) = default;
 
   SupportGridView view() const;  // on the host
   std::span<const vec3> sorted_points() const { return sorted_; }
@@ -78,6 +79,9 @@ class SupportGrid {
   std::span<const int> level_cell_offset() const { return level_offset_; }
   // original_index()[i] is the input index of sorted point i.
   std::span<const int> original_index() const { return original_index_; }
+  // Makes original_index() count in a larger array of which this grid's points were
+  // input_index[0], input_index[1], ... (the samples kept of a cloud).
+  void renumber(std::span<const int> input_index);
   int levels() const { return int(levels_.size()); }
   float kappa() const { return kappa_; }
 

@@ -1,0 +1,69 @@
+#include "pss/points/outliers.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "pss/backend/mirror.hpp"
+#include "pss/backend/parallel_for.hpp"
+#include "pss/spatial/grid_mirror.hpp"
+
+namespace pss {
+
+namespace {
+
+std::vector<float> distances_to_neighbours_planes(const SupportGrid& grid, Backend backend, Stats& stats) {
+  const std::size_t n = grid.sorted_points().size();
+  const GridMirror g(backend, grid);
+  Mirror<float> out(backend, n);
+  Progress progress("outliers", std::int64_t(n));
+  parallel_for(backend, "outliers", std::int64_t(n), OutlierDistanceKernel{g.view(), out.data()}, stats, &progress);
+  return out.take();
+}
+
+// The noise's scale, robustly: 1.4826 times the median distance is σ for Gaussian noise.
+float threshold_of(std::vector<float> distance) {
+  std::erase_if(distance, [](float d) { return !std::isfinite(d); });
+  if (distance.empty()) return kOutlierFloor;
+  std::nth_element(distance.begin(), distance.begin() + distance.size() / 2, distance.end());
+  return std::max(kOutlierFloor, kOutlierSigmas * 1.4826f * distance[distance.size() / 2]);
+}
+
+}  // namespace
+
+std::vector<char> samples_on_the_surface(const SupportGrid& grid, Backend backend, Stats& stats, OutlierReport& report) {
+  const std::vector<float> distance = distances_to_neighbours_planes(grid, backend, stats);
+  if (!(report.threshold > 0)) report.threshold = threshold_of(distance);
+  std::vector<char> keep(distance.size());
+  for (std::size_t i = 0; i < keep.size(); ++i) keep[i] = distance[i] <= report.threshold;
+  return keep;
+}
+
+SupportGrid grid_of_samples(std::span<const vec3> points, std::span<const float> h, float kappa, OutlierPolicy policy,
+                            Backend backend, Stats& stats, OutlierReport& report) {
+  report = {};
+  SupportGrid grid(points, h, kappa);
+  if (policy == OutlierPolicy::keep) return grid;
+  // Twice: a stray next to another stray fits its plane through it, and stands out once the
+  // other is gone. The second pass keeps the first's threshold.
+  for (int pass = 0; pass < kOutlierPasses; ++pass) {
+    const std::vector<char> keep = samples_on_the_surface(grid, backend, stats, report);
+    const std::span<const int> original = grid.original_index();
+    std::vector<vec3> kept_points;
+    std::vector<float> kept_h;
+    std::vector<int> input_index;
+    for (std::size_t k = 0; k < keep.size(); ++k) {
+      if (!keep[k]) continue;
+      const int i = original[k];
+      kept_points.push_back(points[std::size_t(i)]);
+      kept_h.push_back(h[std::size_t(i)]);
+      input_index.push_back(i);
+    }
+    if (kept_points.size() == keep.size()) break;
+    report.set_aside += std::int64_t(keep.size() - kept_points.size());
+    grid = SupportGrid(kept_points, kept_h, kappa);
+    grid.renumber(input_index);
+  }
+  return grid;
+}
+
+}  // namespace pss
