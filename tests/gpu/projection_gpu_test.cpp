@@ -57,5 +57,22 @@ TEST(GpuProjection, EverySurfaceMatchesCpuAndApssTheSphere) {
   }
 }
 
+// The outliers' test (points/outliers.hpp) on the device: the same strays set aside.
+TEST(GpuProjection, OutliersAreSetAsideAsOnTheCpu) {
+  if (cuda::device_count() == 0) GTEST_SKIP() << "no CUDA device";
+  test::SampleOptions o;
+  o.count = 20000;
+  PointCloud cloud = test::sample(test::Sphere{}, o);
+  const float h = test::suggested_h(cloud);
+  for (int i = 0; i < 100; ++i) cloud.positions.push_back(cloud.positions[std::size_t(i) * 150] * (1 + (1 + 0.02f * i) * h));
+  const ProjectionParams params = ProjectionParams::from_h(h);
+  Stats stats;
+  const CloudProjection cpu = project_cloud(cloud, params, Backend::cpu, stats);
+  const CloudProjection gpu = project_cloud(cloud, params, Backend::cuda, stats);
+  EXPECT_EQ(cpu.outliers.set_aside, 100);
+  EXPECT_EQ(gpu.outliers.set_aside, cpu.outliers.set_aside);
+  EXPECT_NEAR(gpu.outliers.threshold, cpu.outliers.threshold, 1e-5f);
+}
+
 }  // namespace
 }  // namespace pss
