@@ -76,31 +76,17 @@ PSS_INLINE bool nearest_on_sphere(const AlgebraicSphere& s, vec3& y) {
   return true;
 }
 
-// x → the sphere fitted at x, projected onto: `steps` times from x = r, each fit over N(r)
-// (`samples`, gathered at r) weighted from the last point (1 for the ray tracer's loop,
-// which iterates itself; more for `pss project`, until a step moves less than the
-// tolerance). The
-// projection's frame sits at the point with the normal ∇f/‖∇f‖ (oriented as the samples'
-// normals), and its polynomial is the sphere's osculating paraboloid there: f(y* + (a, b, z))
-// ≈ ‖∇f‖z + u4(a² + b²) = 0 to second order.
+// APSS's projection (project_by_fits): x → the point of the sphere fitted at x nearest x.
+// The frame sits there with the normal ∇f/‖∇f‖ (oriented as the samples' normals), and the
+// polynomial is the sphere's osculating paraboloid: f(y* + (a, b, z)) ≈ ‖∇f‖z + u4(a² + b²)
+// = 0 to second order.
 template <class Samples>
 PSS_HOST_DEVICE Projection project_apss(const Samples& samples, vec3 r, const ProjectionParams& params,
                                         vec3 normal_hint, int steps) {
-  Projection out = unprojected(r, normal_hint);
-  out.neighbours = samples.count;
-  if (samples.count < 3) return out;
-  const float h = local_width(samples.moments());
-  if (!(h > 0)) return out;
-  const float tolerance = params.t_tolerance * (h / params.h);
-  vec3 x = r;
-  out.status = ProjectionStatus::not_converged;
-  for (int step = 0; step < steps; ++step) {
+  return project_by_fits(samples, r, params, normal_hint, steps, [&](vec3& x, float h, Projection& out) {
     const AlgebraicSphere s = fit_algebraic_sphere(samples, x, h);
     vec3 y;
-    if (!s.valid || !nearest_on_sphere(s, y)) {
-      out.status = ProjectionStatus::degenerate_normal;
-      return out;
-    }
+    if (!s.valid || !nearest_on_sphere(s, y)) return -1.0f;
     const vec3 g = s.gradient_at(y);
     const float g_norm = glm::length(g);
     const vec3 next = x + h * y;
@@ -110,14 +96,8 @@ PSS_HOST_DEVICE Projection project_apss(const Samples& samples, vec3 r, const Pr
     out.polynomial = Polynomial{curvature, curvature, 0.0f, 0.0f};
     const float moved = glm::length(next - x);
     x = next;
-    if (steps == 1 || moved < tolerance) {
-      out.status = ProjectionStatus::converged;
-      break;
-    }
-  }
-  out.point = x;
-  out.t = glm::dot(x - r, out.normal);
-  return out;
+    return moved;
+  });
 }
 
 }  // namespace pss

@@ -98,6 +98,40 @@ PSS_INLINE Projection unprojected(vec3 r, vec3 normal_hint) {
   return out;
 }
 
+// The projection of APSS and RIMLS, by fits moved along: from x = r, `steps` times (one
+// for the ray tracer's loop, which iterates itself; more for `pss project`, until a step
+// moves less than the tolerance), step(x, h, out) fits the surface at x over N(r)
+// (`samples`, gathered at r), moves x onto it, sets out's normal, frame and polynomial there,
+// and returns how far x moved, or a negative number where the fit has no surface
+// (degenerate_normal). h is the local width h(r), which sizes the fits and the tolerance.
+template <class Samples, class Step>
+PSS_HOST_DEVICE Projection project_by_fits(const Samples& samples, vec3 r, const ProjectionParams& params,
+                                           vec3 normal_hint, int steps, Step&& step) {
+  Projection out = unprojected(r, normal_hint);
+  out.neighbours = samples.count;
+  if (samples.count < 3) return out;
+  const float h = local_width(samples.moments());
+  if (!(h > 0)) return out;
+  const float tolerance = params.t_tolerance * (h / params.h);
+  vec3 x = r;
+  out.status = ProjectionStatus::not_converged;
+  for (int k = 0; k < steps; ++k) {
+    const float moved = step(x, h, out);
+    if (!(moved >= 0)) {
+      out.status = ProjectionStatus::degenerate_normal;
+      out.point = r;
+      return out;
+    }
+    if (steps == 1 || moved < tolerance) {
+      out.status = ProjectionStatus::converged;
+      break;
+    }
+  }
+  out.point = x;
+  out.t = glm::dot(x - r, out.normal);
+  return out;
+}
+
 namespace detail {
 
 // Eq. 2's energy along n for fixed n: E(t) = Σ θ3(‖pᵢ − q‖)·⟨pᵢ − q, n⟩², q = r + t·n,

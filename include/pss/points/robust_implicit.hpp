@@ -69,41 +69,22 @@ PSS_HOST_DEVICE RobustImplicit fit_robust_implicit(const Samples& samples, vec3 
   return fit;
 }
 
-// x → x − f(x)·∇f/‖∇f‖, `steps` times from x = r, f over N(r) (`samples`, gathered at r)
-// weighted from x (1 for the ray tracer's loop; more for `pss project`, until the step is
-// below the tolerance). The frame sits at the point with the normal
-// ∇f/‖∇f‖ (oriented as the samples' normals); the polynomial is its tangent plane, so that
-// the ray tracer's next step is Newton's on f along the ray.
+// RIMLS's projection (project_by_fits): x → x − f(x)·∇f/‖∇f‖. The frame sits at the new
+// point with the normal ∇f/‖∇f‖ (oriented as the samples' normals); the polynomial is its
+// tangent plane, so that the ray tracer's next step is Newton's on f along the ray.
 template <class Samples>
 PSS_HOST_DEVICE Projection project_rimls(const Samples& samples, vec3 r, const ProjectionParams& params,
                                          vec3 normal_hint, int steps) {
-  Projection out = unprojected(r, normal_hint);
-  out.neighbours = samples.count;
-  if (samples.count < 3) return out;
-  const float h = local_width(samples.moments());
-  if (!(h > 0)) return out;
-  const float tolerance = params.t_tolerance * (h / params.h);
-  vec3 x = r;
-  out.status = ProjectionStatus::not_converged;
-  for (int step = 0; step < steps; ++step) {
+  return project_by_fits(samples, r, params, normal_hint, steps, [&](vec3& x, float, Projection& out) {
     const RobustImplicit fit = fit_robust_implicit(samples, x);
     const float g = glm::length(fit.gradient);
-    if (!fit.valid || !(g > 0)) {
-      out.status = ProjectionStatus::degenerate_normal;
-      return out;
-    }
+    if (!fit.valid || !(g > 0)) return -1.0f;
     out.normal = fit.gradient / g;
     x -= fit.f * out.normal;
-    if (steps == 1 || abs(fit.f) < tolerance) {
-      out.status = ProjectionStatus::converged;
-      break;
-    }
-  }
-  out.point = x;
-  out.frame = Frame::from_normal(x, out.normal);
-  out.polynomial = Polynomial{};
-  out.t = glm::dot(x - r, out.normal);
-  return out;
+    out.frame = Frame::from_normal(x, out.normal);
+    out.polynomial = Polynomial{};
+    return abs(fit.f);
+  });
 }
 
 }  // namespace pss
