@@ -247,6 +247,39 @@ TEST(Rimls, KeepsTheCreasesOfABox) {
   EXPECT_GT(mls.mean_distance, 3 * rimls.mean_distance);
 }
 
+// A thin plate: two sheets 0.5h apart, their normals facing away from each other (issue 26's
+// thin parts). RIMLS's normal weights keep each sheet's fit to its own samples, so each sheet
+// projects onto itself; MLS's plane, fitted to both, lies between them: one sheet, bridged.
+TEST(Rimls, TwoSheetsHalfAWidthApartStayTwo) {
+  PointCloud cloud;
+  const float spacing = 0.02f;
+  for (int i = 0; i < 100; ++i)
+    for (int j = 0; j < 100; ++j) cloud.positions.push_back(vec3(-1 + spacing * (i + 0.5f), -1 + spacing * (j + 0.5f), 0.0f));
+  const float h = test::suggested_h(cloud);
+  const std::size_t per_sheet = cloud.size();
+  for (std::size_t k = 0; k < per_sheet; ++k) {
+    const vec3 p = cloud.positions[k];
+    cloud.positions[k].z = 0.25f * h;
+    cloud.normals.push_back(vec3(0, 0, 1));
+    cloud.positions.push_back(vec3(p.x + 0.5f * spacing, p.y + 0.5f * spacing, -0.25f * h));  // staggered
+  }
+  for (std::size_t k = 0; k < per_sheet; ++k) cloud.normals.push_back(vec3(0, 0, -1));
+  const auto mean_offset = [&](SurfaceOperator surface) {  // |z| of the projected samples, in h
+    const CloudProjection out = project(cloud, params_for(surface, h, Support::global));
+    double mean = 0;
+    int count = 0;
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+      const vec3 p = cloud.positions[i];
+      if (std::max(std::abs(p.x), std::abs(p.y)) > 1 - 3 * h) continue;
+      mean += std::abs(out.cloud.positions[i].z) / h;
+      ++count;
+    }
+    return mean / count;
+  };
+  EXPECT_NEAR(mean_offset(SurfaceOperator::rimls), 0.25, 0.02);
+  EXPECT_LT(mean_offset(SurfaceOperator::mls), 0.05);
+}
+
 TEST(SampleNormals, FileNormalsWithoutADirectionAreEstimatedInstead) {
   PointCloud cloud = sphere_with_normals(4000, 1);
   cloud.normals[17] = vec3(0.0f);
