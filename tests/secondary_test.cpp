@@ -177,6 +177,33 @@ TEST_F(SecondaryRays, ReflectionsFindTheSphereWhereThePlaneMirrorsIt) {
   EXPECT_EQ(off_point, 0);
 }
 
+// With shadows and reflections, the mirrored sphere's points get their own shadow ray:
+// those turned away from the key light (most of its underside, which the plane mirrors) are
+// dark with no ray, those facing it see it (nothing lies above the sphere). Each pixel then
+// traced one ray to the light from the plane, the bounce, and one from the sphere if lit.
+TEST_F(SecondaryRays, ReflectedHitsTakeTheirOwnShadowRays) {
+  const Camera camera = looking_down();
+  const TraceSettings settings = settings_for(camera, true, true);
+  const PointFinder finder{full_->view()};
+  int judged = 0, dark = 0, lit = 0;
+  for (int y = 0; y < camera.height; ++y)
+    for (int x = 0; x < camera.width; ++x) {
+      const PlanePixel truth = pixel(camera, x, y, settings);
+      if (!truth.judged || !truth.sees_sphere || truth.shadowed) continue;
+      const Ray ray = camera.primary_ray(x, y);
+      const SecondaryHits sec = trace_secondary(finder, settings, ray, finder.primary(ray));
+      ASSERT_TRUE(sec.reflection.found()) << x << ' ' << y;
+      const float facing = glm::dot(kSphere.normal(sec.reflection.point), settings.shading.key_direction);
+      if (std::abs(facing) < 0.05f) continue;  // the terminator: the PSS's normal decides
+      ++judged;
+      (facing > 0 ? lit : dark) += 1;
+      EXPECT_EQ(sec.reflection_shadow, facing > 0 ? 1.0f : 0.0f) << x << ' ' << y;
+      EXPECT_EQ(sec.rays, facing > 0 ? 3 : 2) << x << ' ' << y;
+    }
+  EXPECT_GT(dark, 50);
+  EXPECT_GT(lit, 0);
+}
+
 // The shadow's outline on the plane: the key light is blocked exactly where the ray toward
 // it meets the sphere.
 TEST_F(SecondaryRays, ShadowOnThePlaneHasTheSpheresOutlineAlongTheKeyLight) {
