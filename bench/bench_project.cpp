@@ -74,8 +74,7 @@ int main(int argc, char** argv) {
     const float h = float(estimate_spacing(d.cloud.positions).suggested_h);
     for (const std::string& surface : surfaces) {
       ProjectionParams params = ProjectionParams::from_h(h);
-      params.surface = surface == "apss" ? SurfaceOperator::apss : surface == "rimls" ? SurfaceOperator::rimls
-                                                                                       : SurfaceOperator::mls;
+      params.surface = surface_operator_of(surface);
       for (Backend b : backends) {
         std::vector<double> seconds;
         double normals = 0;

@@ -42,7 +42,6 @@ struct SurfaceOptions {
 };
 void add_surface_options(CLI::App& command, SurfaceOptions& options);
 void apply_surface_options(const SurfaceOptions& options, ProjectionParams& params);
-SurfaceOperator surface_operator_of(const std::string& name);  // "mls", "apss" or "rimls"
 // " (the file's normals)", " (estimated normals)" or "", after "<surface> surface".
 const char* normals_text(NormalsUsed used);
 

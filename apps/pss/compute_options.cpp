@@ -97,10 +97,4 @@ const char* normals_text(NormalsUsed used) {
   return used == NormalsUsed::file ? " (the file's normals)" : used == NormalsUsed::estimated ? " (estimated normals)" : "";
 }
 
-SurfaceOperator surface_operator_of(const std::string& name) {
-  if (name == "apss") return SurfaceOperator::apss;
-  if (name == "rimls") return SurfaceOperator::rimls;
-  return SurfaceOperator::mls;
-}
-
 }  // namespace pss::app

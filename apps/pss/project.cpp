@@ -72,10 +72,12 @@ void run_project(const ProjectOptions& o) {
   std::printf("projected %zu points onto the PSS in %.3f s (projection %.3f s, %.0f points/s, %s backend, %d threads)\n",
               cloud.size(), total, projection_s, double(cloud.size()) / projection_s, backend_name(backend),
               cpu_threads());
-  std::printf("%s surface%s, h = %g (%s), rho = %g, plane fit %s; converged %lld, not converged %lld, too few neighbours %lld, "
-              "degenerate normal %lld; %lld outliers set aside (projected, not samples)\n", surface_name(params.surface), normals_text(result.normals), params.h, support_text(params.support, result.widths).c_str(), params.rho,
-              o.method.c_str(), (long long)c.converged, (long long)c.not_converged, (long long)c.too_few_neighbours,
-              (long long)c.degenerate_normal, (long long)result.outliers.set_aside);
+  std::printf("%s surface%s, h = %g (%s), rho = %g, plane fit %s; converged %lld, not converged %lld, too few "
+              "neighbours %lld, degenerate normal %lld; %lld outliers set aside (projected, not samples)\n",
+              surface_name(params.surface), normals_text(result.normals), params.h,
+              support_text(params.support, result.widths).c_str(), params.rho, o.method.c_str(), (long long)c.converged,
+              (long long)c.not_converged, (long long)c.too_few_neighbours, (long long)c.degenerate_normal,
+              (long long)result.outliers.set_aside);
 
   if (!o.compute.stats_path.empty()) {
     auto& v = stats.values();

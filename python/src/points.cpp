@@ -51,8 +51,7 @@ Support support_of(const py::dict& o, bool h_given) {
 }
 
 SurfaceOperator surface_of(const py::dict& o) {
-  const std::string name = choice(o, "surface", {"mls", "apss", "rimls"});
-  return name == "apss" ? SurfaceOperator::apss : name == "rimls" ? SurfaceOperator::rimls : SurfaceOperator::mls;
+  return surface_operator_of(choice(o, "surface", {"mls", "apss", "rimls"}));
 }
 
 OutlierPolicy outliers_of(const py::dict& o) {

@@ -13,14 +13,12 @@
 
 namespace pss {
 
-// f(y) = u0 + u·y + u4‖y‖², y = (p − origin)/scale. u4 = 0 is a plane.
+// f(y) = u0 + u·y + u4‖y‖², y = (p − origin)/scale in the fit's coordinates
+// (fit_algebraic_sphere). u4 = 0 is a plane.
 struct AlgebraicSphere {
   float u0 = 0;
   vec3 u{0.0f};
   float u4 = 0;
-  vec3 origin{0.0f};
-  float scale = 1;
-  int count = 0;  // samples fitted
   bool valid = false;
 
   PSS_HOST_DEVICE vec3 gradient_at(vec3 y) const { return u + 2 * u4 * y; }
@@ -35,8 +33,6 @@ template <class Samples>
 PSS_HOST_DEVICE AlgebraicSphere fit_algebraic_sphere(const Samples& samples, vec3 origin,
                                                      float scale) {
   AlgebraicSphere s;
-  s.origin = origin;
-  s.scale = scale;
   const float inv_scale = 1 / scale;
   float sw = 0, spn = 0, spp = 0;
   vec3 sp(0.0f), sn(0.0f);
@@ -50,7 +46,6 @@ PSS_HOST_DEVICE AlgebraicSphere fit_algebraic_sphere(const Samples& samples, vec
     sn += w * n;
     spn += w * glm::dot(y, n);
     spp += w * length2(y);
-    ++s.count;
   });
   if (!(sw > 0)) return s;
   const float inv_sw = 1 / sw;

@@ -5,6 +5,8 @@
 // (spatial/support_grid.hpp).
 #pragma once
 
+#include <string_view>
+
 #include "pss/core/frame.hpp"
 #include "pss/fit/brent.hpp"
 #include "pss/fit/inverse_power.hpp"
@@ -34,13 +36,17 @@ enum class Support : unsigned char { global, adaptive };
 
 // The surface a cloud defines (issue 26): the paper's MLS plane and polynomial, or an
 // algebraic sphere fitted to the samples and their normals (APSS, points/algebraic_sphere.hpp),
-// or the robust implicit MLS that keeps creases and refuses outliers (RIMLS,
+// or the robust implicit MLS that keeps creases and thin parts (RIMLS,
 // points/robust_implicit.hpp). The last two read the samples' oriented normals
 // (points/sample_normals.hpp) and are dispatched by points/surface_projection.hpp.
 enum class SurfaceOperator : unsigned char { mls, apss, rimls };
 
 inline const char* surface_name(SurfaceOperator s) {
   return s == SurfaceOperator::apss ? "apss" : s == SurfaceOperator::rimls ? "rimls" : "mls";
+}
+// surface_name's inverse; a name it does not give is MLS (callers check the name first).
+inline SurfaceOperator surface_operator_of(std::string_view name) {
+  return name == "apss" ? SurfaceOperator::apss : name == "rimls" ? SurfaceOperator::rimls : SurfaceOperator::mls;
 }
 
 // Where the samples' normals come from: the file's, when it has them (hints of MLS's

@@ -69,9 +69,9 @@ class PreparedCloud {
   // The samples' widths h_i: least, median, largest (the per-sample ones live in the grid).
   const SupportWidths& widths() const { return widths_; }
   int support_levels() const { return grid_.levels(); }
-  NormalsUsed normals_used() const { return normals_used_; }
+  NormalsUsed normals_used() const { return normals_used_; }  // the samples' normals, for APSS and RIMLS
   // The samples set aside as off the surface (points/outliers.hpp), none with OutlierPolicy::keep.
-  const OutlierReport& outliers() const { return outliers_; }  // the samples' normals, for APSS and RIMLS
+  const OutlierReport& outliers() const { return outliers_; }
   const Bvh& bvh() const { return bvh_; }
   const glm::dvec3& origin() const { return origin_; }  // the cloud's (cloud.hpp)
 

@@ -4,8 +4,9 @@
 // each sample's tangent plane averaged with its weight, refitted with robust weights αᵢ
 // that leave out the samples disagreeing with the fit: those whose plane lies far from f
 // (an outlier; residual scale σ_r·hᵢ) and those whose normal differs from ∇f (the other face
-// of a crease, the other sheet of a thin part; σ_n). Creases stay sharp and outliers do not
-// lift the surface; it needs oriented normals (grid.normals).
+// of a crease, the other sheet of a thin part; σ_n). Creases stay sharp and thin parts two
+// sheets; a stray near the surface still bends it where it dominates the weights (that is
+// points/outliers.hpp's). It needs oriented normals (grid.normals).
 #pragma once
 
 #include "pss/core/frame.hpp"
