@@ -165,7 +165,7 @@ fi
   --runs "${PSS_GPU_CHECK_PROJECT_RUNS:-5}" --large --json "$out/project.json"
 
 # 7. compute-sanitizer on the main jobs, small: out-of-bounds and misaligned accesses, shared
-#    memory races, reads of device memory nothing wrote.
+#    memory races, reads of device memory nothing wrote; the APSS and RIMLS surfaces too.
 main_jobs() {
   local wrap=("$@")
   "${wrap[@]}" "$build/pss" render data/bun_zipper.ply -o "$out/sanitized.png" --size 96x96 --shadows --reflections \
@@ -179,6 +179,9 @@ main_jobs() {
   "${wrap[@]}" "$build/pss" extract data/bucky_32x32x32_uint8.raw --dims 32x32x32 --type uint8 --iso 100 \
     -o "$out/sanitized.ply" --backend cuda || return 1
   "${wrap[@]}" "$build/pss" project data/bun_zipper.ply -o "$out/sanitized.ply" --backend cuda || return 1
+  "${wrap[@]}" "$build/pss" render data/bun_zipper.ply -o "$out/sanitized.png" --size 96x96 --surface rimls \
+    --shadows --reflections --backend cuda || return 1
+  "${wrap[@]}" "$build/pss" project data/bun_zipper.ply -o "$out/sanitized.ply" --surface apss --backend cuda || return 1
 }
 for tool in ${PSS_GPU_CHECK_SANITIZERS-memcheck racecheck initcheck}; do
   stage "sanitizer-$tool" main_jobs limited compute-sanitizer --tool "$tool" --error-exitcode 1

@@ -188,6 +188,7 @@ TEST_F(HostileParams, RenderRefusesEveryBadNumber) {
       {"--h", positive_or_refused({"0", "-1"})},   {"--rho", positive_or_refused({"0", "-1"})},
       {"--b", positive_or_refused({"0", "-1"})},   {"--epsilon", positive_or_refused({"0", "-1"})},
       {"--iterations", {"nan", "inf", "-inf", "0", "-1", "1e3", "99999999999"}},
+      {"--candidates", {"nan", "inf", "0", "-1", "1025", "99999999999", "2.5"}},
   };
   for (const auto* table : {&kComputeFlags, &kRenderFlags, &own})
     for (const BadFlag& f : *table)

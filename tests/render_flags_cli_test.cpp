@@ -1,6 +1,6 @@
 // Flags of `pss render`, `pss project` and `pss volume` that change what is computed, end to end
 // through the built pss: each is recorded as it took effect in --stats, and where its effect
-// can be told from the outputs (--secondary, --ball-spacing, --iterations, --reflectivity,
+// can be told from the outputs (--secondary, --ball-spacing, --iterations, --candidates, --reflectivity,
 // project's --rho and --iterations) that effect must show.
 #include <gtest/gtest.h>
 
@@ -109,6 +109,23 @@ TEST_F(RenderFlags, SurfaceParametersTakeEffect) {
   EXPECT_FLOAT_EQ(defaults["params"]["rho"].get<float>(), 2 * h);
   EXPECT_EQ(defaults["secondary_rays"].get<std::int64_t>(), 0);
   EXPECT_LT(defaults["local_polynomials"].get<std::int64_t>(), 1000);
+}
+
+// --candidates caps the ball intersections a ray tries: with one, the rays whose first
+// candidate is rejected (those that graze the sphere's silhouette) end as misses.
+TEST_F(RenderFlags, CandidatesCapTheBallsARayTries) {
+  test::SampleOptions o;
+  o.count = 2000;
+  write_xyz(path("sphere.xyz"), test::sample(test::Sphere{}, o));
+  const std::string common = "render " + path("sphere.xyz") + " --size 48x48 -o " + path("o.png") + " --stats ";
+  ASSERT_EQ(test::run_pss(common + path("default.json")).exit_code, 0);
+  const test::CliResult r = test::run_pss(common + path("one.json") + " --candidates 1");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json one = read_json(path("one.json")), defaults = read_json(path("default.json"));
+  EXPECT_EQ(one["params"]["max_candidates"], 1);
+  EXPECT_EQ(defaults["params"]["max_candidates"], 32);
+  EXPECT_LT(one["hits"].get<std::int64_t>(), defaults["hits"].get<std::int64_t>());
+  EXPECT_GT(one["hits"].get<std::int64_t>(), defaults["hits"].get<std::int64_t>() * 9 / 10);
 }
 
 using ProjectFlags = test::CliTest;

@@ -22,6 +22,7 @@ struct RenderCloudOptions {
   float h = 0, rho = 0, b = 0, epsilon = 0;
   float ball_spacing = -1;  // -1: b/2
   std::string iterations = "2";
+  int candidates = RayPssParams::from_h(1).max_candidates;
   std::string secondary = "full";
   std::string support;  // empty: support_of's default
   SurfaceOptions surface;
@@ -62,6 +63,7 @@ void run_render(const RenderCloudOptions& o) {
   params.ball_spacing = o.ball_spacing >= 0 ? o.ball_spacing : 0.5f * params.ball_radius;
   if (o.epsilon != 0) params.epsilon = o.epsilon;
   params.max_iterations = iterations_of(o.iterations);
+  params.max_candidates = o.candidates;
   params.secondary = o.secondary == "paper" ? SecondaryMode::paper : SecondaryMode::full;
   validate(params);
 
@@ -147,6 +149,11 @@ void add_render_command(CLI::App& app, Action action) {
       ->check(finite_positive());
   command->add_option("--iterations", o->iterations, "projections per candidate: N, or auto (until |projection - r| < eps)")
       ->check(CLI::Validator(check_iterations, "N|auto", "iterations"))
+      ->capture_default_str();
+  command->add_option("--candidates", o->candidates,
+                      "ball intersections a ray tries before it is a miss: fewer make frames faster on the GPU, "
+                      "whose frame lasts as long as its slowest rays, and can miss grazing rays")
+      ->check(CLI::Range(1, kMaxCandidates))
       ->capture_default_str();
   command->add_option("--secondary", o->secondary,
                       "secondary rays: full (projected like primary rays) or paper (first local-polynomial hit)")

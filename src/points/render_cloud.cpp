@@ -28,7 +28,8 @@ void validate(const RayPssParams& p) {
   if (!(p.secondary_offset >= 0) || !std::isfinite(p.secondary_offset))
     throw Error("secondary ray offset must be a non-negative number");
   if (p.max_iterations < 1) throw Error("iterations must be at least 1");
-  if (p.max_candidates < 1) throw Error("candidates per ray must be at least 1");
+  if (p.max_candidates < 1 || p.max_candidates > kMaxCandidates)
+    throw Error("candidates per ray must be from 1 to " + std::to_string(kMaxCandidates));
 }
 
 namespace {

@@ -8,6 +8,7 @@
 // prints its figures, so a run on a device records them. Skips without a device (CI).
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -129,10 +130,19 @@ TEST(GpuShippedData, CloudsProjectAsOnTheCpu) {
         if (std::abs(glm::dot(cpu.cloud.normals[i], gpu.cloud.normals[i])) < 0.999f) ++turned;
       }
       const std::string name = file.filename().string() + " projection, " + support_name(support) + " support";
-      std::printf("%s: %zu points; apart %zu, normals turned %zu\n", name.c_str(), cloud.size(), far, turned);
+      std::printf("%s: %zu points; apart %zu, normals turned %zu; set aside %lld / %lld, too few neighbours %lld / %lld\n",
+                  name.c_str(), cloud.size(), far, turned, (long long)cpu.outliers.set_aside,
+                  (long long)gpu.outliers.set_aside, (long long)cpu.counts.too_few_neighbours,
+                  (long long)gpu.counts.too_few_neighbours);
       EXPECT_LE(far, cloud.size() / 1000) << name;
       EXPECT_LE(turned, cloud.size() / 1000) << name;
-      EXPECT_EQ(cpu.counts.too_few_neighbours, gpu.counts.too_few_neighbours) << name;
+      // A sample whose distance lies at the outlier threshold can fall either side on the two
+      // backends' float arithmetic (points/outliers.hpp), and its neighbours then count one
+      // sample more or less: both counts agree within 0.1 % of the points (radar: 4 of 20,950
+      // on an H200, 2026-11-26).
+      const auto budget = std::int64_t(cloud.size() / 1000);
+      EXPECT_LE(std::abs(cpu.outliers.set_aside - gpu.outliers.set_aside), budget) << name;
+      EXPECT_LE(std::abs(cpu.counts.too_few_neighbours - gpu.counts.too_few_neighbours), budget) << name;
     }
   }
 }

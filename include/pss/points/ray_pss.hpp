@@ -63,6 +63,10 @@ inline constexpr float kThinningTolerance = 0.05f;
 // `--iterations auto`: projections repeat until |γ − r| < ε, up to this many.
 inline constexpr int kAutoIterations = 32;
 
+// The most ball intersections `--candidates` lets a ray try (each a BVH walk and up to
+// --iterations projections): bounds a frame's time.
+inline constexpr int kMaxCandidates = 1024;
+
 // What a kernel sees of a prepared cloud: the grid for the range queries of the
 // projection, the BVH over the balls, the local polynomials in BVH order and, for
 // `--color`, the samples' colours.
