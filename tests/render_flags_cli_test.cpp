@@ -19,12 +19,20 @@
 namespace pss {
 namespace {
 
-using RenderFlags = test::CliTest;
-
 void write_xyz(const std::string& file, const PointCloud& cloud) {
   std::ofstream out(file);
   for (const vec3& p : cloud.positions) out << p.x << ' ' << p.y << ' ' << p.z << '\n';
 }
+
+struct RenderFlags : test::CliTest {
+  // Writes a unit sphere of 2000 samples; the render command of it at `size`, up to --stats's path.
+  std::string sphere_render(const std::string& size) {
+    test::SampleOptions o;
+    o.count = 2000;
+    write_xyz(path("sphere.xyz"), test::sample(test::Sphere{}, o));
+    return "render " + path("sphere.xyz") + " --size " + size + " -o " + path("o.png") + " --stats ";
+  }
+};
 
 // The scene of tests/secondary_test.cpp: a sphere of radius 0.5 hovering over a 3×3 plane.
 PointCloud sphere_over_plane() {
@@ -78,10 +86,7 @@ TEST_F(RenderFlags, SecondaryModeChangesOnlyWhatReflectionsShow) {
 // them: --iterations caps the projections per candidate; --ball-spacing 0 keeps one local
 // polynomial per sample that has neighbours (as the paper), the default b/2 far fewer.
 TEST_F(RenderFlags, SurfaceParametersTakeEffect) {
-  test::SampleOptions o;
-  o.count = 2000;
-  write_xyz(path("sphere.xyz"), test::sample(test::Sphere{}, o));
-  const std::string common = "render " + path("sphere.xyz") + " --size 24x24 -o " + path("o.png") + " --stats ";
+  const std::string common = sphere_render("24x24");
   ASSERT_EQ(test::run_pss(common + path("default.json")).exit_code, 0);
   const test::CliResult r = test::run_pss(common + path("set.json") +
                                           " --h 0.1 --rho 0.25 --b 0.12 --ball-spacing 0 --epsilon 2e-5"
@@ -114,10 +119,7 @@ TEST_F(RenderFlags, SurfaceParametersTakeEffect) {
 // --candidates caps the ball intersections a ray tries: with one, the rays whose first
 // candidate is rejected (those that graze the sphere's silhouette) end as misses.
 TEST_F(RenderFlags, CandidatesCapTheBallsARayTries) {
-  test::SampleOptions o;
-  o.count = 2000;
-  write_xyz(path("sphere.xyz"), test::sample(test::Sphere{}, o));
-  const std::string common = "render " + path("sphere.xyz") + " --size 48x48 -o " + path("o.png") + " --stats ";
+  const std::string common = sphere_render("48x48");
   ASSERT_EQ(test::run_pss(common + path("default.json")).exit_code, 0);
   const test::CliResult r = test::run_pss(common + path("one.json") + " --candidates 1");
   ASSERT_EQ(r.exit_code, 0) << r.err;
