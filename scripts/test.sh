@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 # The optional targets that this machine's packages switch on are part of the default build.
 built() { echo "$1 was not built, though its packages are installed" >&2; exit 1; }
 [[ -x build/bench/peer_pcl_mls ]] || built "the PCL peer benchmark (bench/peer_pcl_mls)"
-build/pss view --help >/dev/null 2>&1 || built "the viewer (pss view: GLFW, Dear ImGui)"
+build/pss view --help 2>&1 | grep -q "in a window" || built "the viewer's window (pss view: GLFW, Dear ImGui)"
 compgen -G "build/python/pss/_pss*.so" >/dev/null || built "the Python module (build/python/pss)"
 ctest --test-dir build --output-on-failure -j"$(nproc)"
 # The GPU kernels' stack frames (a CUDA build's test gpu.kernel_stacks, which fails above the

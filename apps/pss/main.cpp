@@ -6,16 +6,12 @@
 
 #include "commands.hpp"
 #include "pss/core/error.hpp"
-#if PSS_HAVE_VIEWER
 #include "view/view_command.hpp"
-#endif
 
 int main(int argc, char** argv) {
   CLI::App app{"pss: point set surfaces of point clouds and volumes, on CPUs and GPUs"};
   pss::app::configure_app(app, pss::app::Action::run);
-#if PSS_HAVE_VIEWER
   pss::app::add_view_command(app);
-#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -6,6 +6,7 @@
 
 #include "commands.hpp"
 #include "numbers.hpp"
+#include "pss/core/error.hpp"
 #include "pss/core/progress.hpp"
 #include "pss/core/text.hpp"
 #include "viewer.hpp"
@@ -13,7 +14,11 @@
 namespace pss::app {
 
 void add_view_command(CLI::App& app) {
-  auto* command = app.add_subcommand("view", "Explore the PSS of a point cloud or a volume in a window");
+  auto* command = app.add_subcommand(
+      "view", view::kHasWindow ? "Explore the PSS of a point cloud or a volume in a window (or run a script of views with "
+                                 "--headless)"
+                               : "Run a script of views of the PSS of a point cloud or a volume (this build has no "
+                                 "window: --headless only)");
   auto o = std::make_shared<view::ViewerOptions>();
   add_volume_options(*command, o->file, true);
   command->get_option("file")->description(
@@ -53,6 +58,9 @@ void add_view_command(CLI::App& app) {
   add_surface_options(*command, *surface);
   command->add_option("--script", o->script, "run these steps (one a line: view, zoom, set, wait, screenshot, ...), then quit");
   command->add_option("--screenshot-dir", o->screenshot_dir, "where the script's screenshots go (default .)");
+  command->add_flag("--headless", o->headless,
+                    "no window: run --script's steps with the same frames, screenshots and timings (for a machine "
+                    "without a display, such as a GPU server)");
   auto backend = std::make_shared<std::string>("auto");
   command->add_option("--backend", *backend, "cpu, cuda, or auto")->check(CLI::IsMember({"cpu", "cuda", "auto"}));
   const CLI::Option* h_option = command->get_option("--h");
@@ -71,7 +79,10 @@ void add_view_command(CLI::App& app) {
     o->settings.outliers = chosen.outliers;
     // The window shows each frame's progress; bars on the terminal behind it would only flicker.
     set_progress_mode(ProgressMode::never);
-    if (const int status = view::run_viewer(*o); status != 0) std::exit(status);
+    if (!o->headless && !view::kHasWindow)
+      throw Error("this build of pss has no window (GLFW, OpenGL or Dear ImGui was missing when it was built): "
+                  "use --headless with --script");
+    if (const int status = o->headless ? view::run_headless(*o) : view::run_viewer(*o); status != 0) std::exit(status);
   });
 }
 

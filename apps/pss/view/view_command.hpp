@@ -1,4 +1,5 @@
-// `pss view`, in builds with GLFW and Dear ImGui (apps/pss/CMakeLists.txt).
+// `pss view`: a window in builds with GLFW and Dear ImGui (apps/pss/CMakeLists.txt), and
+// --headless in every build.
 #pragma once
 
 #include <CLI/CLI.hpp>

@@ -1,0 +1,90 @@
+// `pss view --headless` (issue 29: the viewer on a GPU server, which has no display): the
+// session of the window run by its script alone, in every build and on every machine. Its
+// screenshots are `pss render`'s images at the same camera, byte for byte; each view shows a
+// reduced frame first, then the full one, timed; what it cannot do it refuses in one line.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <regex>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "support/cli.hpp"
+#include "support/shapes.hpp"
+
+namespace pss {
+namespace {
+
+class ViewerHeadless : public test::CliTest {
+ protected:
+  void SetUp() override {
+    test::CliTest::SetUp();
+    test::SampleOptions o;
+    o.count = 3000;
+    std::ofstream xyz(path("sphere.xyz"));
+    xyz.precision(9);
+    for (const vec3& p : test::sample(test::Sphere{}, o).positions) xyz << p.x << ' ' << p.y << ' ' << p.z << '\n';
+  }
+  test::CliResult view(const std::string& args, const std::string& steps) {
+    return test::run_pss("view " + path("sphere.xyz") + " --headless " + args + " --script " + write("steps.txt", steps) +
+                         " --screenshot-dir " + dir_.string());
+  }
+};
+
+TEST_F(ViewerHeadless, ScreenshotsAreTheRenderedImagesAtTheSameCamera) {
+  const test::CliResult r = view("--size 200x150", "view 40 -25\nscreenshot a\nset reflections on\nzoom 1.7\nscreenshot b\n");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string render = "render " + path("sphere.xyz") + " --size 200x150";
+  ASSERT_EQ(test::run_pss(render + " --view 40,-25 -o " + path("ra.png") + " --hits " + path("ra.ply")).exit_code, 0);
+  EXPECT_EQ(read(path("a.png")), read(path("ra.png")));
+  EXPECT_EQ(read(path("a.ply")), read(path("ra.ply")));
+  ASSERT_EQ(test::run_pss(render + " --camera " + path("b.json") + " --reflections -o " + path("rb.png")).exit_code, 0);
+  EXPECT_EQ(read(path("b.png")), read(path("rb.png")));
+  EXPECT_NE(read(path("a.png")), read(path("b.png")));
+  EXPECT_EQ(nlohmann::json::parse(read(path("b.json")))["width"], 200);
+}
+
+// Progressive refinement: before any frame has been timed a new view comes at a quarter of the
+// size each way (render_thread.hpp), and each view's full frame follows; one timing line a view.
+TEST_F(ViewerHeadless, EachViewComesReducedFirstThenFullAndIsTimed) {
+  const test::CliResult r = view("--size 256x192", "wait\nview 90 0\nwait\nview 180 30\nwait\n");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::regex timing(R"(view timing: first frame at 1/(\d+) in [0-9.]+ s \(its render [0-9.]+ s\), full size in [0-9.]+ s)");
+  std::vector<int> reductions;
+  for (std::sregex_iterator m(r.out.begin(), r.out.end(), timing), end; m != end; ++m) reductions.push_back(std::stoi((*m)[1]));
+  ASSERT_EQ(reductions.size(), 3u) << r.out;
+  EXPECT_EQ(reductions[0], 4);
+}
+
+TEST_F(ViewerHeadless, RefusesWhatItCannotDo) {
+  test::CliResult r = test::run_pss("view " + path("sphere.xyz") + " --headless");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("--script"), std::string::npos) << r.err;
+  r = view("", "view 10 10\nwindow w\n");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("steps.txt:2: no window"), std::string::npos) << r.err;
+  EXPECT_EQ(read(path("w.png")), "");
+  r = test::run_pss("view " + path("none.xyz") + " --headless --script " + write("shot.txt", "screenshot s\n") +
+                    " --screenshot-dir " + dir_.string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("none.xyz"), std::string::npos) << r.err;
+  EXPECT_EQ(read(path("s.png")), "");
+}
+
+// Without --headless a build without the window says so; one with it says "in a window".
+TEST_F(ViewerHeadless, AWindowlessBuildSaysSo) {
+  const test::CliResult help = test::run_pss("view --help");
+  ASSERT_EQ(help.exit_code, 0);
+  if (PSS_HAVE_VIEWER) {
+    EXPECT_NE(help.out.find("in a window"), std::string::npos);
+  } else {
+    EXPECT_NE(help.out.find("--headless only"), std::string::npos);
+    const test::CliResult r = test::run_pss("view " + path("sphere.xyz"));
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_NE(r.err.find("use --headless"), std::string::npos) << r.err;
+  }
+}
+
+}  // namespace
+}  // namespace pss
