@@ -1,6 +1,7 @@
 #include "render_thread.hpp"
 
 #include <algorithm>
+#include <chrono>
 
 #include "pss/core/error.hpp"
 #include "render_options.hpp"
@@ -74,9 +75,12 @@ void RenderThread::run() {
       Published p;
       p.request = id;
       p.factor = factor;
+      double wall = 0;  // what the user waits for: the kernels, and the copies and allocations around them
       try {
         Stats stats;
-        p.frame = scene_->render(settings, camera.reduced(factor), cancel_, stats);
+        const auto start = std::chrono::steady_clock::now();
+        p.frame = std::make_shared<const RenderedFrame>(scene_->render(settings, camera.reduced(factor), cancel_, stats));
+        wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         p.seconds = frame_seconds(stats);
       } catch (const Error& e) {
         p.error = one_line(e.what());
@@ -85,10 +89,10 @@ void RenderThread::run() {
       }
       std::lock_guard lock(mutex_);
       if (next_id_ != id && p.error.empty()) break;  // cancelled: its pixels are not all drawn
-      if (factor == 1 && p.error.empty()) full_seconds_ = p.seconds;
+      if (factor == 1 && p.error.empty()) full_seconds_ = wall;
       const bool refused = !p.error.empty();
       if (refused) {  // keep showing the last image, with its figures
-        p.frame = std::move(published_.frame);
+        p.frame = published_.frame;
         p.factor = published_.factor;
         p.seconds = published_.seconds;
       }

@@ -22,14 +22,18 @@ namespace pss::app::view {
 inline constexpr double kInteractiveSeconds = 0.05;
 
 // The smallest power of two f ≤ 16 such that a frame that took `full_seconds` at full size
-// takes at most kInteractiveSeconds at 1/f of the size each way; 4 before any (0).
+// takes at most kInteractiveSeconds at 1/f of the size each way; 4 before any (0). The time is
+// the whole frame's as the window waits for it, not only its kernels: on a GPU at 1080p the
+// copies back and the fresh host memory of the hits cost ten times the kernels (issue 29).
 int reduction_for(double full_seconds);
 
 struct Published {
   std::uint64_t request = 0;  // the request it answers
   int factor = 0;             // 1: full size
-  RenderedFrame frame;
-  double seconds = 0;  // the frame's per-frame phases, as pss render counts them
+  // Shared, not copied: the window takes each publication, and a 1080p frame's hits are
+  // 83 MB (the copy cost more than the GPU's render, issue 29). Never null once published.
+  std::shared_ptr<const RenderedFrame> frame = std::make_shared<const RenderedFrame>();
+  double seconds = 0;  // the frame's per-frame phases, as pss render counts them (the panel shows it)
   std::string error;   // what refused the request (a value out of range), frame untouched
 };
 

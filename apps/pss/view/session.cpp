@@ -152,10 +152,10 @@ void Session::write_screenshot(const std::string& image) {
   const std::filesystem::path json = std::filesystem::path(image).replace_extension(".json");
   const std::filesystem::path hits = std::filesystem::path(image).replace_extension(".ply");
   OutputSet outputs({}, {image, json, hits});
-  write_frame_image(image, shown_.frame, false);
-  write_hits(hits, shown_.frame);
+  write_frame_image(image, *shown_.frame, false);
+  write_hits(hits, *shown_.frame);
   Stats stats;
-  record_frame(stats, shown_.frame);
+  record_frame(stats, *shown_.frame);
   stats.values()["frame_seconds"] = shown_.seconds;
   stats.write(json);
   outputs.commit();

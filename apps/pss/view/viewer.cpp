@@ -70,7 +70,7 @@ class Viewer {
       if (!session_.run_script(frames_ >= 3)) break;  // ImGui lays a window out over its first frames
       int w = 0, h = 0;
       glfwGetFramebufferSize(window_, &w, &h);
-      if (session_.update(glm::ivec2(w, h))) texture_.upload(session_.shown().frame.image);
+      if (session_.update(glm::ivec2(w, h))) texture_.upload(session_.shown().frame->image);
       draw();
     }
     return failed_ ? 1 : session_.status();
@@ -156,12 +156,12 @@ class Viewer {
 
   void figures() {
     const Published& shown = session_.shown();
-    if (shown.frame.image.width == 0) {
+    if (shown.frame->image.width == 0) {
       ImGui::TextUnformatted("rendering...");
       return;
     }
-    const FrameSummary f = summarize(shown.frame);
-    ImGui::Text("%dx%d (1/%d)  %.1f ms  %.2f Mrays/s", shown.frame.image.width, shown.frame.image.height,
+    const FrameSummary f = summarize(*shown.frame);
+    ImGui::Text("%dx%d (1/%d)  %.1f ms  %.2f Mrays/s", shown.frame->image.width, shown.frame->image.height,
                 shown.factor, 1e3 * shown.seconds, shown.seconds > 0 ? 1e-6 * double(f.rays) / shown.seconds : 0.0);
     ImGui::Text("hits %lld  projections/hit %.2f  capped %lld", (long long)f.hits, f.mean_iterations, (long long)f.capped);
   }

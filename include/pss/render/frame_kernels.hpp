@@ -51,9 +51,11 @@ struct SecondaryRaysKernel {
   TraceSettings settings;
   const Hit* hits;
   SecondaryHits* out;
+  std::uint8_t* rays;  // out[p].rays again: what the host reads back to count them (1 byte, not out's 56)
   PSS_HOST_DEVICE void operator()(std::int64_t i) const {
     const std::int64_t p = ray_pixel<Finder>(i, camera);
     out[p] = trace_secondary(finder, settings, camera.primary_ray(int(p % camera.width), int(p / camera.width)), hits[p]);
+    rays[p] = std::uint8_t(out[p].rays);
   }
 };
 

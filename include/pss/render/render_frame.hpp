@@ -20,6 +20,7 @@ RenderedFrame render_frame(Backend backend, const Finder& finder, const Camera& 
   Mirror<Hit> hits(backend, std::size_t(n));
   // Without secondary rays nothing is written there, and nothing need come back.
   Mirror<SecondaryHits> secondary(backend, traces_secondary ? std::size_t(n) : 0);
+  Mirror<std::uint8_t> secondary_rays(backend, traces_secondary ? std::size_t(n) : 0);
   Mirror<vec3> pixels(backend, std::size_t(n));
   {
     Progress progress("primary rays", n);
@@ -28,7 +29,9 @@ RenderedFrame render_frame(Backend backend, const Finder& finder, const Camera& 
   if (traces_secondary) {
     Progress progress("secondary rays", n);
     parallel_for(backend, "secondary", n,
-                 SecondaryRaysKernel<Finder>{finder, camera, settings, hits.data(), secondary.data()}, stats, &progress);
+                 SecondaryRaysKernel<Finder>{finder, camera, settings, hits.data(), secondary.data(),
+                                             secondary_rays.data()},
+                 stats, &progress);
   }
   parallel_for(backend, "shading", n,
                ShadePixelsKernel<Finder>{finder, camera, settings, hits.data(),
@@ -38,7 +41,7 @@ RenderedFrame render_frame(Backend backend, const Finder& finder, const Camera& 
   RenderedFrame frame;
   frame.camera = camera;
   frame.hits = hits.take();
-  for (const SecondaryHits& x : secondary.take()) frame.secondary_rays += x.rays;
+  for (const std::uint8_t rays : secondary_rays.take()) frame.secondary_rays += rays;
   frame.image.width = camera.width;
   frame.image.height = camera.height;
   frame.image.pixels = pixels.take();
