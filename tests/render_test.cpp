@@ -485,5 +485,33 @@ TEST(Render, ImageDoesNotDependOnThreadCount) {
   EXPECT_GT(one.secondary_rays, 0);
 }
 
+// FrameHits::summary (the viewer's reduced frames): the same image, no hits, and the counts
+// that the hits give, with and without secondary rays.
+TEST(Render, AFrameWithoutItsHitsHasTheirCounts) {
+  test::SampleOptions o;
+  o.count = 6000;
+  const PointCloud cloud = test::sample(test::Torus{}, o);
+  Stats stats;
+  const PreparedCloud prepared(cloud, RayPssParams::from_h(test::suggested_h(cloud)), Backend::cpu, stats);
+  const Camera camera = Camera::framing(cloud.bounds(), small_view());
+  for (const bool secondary : {false, true}) {
+    const TraceSettings settings = TraceSettings::for_camera(camera, secondary, secondary);
+    const RenderedFrame all = render_cloud(prepared, camera, settings, Backend::cpu, stats);
+    const RenderedFrame counted = render_cloud(prepared, camera, settings, Backend::cpu, stats, FrameHits::summary);
+    EXPECT_TRUE(counted.hits.empty());
+    EXPECT_EQ(counted.image.pixels, all.image.pixels);
+    const FrameSummary a = summarize(all), c = summarize(counted);
+    EXPECT_GT(a.hits, 100);
+    EXPECT_EQ(c.rays, a.rays);
+    EXPECT_EQ(c.hits, a.hits);
+    EXPECT_EQ(c.converged, a.converged);
+    EXPECT_EQ(c.capped, a.capped);
+    EXPECT_EQ(c.iterations, a.iterations);
+    EXPECT_EQ(c.mean_iterations, a.mean_iterations);
+    EXPECT_EQ(c.secondary_rays, a.secondary_rays);
+    EXPECT_EQ(c.secondary_rays > 0, secondary);
+  }
+}
+
 }  // namespace
 }  // namespace pss

@@ -184,8 +184,8 @@ PointSurfaceView PreparedCloud::view_on(Backend backend) const {
 }
 
 RenderedFrame render_cloud(const PreparedCloud& cloud, const Camera& camera, const TraceSettings& settings, Backend backend,
-                   Stats& stats) {
-  RenderedFrame frame = render_frame(backend, PointFinder{cloud.view_on(backend)}, camera, settings, stats);
+                           Stats& stats, FrameHits keep) {
+  RenderedFrame frame = render_frame(backend, PointFinder{cloud.view_on(backend)}, camera, settings, stats, keep);
   frame.origin = cloud.origin();
   return frame;
 }

@@ -9,24 +9,15 @@
 #include "pss/io/output_format.hpp"
 #include "pss/io/point_cloud_file.hpp"
 #include "pss/render/camera_file.hpp"
+#include "pss/render/frame_kernels.hpp"
 
 namespace pss {
 
 FrameSummary summarize(const RenderedFrame& frame) {
-  FrameSummary s;
-  s.rays = std::int64_t(frame.hits.size());
-  s.secondary_rays = frame.secondary_rays;
-  std::int64_t iterations = 0;
-  for (const Hit& h : frame.hits) {
-    s.iterations += h.iterations;
-    if (!h.found()) continue;
-    ++s.hits;
-    iterations += h.iterations;
-    if (h.flags & kHitConverged) ++s.converged;
-    if (h.flags & kHitCapped) ++s.capped;
-  }
-  s.mean_iterations = s.hits ? double(iterations) / double(s.hits) : 0.0;
-  return s;
+  if (frame.hits.empty()) return frame.summary;
+  std::vector<std::uint16_t> counts(frame.hits.size());
+  for (std::size_t i = 0; i < counts.size(); ++i) counts[i] = hit_counts(frame.hits[i]);
+  return summary_of_counts(counts, frame.secondary_rays);
 }
 
 vec3 normal_facing_camera(const RenderedFrame& frame, std::size_t pixel) {

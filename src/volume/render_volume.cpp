@@ -5,8 +5,8 @@
 namespace pss {
 
 RenderedFrame render_volume(const SceneMirror& scene, const Camera& camera, const TraceSettings& settings,
-                            Backend backend, Stats& stats) {
-  return render_frame(backend, VolumeFinder{scene.scene()}, camera, settings, stats);
+                            Backend backend, Stats& stats, FrameHits keep) {
+  return render_frame(backend, VolumeFinder{scene.scene()}, camera, settings, stats, keep);
 }
 
 RenderedFrame render_volume(const PreparedVolume& volume, const Camera& camera, const TraceSettings& settings,

@@ -5,6 +5,7 @@
 #include <cstdlib>
 
 #include "pss/points/render_cloud.hpp"
+#include "pss/render/frame_outputs.hpp"
 #include "support/render_truth.hpp"
 #include "support/shapes.hpp"
 
@@ -85,6 +86,27 @@ TEST(GpuRender, NoisySphereWithStraysIsTheSphereForEverySurface) {
     EXPECT_LE(std::abs(gpu.holes - cpu.holes), 3) << surface_name(surface);
     EXPECT_LE(std::abs(gpu.extra - cpu.extra), 3) << surface_name(surface);
   }
+}
+
+// FrameHits::summary on the device: the hits' counts come back (HitCountsKernel), not the hits.
+TEST(GpuRender, AFrameWithoutItsHitsHasTheirCounts) {
+  if (cuda::device_count() == 0) GTEST_SKIP() << "no CUDA device";
+  const PointCloud cloud = noisy_torus();
+  Stats stats;
+  const PreparedCloud prepared(cloud, RayPssParams::from_h(test::suggested_h(cloud)), Backend::cuda, stats);
+  CameraSettings view;
+  view.width = view.height = 96;
+  const Camera camera = Camera::framing(cloud.bounds(), view);
+  const TraceSettings settings = TraceSettings::for_camera(camera, true, true);
+  const RenderedFrame all = render_cloud(prepared, camera, settings, Backend::cuda, stats);
+  const RenderedFrame counted = render_cloud(prepared, camera, settings, Backend::cuda, stats, FrameHits::summary);
+  EXPECT_TRUE(counted.hits.empty());
+  const FrameSummary a = summarize(all), c = summarize(counted);
+  EXPECT_GT(a.hits, 100);
+  EXPECT_EQ(c.hits, a.hits);
+  EXPECT_EQ(c.capped, a.capped);
+  EXPECT_EQ(c.iterations, a.iterations);
+  EXPECT_EQ(c.secondary_rays, a.secondary_rays);
 }
 
 // --color: the colours reach the device in the grid's order and interpolate as on the CPU.

@@ -79,7 +79,9 @@ void RenderThread::run() {
       try {
         Stats stats;
         const auto start = std::chrono::steady_clock::now();
-        p.frame = std::make_shared<const RenderedFrame>(scene_->render(settings, camera.reduced(factor), cancel_, stats));
+        // The reduced frames are only shown: their hits stay where they were made.
+        p.frame = std::make_shared<const RenderedFrame>(scene_->render(
+            settings, camera.reduced(factor), cancel_, stats, factor == 1 ? FrameHits::all : FrameHits::summary));
         wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         p.seconds = frame_seconds(stats);
       } catch (const Error& e) {

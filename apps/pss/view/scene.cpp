@@ -35,8 +35,8 @@ class CloudScene : public Scene {
   const SceneInfo& info() const override { return info_; }
   Aabb bounds() const override { return cloud_.bounds(); }
 
-  RenderedFrame render(const ViewSettings& s, const Camera& camera, const std::atomic<bool>& cancel,
-                       Stats& stats) override {
+  RenderedFrame render(const ViewSettings& s, const Camera& camera, const std::atomic<bool>& cancel, Stats& stats,
+                       FrameHits keep) override {
     RayPssParams params = RayPssParams::from_h(s.h);
     if (s.rho != 0) params.projection.rho = s.rho;
     params.projection.support = s.adaptive_support ? Support::adaptive : Support::global;
@@ -63,7 +63,7 @@ class CloudScene : public Scene {
     prepared_->set_search(params);
     const TraceSettings trace = TraceSettings::for_camera(camera, s.shadows, s.reflections);
     const CancelScope scope(&cancel);
-    return render_cloud(*prepared_, camera, trace, s.backend, stats);
+    return render_cloud(*prepared_, camera, trace, s.backend, stats, keep);
   }
 
  private:
@@ -95,14 +95,21 @@ class VolumeScene : public Scene {
   const SceneInfo& info() const override { return info_; }
   Aabb bounds() const override { return prepared_->surface_bounds(); }
 
-  RenderedFrame render(const ViewSettings& s, const Camera& camera, const std::atomic<bool>& cancel,
-                       Stats& stats) override {
+  RenderedFrame render(const ViewSettings& s, const Camera& camera, const std::atomic<bool>& cancel, Stats& stats,
+                       FrameHits keep) override {
     if (!(s.volume == prepared_settings_.volume) || s.backend != prepared_settings_.backend) prepare(s, stats);
-    prepared_->params.debug_projection = s.debug_projection;
+    // The fields where the kernels run, made again only when they change: on a GPU a new
+    // mirror is an upload of the whole volume (the engine's: 150 MB a frame, issue 29).
+    if (!mirror_ || s.debug_projection != prepared_->params.debug_projection) {
+      prepared_->params.debug_projection = s.debug_projection;
+      mirror_.reset();
+      mirror_ = std::make_unique<SceneMirror>(s.backend, *prepared_);
+    }
     const TraceSettings trace = TraceSettings::for_camera(camera, s.shadows, s.reflections);
-    const SceneMirror scene(s.backend, *prepared_);
     const CancelScope scope(&cancel);
-    RenderedFrame frame = render_volume(scene, camera, trace, s.backend, stats);
+    // The Figure 2 view paints from the hits' flags.
+    RenderedFrame frame = render_volume(*mirror_, camera, trace, s.backend, stats,
+                                        s.debug_projection ? FrameHits::all : keep);
     if (s.debug_projection) paint_debug_projection(frame);
     return frame;
   }
@@ -110,6 +117,7 @@ class VolumeScene : public Scene {
  private:
   void prepare(const ViewSettings& s, Stats& stats) {
     auto next = std::make_unique<PreparedVolume>(prepare_volume(volume_, s.volume, stats));
+    mirror_.reset();  // it points into the last preparation (on the CPU) or copies it (GPU)
     prepared_ = std::move(next);  // only once it succeeded: a refused iso leaves the last surface
     prepared_settings_ = s;
   }
@@ -118,6 +126,7 @@ class VolumeScene : public Scene {
   SceneInfo info_;
   std::unique_ptr<PreparedVolume> prepared_;
   ViewSettings prepared_settings_;
+  std::unique_ptr<SceneMirror> mirror_;  // of prepared_, where the kernels run; declared after it, gone before it
 };
 
 }  // namespace

@@ -65,7 +65,7 @@ class Scene {
   // set the frame is abandoned (its pixels are not all drawn), the preparation never is.
   // Throws Error for a setting out of range, with the scene left as it was.
   virtual RenderedFrame render(const ViewSettings& settings, const Camera& camera, const std::atomic<bool>& cancel,
-                               Stats& stats) = 0;
+                               Stats& stats, FrameHits keep) = 0;
 };
 
 // Reads the file (a volume when it has a volume header or raw flags are given) and prepares

@@ -94,6 +94,6 @@ class PreparedCloud {
 void validate(const RayPssParams& params);
 
 RenderedFrame render_cloud(const PreparedCloud& cloud, const Camera& camera, const TraceSettings& settings, Backend backend,
-                   Stats& stats);
+                           Stats& stats, FrameHits keep = FrameHits::all);
 
 }  // namespace pss

@@ -59,6 +59,20 @@ struct SecondaryRaysKernel {
   }
 };
 
+// A primary hit in 16 bits, for the frames whose hits stay where they were made
+// (FrameHits::summary): found, converged, capped, and its projections (up to 8191).
+PSS_INLINE std::uint16_t hit_counts(const Hit& h) {
+  const int iterations = h.iterations < 8191 ? h.iterations : 8191;
+  return std::uint16_t((h.found() ? 1 : 0) | (h.flags & kHitConverged ? 2 : 0) | (h.flags & kHitCapped ? 4 : 0) |
+                       (iterations << 3));
+}
+
+struct HitCountsKernel {
+  const Hit* hits;
+  std::uint16_t* counts;
+  PSS_HOST_DEVICE void operator()(std::int64_t i) const { counts[i] = hit_counts(hits[i]); }
+};
+
 template <class Finder>
 struct ShadePixelsKernel {
   Finder finder;

@@ -11,15 +11,7 @@
 
 namespace pss {
 
-struct FrameSummary {
-  std::int64_t rays = 0;  // primary rays, one per pixel
-  std::int64_t hits = 0;
-  std::int64_t secondary_rays = 0;
-  std::int64_t converged = 0, capped = 0;
-  double mean_iterations = 0;  // projections per primary ray that hit
-  std::int64_t iterations = 0;  // projections of all primary rays, misses included
-};
-
+// The counts of the frame's hits (its summary when they did not come back).
 FrameSummary summarize(const RenderedFrame& frame);
 
 // The hit's normal turned toward the camera, as a viewer sees the surface.

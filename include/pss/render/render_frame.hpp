@@ -1,9 +1,11 @@
 // The frame driver of both backends, for any surface finder (see trace.hpp) whose views
 // point to that backend's memory: primary rays, secondary rays, shading, each a kernel
-// (frame_kernels.hpp) and a named phase of --stats; then the hits and the image on the host.
+// (frame_kernels.hpp) and a named phase of --stats; then the hits (or their counts) and the
+// image on the host.
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "pss/backend/mirror.hpp"
 #include "pss/backend/parallel_for.hpp"
@@ -14,7 +16,7 @@ namespace pss {
 
 template <class Finder>
 RenderedFrame render_frame(Backend backend, const Finder& finder, const Camera& camera, const TraceSettings& settings,
-                           Stats& stats) {
+                           Stats& stats, FrameHits keep = FrameHits::all) {
   const std::int64_t n = std::int64_t(camera.width) * camera.height;
   const bool traces_secondary = settings.shadows || settings.reflections;
   Mirror<Hit> hits(backend, std::size_t(n));
@@ -40,8 +42,14 @@ RenderedFrame render_frame(Backend backend, const Finder& finder, const Camera& 
 
   RenderedFrame frame;
   frame.camera = camera;
-  frame.hits = hits.take();
   for (const std::uint8_t rays : secondary_rays.take()) frame.secondary_rays += rays;
+  if (keep == FrameHits::all) {
+    frame.hits = hits.take();
+  } else {
+    Mirror<std::uint16_t> counts(backend, std::size_t(n));
+    parallel_for(backend, "hit counts", n, HitCountsKernel{hits.data(), counts.data()}, stats);
+    frame.summary = summary_of_counts(counts.take(), frame.secondary_rays);
+  }
   frame.image.width = camera.width;
   frame.image.height = camera.height;
   frame.image.pixels = pixels.take();

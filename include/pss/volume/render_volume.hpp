@@ -28,7 +28,7 @@ struct VolumeFinder {
 // The scene's arrays where the kernels run: make the SceneMirror once to draw many frames
 // (on the GPU it is the upload of the volume's fields).
 RenderedFrame render_volume(const SceneMirror& scene, const Camera& camera, const TraceSettings& settings,
-                            Backend backend, Stats& stats);
+                            Backend backend, Stats& stats, FrameHits keep = FrameHits::all);
 RenderedFrame render_volume(const PreparedVolume& volume, const Camera& camera, const TraceSettings& settings,
                             Backend backend, Stats& stats);
 
