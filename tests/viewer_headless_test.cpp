@@ -12,6 +12,7 @@
 
 #include "support/cli.hpp"
 #include "support/shapes.hpp"
+#include "support/volumes.hpp"
 
 namespace pss {
 namespace {
@@ -55,6 +56,30 @@ TEST_F(ViewerHeadless, EachViewComesReducedFirstThenFullAndIsTimed) {
   for (std::sregex_iterator m(r.out.begin(), r.out.end(), timing), end; m != end; ++m) reductions.push_back(std::stoi((*m)[1]));
   ASSERT_EQ(reductions.size(), 3u) << r.out;
   EXPECT_EQ(reductions[0], 4);
+}
+
+// A volume's fields stay on the device between frames (scene.cpp): a new iso-value or the
+// Figure 2 view must still reach the screenshots, which are `pss volume`'s images.
+TEST_F(ViewerHeadless, AVolumesChangesReachItsFrames) {
+  write("ball.raw", test::uint8_raw_bytes(test::sphere_distance(vec3(15.0f, 16.0f, 14.0f), 8.0f), ivec3(32)));
+  const std::string volume = path("ball.raw") + " --dims 32x32x32 --type uint8";
+  const test::CliResult r = test::run_pss(
+      "view " + volume + " --headless --iso 100 --size 160x120 --script " +
+      write("steps.txt", "view 30 20\nscreenshot a\nset debug on\nscreenshot b\nset iso 90\nscreenshot c\n"
+                         "set debug off\nscreenshot d\n") +
+      " --screenshot-dir " + dir_.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto volume_image = [&](const std::string& flags, const std::string& name) {
+    EXPECT_EQ(test::run_pss("volume " + volume + " --size 160x120 --camera " + path("a.json") + " " + flags + " -o " +
+                            path(name)).exit_code, 0);
+    return read(path(name));
+  };
+  EXPECT_EQ(read(path("a.png")), volume_image("--iso 100", "ra.png"));
+  EXPECT_EQ(read(path("b.png")), volume_image("--iso 100 --debug-projection", "rb.png"));
+  EXPECT_EQ(read(path("c.png")), volume_image("--iso 90 --debug-projection", "rc.png"));
+  EXPECT_EQ(read(path("d.png")), volume_image("--iso 90", "rd.png"));
+  EXPECT_NE(read(path("a.png")), read(path("b.png")));
+  EXPECT_NE(read(path("b.png")), read(path("c.png")));
 }
 
 TEST_F(ViewerHeadless, RefusesWhatItCannotDo) {
