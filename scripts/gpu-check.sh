@@ -165,7 +165,8 @@ fi
   --runs "${PSS_GPU_CHECK_PROJECT_RUNS:-5}" --large --json "$out/project.json"
 
 # 7. compute-sanitizer on the main jobs, small: out-of-bounds and misaligned accesses, shared
-#    memory races, reads of device memory nothing wrote; the APSS and RIMLS surfaces too.
+#    memory races, reads of device memory nothing wrote; the APSS and RIMLS surfaces and the
+#    headless viewer too.
 main_jobs() {
   local wrap=("$@")
   "${wrap[@]}" "$build/pss" render data/bun_zipper.ply -o "$out/sanitized.png" --size 96x96 --shadows --reflections \
@@ -182,6 +183,11 @@ main_jobs() {
   "${wrap[@]}" "$build/pss" render data/bun_zipper.ply -o "$out/sanitized.png" --size 96x96 --surface rimls \
     --shadows --reflections --backend cuda || return 1
   "${wrap[@]}" "$build/pss" project data/bun_zipper.ply -o "$out/sanitized.ply" --surface apss --backend cuda || return 1
+  # The viewer, headless: reduced frames without their hits, a volume's fields kept between frames.
+  printf 'wait\nview 40 10\nset shadows on\nset reflections on\nscreenshot a\nset debug on\nwait\nset iso 90\nwait\n' \
+    >"$out/view-steps.txt"
+  "${wrap[@]}" "$build/pss" view data/bucky_32x32x32_uint8.raw --dims 32x32x32 --type uint8 --iso 100 --headless \
+    --size 96x96 --script "$out/view-steps.txt" --screenshot-dir "$out" --backend cuda || return 1
 }
 for tool in ${PSS_GPU_CHECK_SANITIZERS-memcheck racecheck initcheck}; do
   stage "sanitizer-$tool" main_jobs limited compute-sanitizer --tool "$tool" --error-exitcode 1
