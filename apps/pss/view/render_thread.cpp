@@ -27,7 +27,7 @@ RenderThread::~RenderThread() {
   thread_.join();
 }
 
-std::uint64_t RenderThread::request(const Camera& camera, const ViewSettings& settings) {
+std::uint64_t RenderThread::request(const Camera& camera, const ViewSettings& settings, bool with_hits) {
   std::uint64_t id;
   {
     std::lock_guard lock(mutex_);
@@ -35,6 +35,7 @@ std::uint64_t RenderThread::request(const Camera& camera, const ViewSettings& se
     cancel_ = true;
     camera_ = camera;
     settings_ = settings;
+    with_hits_ = with_hits;
   }
   wake_.notify_all();
   return id;
@@ -61,6 +62,7 @@ void RenderThread::run() {
     ViewSettings settings;
     std::uint64_t id;
     double full_seconds;
+    bool with_hits;
     {
       std::unique_lock lock(mutex_);
       wake_.wait(lock, [&] { return stop_ || next_id_ != done; });
@@ -69,6 +71,7 @@ void RenderThread::run() {
       cancel_ = false;
       camera = camera_;
       settings = settings_;
+      with_hits = with_hits_;
       full_seconds = full_seconds_;
     }
     for (int factor = reduction_for(full_seconds); factor >= 1; factor /= 2) {
@@ -79,9 +82,8 @@ void RenderThread::run() {
       try {
         Stats stats;
         const auto start = std::chrono::steady_clock::now();
-        // The reduced frames are only shown: their hits stay where they were made.
-        p.frame = std::make_shared<const RenderedFrame>(scene_->render(
-            settings, camera.reduced(factor), cancel_, stats, factor == 1 ? FrameHits::all : FrameHits::summary));
+        const FrameHits keep = factor == 1 && with_hits ? FrameHits::all : FrameHits::summary;
+        p.frame = std::make_shared<const RenderedFrame>(scene_->render(settings, camera.reduced(factor), cancel_, stats, keep));
         wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         p.seconds = frame_seconds(stats);
       } catch (const Error& e) {

@@ -48,7 +48,10 @@ class RenderThread {
   Aabb bounds() const { return bounds_; }
 
   // Returns the request's number; the levels of earlier requests still to come are dropped.
-  std::uint64_t request(const Camera& camera, const ViewSettings& settings);
+  // The frames keep their per-pixel hits only at full size and only `with_hits` (what a
+  // screenshot writes): a window just shows them, and at 1080p on a GPU the hits' copy back
+  // is most of a frame's time (issue 29).
+  std::uint64_t request(const Camera& camera, const ViewSettings& settings, bool with_hits);
   // Copies the newest publication into `out` when it is newer than `out` (by request and
   // level); returns whether it did.
   bool poll(Published& out) const;
@@ -68,6 +71,7 @@ class RenderThread {
   std::uint64_t next_id_ = 0;
   Camera camera_;
   ViewSettings settings_;
+  bool with_hits_ = false;
   Published published_;
   std::uint64_t publications_ = 0;
   double full_seconds_ = 0;

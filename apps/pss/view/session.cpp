@@ -97,7 +97,7 @@ bool Session::update(glm::ivec2 size) {
   }
   if (!renderer_) return false;
   if (dirty_) {
-    request_ = renderer_->request(camera(), settings_);
+    request_ = renderer_->request(camera(), settings_, with_hits_);
     requested_at_ = std::chrono::steady_clock::now();
     first_shown_ = 0;
     dirty_ = false;
@@ -167,6 +167,18 @@ bool Session::full_frame_shown() const {
          (shown_.factor == 1 || !shown_.error.empty());
 }
 
+// Whether the full frame shown can be written as a screenshot; if it came without its hits,
+// asks for it again with them (the same view: the same image) and says no until it is there.
+bool Session::shot_ready() {
+  if (!full_frame_shown()) return false;
+  if (!shown_.error.empty() || !shown_.frame->hits.empty()) return true;
+  if (!with_hits_) {
+    with_hits_ = true;
+    dirty_ = true;
+  }
+  return false;
+}
+
 // With --script, how long the current request took to show its first (reduced) frame and its
 // full-size one, on stdout (bench/ reads it).
 void Session::report_timing() {
@@ -184,7 +196,7 @@ void Session::report_timing() {
 
 // One step a call while steps are left; waits hold the script without holding the caller.
 bool Session::run_script(bool ready) {
-  if (!pending_shot_.empty() && full_frame_shown()) {
+  if (!pending_shot_.empty() && shot_ready()) {
     try {
       write_screenshot(pending_shot_);
       message_ = "wrote " + pending_shot_;
@@ -192,6 +204,7 @@ bool Session::run_script(bool ready) {
       message_ = one_line(e.what());
     }
     pending_shot_.clear();
+    with_hits_ = false;
   }
   if (o_.script.empty()) return true;
   if (dirty_ && renderer_) return true;  // the last step's request goes out first
@@ -205,7 +218,7 @@ bool Session::run_script(bool ready) {
       write_window_((std::filesystem::path(o_.screenshot_dir) / (s.args[0] + ".png")).string());
     } else if (s.verb == "wait" || s.verb == "screenshot" || s.verb == "window") {
       if (!renderer_) throw Error(load_error_);
-      if (!full_frame_shown()) return true;
+      if (!(s.verb == "screenshot" ? shot_ready() : full_frame_shown())) return true;
       const std::string png = (std::filesystem::path(o_.screenshot_dir) / (s.args.empty() ? "" : s.args[0] + ".png")).string();
       if (s.verb == "screenshot") write_screenshot(png);
       if (s.verb == "window") write_window_(png);
@@ -220,6 +233,7 @@ bool Session::run_script(bool ready) {
     return false;
   }
   ++next_step_;
+  with_hits_ = false;  // until the next screenshot
   return true;
 }
 

@@ -57,6 +57,7 @@ class Session {
   glm::dvec3 origin() const;
   Camera camera() const;
   bool full_frame_shown() const;
+  bool shot_ready();
   void write_screenshot(const std::string& image);
   void report_timing();
   void step(const Step& s);
@@ -70,6 +71,7 @@ class Session {
   glm::ivec2 size_{1};
   std::uint64_t request_ = 0;
   bool dirty_ = false;
+  bool with_hits_ = false;  // the next requests keep their full frame's hits, for a screenshot
   Published shown_;
   std::string load_error_, last_error_, message_, pending_shot_;
   std::vector<Step> steps_;
