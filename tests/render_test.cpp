@@ -466,11 +466,15 @@ TEST(Render, TiltedPlaneSeenFromZeroHasNoHoles) {
   EXPECT_EQ(c.holes, 0);
 }
 
-TEST(Render, ImageDoesNotDependOnThreadCount) {
+PointCloud sampled_torus(std::size_t count, float noise) {
   test::SampleOptions o;
-  o.count = 6000;
-  o.noise = 0.005f;
-  const PointCloud cloud = test::sample(test::Torus{}, o);
+  o.count = count;
+  o.noise = noise;
+  return test::sample(test::Torus{}, o);
+}
+
+TEST(Render, ImageDoesNotDependOnThreadCount) {
+  const PointCloud cloud = sampled_torus(6000, 0.005f);
   Stats stats;
   const PreparedCloud prepared(cloud, RayPssParams::from_h(test::suggested_h(cloud)), Backend::cpu, stats);
   const Camera camera = Camera::framing(cloud.bounds(), small_view());
@@ -488,9 +492,7 @@ TEST(Render, ImageDoesNotDependOnThreadCount) {
 // FrameHits::summary (the viewer's reduced frames): the same image, no hits, and the counts
 // that the hits give, with and without secondary rays.
 TEST(Render, AFrameWithoutItsHitsHasTheirCounts) {
-  test::SampleOptions o;
-  o.count = 6000;
-  const PointCloud cloud = test::sample(test::Torus{}, o);
+  const PointCloud cloud = sampled_torus(6000, 0);
   Stats stats;
   const PreparedCloud prepared(cloud, RayPssParams::from_h(test::suggested_h(cloud)), Backend::cpu, stats);
   const Camera camera = Camera::framing(cloud.bounds(), small_view());
