@@ -47,9 +47,10 @@ TEST_F(ViewerHeadless, ScreenshotsAreTheRenderedImagesAtTheSameCamera) {
 }
 
 // Progressive refinement: before any frame has been timed a new view comes at a quarter of the
-// size each way (render_thread.hpp), and each view's full frame follows; one timing line a view.
+// size each way (render_thread.hpp), and each view's full frame follows; one timing line a view
+// (a screenshot's second render of its view, with the hits, is not timed).
 TEST_F(ViewerHeadless, EachViewComesReducedFirstThenFullAndIsTimed) {
-  const test::CliResult r = view("--size 256x192", "wait\nview 90 0\nwait\nview 180 30\nwait\n");
+  const test::CliResult r = view("--size 256x192", "wait\nview 90 0\nscreenshot s\nview 180 30\nwait\n");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::regex timing(R"(view timing: first frame at 1/(\d+) in [0-9.]+ s \(its render [0-9.]+ s\), full size in [0-9.]+ s)");
   std::vector<int> reductions;
@@ -90,6 +91,12 @@ TEST_F(ViewerHeadless, RefusesWhatItCannotDo) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("steps.txt:2: no window"), std::string::npos) << r.err;
   EXPECT_EQ(read(path("w.png")), "");
+  // A refused value leaves the last frame on screen, which a window only showed: no hits to write.
+  r = view("", "wait\nset iterations 0\nscreenshot s\n");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("steps.txt:3"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("iterations must be at least 1"), std::string::npos) << r.err;
+  EXPECT_EQ(read(path("s.png")), "");
   r = test::run_pss("view " + path("none.xyz") + " --headless --script " + write("shot.txt", "screenshot s\n") +
                     " --screenshot-dir " + dir_.string());
   EXPECT_EQ(r.exit_code, 1);

@@ -9,15 +9,16 @@
 #include "pss/io/output_format.hpp"
 #include "pss/io/point_cloud_file.hpp"
 #include "pss/render/camera_file.hpp"
-#include "pss/render/frame_kernels.hpp"
 
 namespace pss {
 
 FrameSummary summarize(const RenderedFrame& frame) {
   if (frame.hits.empty()) return frame.summary;
-  std::vector<std::uint16_t> counts(frame.hits.size());
-  for (std::size_t i = 0; i < counts.size(); ++i) counts[i] = hit_counts(frame.hits[i]);
-  return summary_of_counts(counts, frame.secondary_rays);
+  FrameSummary s;
+  for (const Hit& h : frame.hits) s.add(h.found(), h.flags & kHitConverged, h.flags & kHitCapped, h.iterations);
+  s.secondary_rays = frame.secondary_rays;
+  s.finish();
+  return s;
 }
 
 vec3 normal_facing_camera(const RenderedFrame& frame, std::size_t pixel) {

@@ -82,9 +82,9 @@ TEST(GpuRender, NoisySphereWithStraysIsTheSphereForEverySurface) {
     const test::RenderTruth gpu = test::render_sphere(cloud, surface, OutlierPolicy::set_aside, Backend::cuda);
     test::expect_like_the_sphere(gpu, surface_name(surface));
     const test::RenderTruth cpu = test::render_sphere(cloud, surface, OutlierPolicy::set_aside, Backend::cpu);
-    EXPECT_EQ(gpu.data_pixels, cpu.data_pixels);
     EXPECT_LE(std::abs(gpu.holes - cpu.holes), 3) << surface_name(surface);
     EXPECT_LE(std::abs(gpu.extra - cpu.extra), 3) << surface_name(surface);
+    EXPECT_NEAR(gpu.mean_distance, cpu.mean_distance, 1e-4) << surface_name(surface);
   }
 }
 
@@ -101,12 +101,21 @@ TEST(GpuRender, AFrameWithoutItsHitsHasTheirCounts) {
   const RenderedFrame all = render_cloud(prepared, camera, settings, Backend::cuda, stats);
   const RenderedFrame counted = render_cloud(prepared, camera, settings, Backend::cuda, stats, FrameHits::summary);
   EXPECT_TRUE(counted.hits.empty());
-  const FrameSummary a = summarize(all), c = summarize(counted);
-  EXPECT_GT(a.hits, 100);
-  EXPECT_EQ(c.hits, a.hits);
-  EXPECT_EQ(c.capped, a.capped);
-  EXPECT_EQ(c.iterations, a.iterations);
-  EXPECT_EQ(c.secondary_rays, a.secondary_rays);
+  EXPECT_EQ(counted.image.pixels, all.image.pixels);
+  std::int64_t hits = 0, converged = 0, capped = 0, iterations = 0;  // from the hits themselves
+  for (const Hit& h : all.hits) {
+    iterations += h.iterations;
+    hits += h.found();
+    converged += h.found() && (h.flags & kHitConverged);
+    capped += h.found() && (h.flags & kHitCapped);
+  }
+  const FrameSummary c = summarize(counted);
+  EXPECT_GT(hits, 100);
+  EXPECT_EQ(c.hits, hits);
+  EXPECT_EQ(c.converged, converged);
+  EXPECT_EQ(c.capped, capped);
+  EXPECT_EQ(c.iterations, iterations);
+  EXPECT_EQ(c.secondary_rays, all.secondary_rays);
 }
 
 // --color: the colours reach the device in the grid's order and interpolate as on the CPU.

@@ -46,11 +46,14 @@ RenderTruth against_sphere(const RenderedFrame& frame, const Sphere& sphere, flo
       const float b = glm::dot(oc, ray.dir), c = glm::dot(oc, oc) - sphere.radius * sphere.radius;
       const float disc = b * b - c;
       bool meets = false;
+      float t_first = kInfinity;
       if (disc > 0) {
-        const vec3 p = ray.at(-b - std::sqrt(disc));
-        meets = -glm::dot(sphere.normal(p), ray.dir) > 0.3f;
+        t_first = -b - std::sqrt(disc);
+        meets = -glm::dot(sphere.normal(ray.at(t_first)), ray.dir) > 0.3f;
       }
-      const bool on = hit.found() && std::abs(sphere.distance(hit.point)) <= near;
+      // On the sphere, and its first crossing where the ray meets it head on (not the far side).
+      const bool on = hit.found() && std::abs(sphere.distance(hit.point)) <= near &&
+                      (!meets || std::abs(hit.t - t_first) <= 4 * near);
       if (meets) {
         ++truth.data_pixels;
         truth.holes += !on;

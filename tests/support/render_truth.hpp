@@ -21,7 +21,7 @@ PointCloud noisy_sphere_with_strays(std::size_t count, float noise_in_spacing, f
 
 struct RenderTruth {
   std::int64_t data_pixels = 0;  // rays that meet the sphere, not grazing it (cos > 0.3)
-  std::int64_t holes = 0;        // of those, without a hit within `near` of the sphere's
+  std::int64_t holes = 0;        // of those, without a hit within `near` of the sphere at its first crossing
   std::int64_t extra = 0;        // hits farther than `near` from the sphere, or where the ray misses it
   double mean_distance = 0;      // of the hits within `near`, to the sphere
   double mean_normal_deg = 0;    // of the same hits, against the sphere's normal (unsigned)
@@ -33,11 +33,11 @@ RenderTruth against_sphere(const RenderedFrame& frame, const Sphere& sphere, flo
 
 // `cloud` (a unit sphere's samples, and strays) rendered at 160² on `backend` with the
 // default parameters, this surface and outlier policy, against the unit sphere (near: 0.05).
+RenderTruth render_sphere(const PointCloud& cloud, SurfaceOperator surface, OutlierPolicy outliers, Backend backend);
+
 // Prints t and checks it (gtest) against issue 26's goals for noise and outliers: holes
 // <= 0.3 % and extra surface <= 0.2 % of the sphere's pixels; the hits within 0.4 σ of it
 // (σ = 0.016, noisy_sphere_with_strays(12000, 0.5, ·)) and their normals within 6 degrees.
 void expect_like_the_sphere(const RenderTruth& t, const char* name);
-
-RenderTruth render_sphere(const PointCloud& cloud, SurfaceOperator surface, OutlierPolicy outliers, Backend backend);
 
 }  // namespace pss::test

@@ -93,7 +93,8 @@ void RenderThread::run() {
       }
       std::lock_guard lock(mutex_);
       if (next_id_ != id && p.error.empty()) break;  // cancelled: its pixels are not all drawn
-      if (factor == 1 && p.error.empty()) full_seconds_ = wall;
+      // The time of a frame that only shows (a screenshot's, with its hits, would overstate it).
+      if (factor == 1 && p.error.empty() && !with_hits) full_seconds_ = wall;
       const bool refused = !p.error.empty();
       if (refused) {  // keep showing the last image, with its figures
         p.frame = published_.frame;

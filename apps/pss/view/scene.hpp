@@ -63,7 +63,9 @@ class Scene {
   virtual Aabb bounds() const = 0;
   // Re-prepares what `settings` changed since the last call, then renders; once `cancel` is
   // set the frame is abandoned (its pixels are not all drawn), the preparation never is.
-  // Throws Error for a setting out of range, with the scene left as it was.
+  // `keep` says whether the per-pixel hits come back (a volume's Figure 2 view keeps them
+  // always: it paints from them). Throws Error for a setting out of range, with the scene
+  // left as it was.
   virtual RenderedFrame render(const ViewSettings& settings, const Camera& camera, const std::atomic<bool>& cancel,
                                Stats& stats, FrameHits keep) = 0;
 };

@@ -1,6 +1,7 @@
 // A scripted viewer session (`pss view FILE --script STEPS --screenshot-dir DIR`): what a
-// user does, one step a line, so that the viewer runs headless in tests (under Xvfb) and
-// its screenshots can be compared with the batch commands. '#' starts a comment.
+// user does, one step a line, so that the viewer runs unattended, in a window (the tests run
+// it under Xvfb) or with --headless, and its screenshots can be compared with the batch
+// commands. '#' starts a comment.
 //   view AZ EL           orbit to azimuth and elevation (degrees)
 //   zoom Z | pan X Y | fov DEG
 //   camera FILE.json     the camera of a file (--camera's format), until the next move
@@ -13,6 +14,7 @@
 //   screenshot NAME      wait, then write DIR/NAME.png, DIR/NAME.json (camera, counts: as
 //                        --stats) and DIR/NAME.ply (the primary hits: as --hits)
 //   window NAME          wait, then write the whole window, panel included, to DIR/NAME.png
+//                        (refused with --headless, which has no window)
 //   quit                 (implied after the last step)
 #pragma once
 

@@ -98,11 +98,13 @@ bool Session::update(glm::ivec2 size) {
   if (!renderer_) return false;
   if (dirty_) {
     request_ = renderer_->request(camera(), settings_, with_hits_);
+    timed_ = !with_hits_;  // a screenshot's second render of a view is not the view's timing
     requested_at_ = std::chrono::steady_clock::now();
     first_shown_ = 0;
     dirty_ = false;
   }
   if (!renderer_->poll(shown_)) return false;
+  shown_summary_ = summarize(*shown_.frame);
   report_timing();
   if (!shown_.error.empty() && shown_.error != last_error_) std::fprintf(stderr, "pss view: %s\n", shown_.error.c_str());
   last_error_ = shown_.error;
@@ -149,6 +151,10 @@ void Session::load_camera(const std::string& path) {
 // and counts as JSON (what --stats writes) and its primary hits as PLY (what --hits writes),
 // beside each other.
 void Session::write_screenshot(const std::string& image) {
+  // Only the frame a refused request left on screen can lack them (shot_ready asks for them).
+  if (shown_.frame->hits.empty())
+    throw file_error(image, "cannot write: the last request was refused (" + shown_.error +
+                                ") and the frame on screen kept no hits; set an accepted value first");
   const std::filesystem::path json = std::filesystem::path(image).replace_extension(".json");
   const std::filesystem::path hits = std::filesystem::path(image).replace_extension(".ply");
   OutputSet outputs({}, {image, json, hits});
@@ -182,7 +188,7 @@ bool Session::shot_ready() {
 // With --script, how long the current request took to show its first (reduced) frame and its
 // full-size one, on stdout (bench/ reads it).
 void Session::report_timing() {
-  if (o_.script.empty() || shown_.request != request_ || !shown_.error.empty()) return;
+  if (o_.script.empty() || !timed_ || shown_.request != request_ || !shown_.error.empty()) return;
   const double since = std::chrono::duration<double>(std::chrono::steady_clock::now() - requested_at_).count();
   if (first_shown_ == 0) {
     first_shown_ = shown_.factor;

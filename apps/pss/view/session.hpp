@@ -49,6 +49,7 @@ class Session {
 
   const RenderThread* renderer() const { return renderer_.get(); }
   const Published& shown() const { return shown_; }
+  const FrameSummary& shown_summary() const { return shown_summary_; }  // of shown().frame, counted once
   const std::string& load_error() const { return load_error_; }
   const std::string& message() const { return message_; }  // of the last camera or screenshot action
   int status() const { return status_; }
@@ -73,11 +74,14 @@ class Session {
   bool dirty_ = false;
   bool with_hits_ = false;  // the next requests keep their full frame's hits, for a screenshot
   Published shown_;
+  FrameSummary shown_summary_;
   std::string load_error_, last_error_, message_, pending_shot_;
   std::vector<Step> steps_;
   std::size_t next_step_ = 0;
   int status_ = 0;
-  // With --script, the timing of the current request (report_timing).
+  // With --script, the timing of the current request (report_timing), unless it was a
+  // screenshot's second render of the view.
+  bool timed_ = true;
   std::chrono::steady_clock::time_point requested_at_;
   int first_shown_ = 0;
   double first_seconds_ = 0, first_frame_seconds_ = 0;

@@ -6,7 +6,6 @@
 
 #include "commands.hpp"
 #include "numbers.hpp"
-#include "pss/core/error.hpp"
 #include "pss/core/progress.hpp"
 #include "pss/core/text.hpp"
 #include "viewer.hpp"
@@ -15,7 +14,7 @@ namespace pss::app {
 
 void add_view_command(CLI::App& app) {
   auto* command = app.add_subcommand(
-      "view", view::kHasWindow ? "Explore the PSS of a point cloud or a volume in a window (or run a script of views with "
+      "view", view::has_window() ? "Explore the PSS of a point cloud or a volume in a window (or run a script of views with "
                                  "--headless)"
                                : "Run a script of views of the PSS of a point cloud or a volume (this build has no "
                                  "window: --headless only)");
@@ -79,9 +78,6 @@ void add_view_command(CLI::App& app) {
     o->settings.outliers = chosen.outliers;
     // The window shows each frame's progress; bars on the terminal behind it would only flicker.
     set_progress_mode(ProgressMode::never);
-    if (!o->headless && !view::kHasWindow)
-      throw Error("this build of pss has no window (GLFW, OpenGL or Dear ImGui was missing when it was built): "
-                  "use --headless with --script");
     if (const int status = o->headless ? view::run_headless(*o) : view::run_viewer(*o); status != 0) std::exit(status);
   });
 }

@@ -18,7 +18,6 @@
 #include "pss/io/image_8bit.hpp"
 #include "pss/io/output_file.hpp"
 #include "pss/render/camera_file.hpp"
-#include "pss/render/frame_outputs.hpp"
 #include "pss/render/image.hpp"
 #include "session.hpp"
 
@@ -160,7 +159,7 @@ class Viewer {
       ImGui::TextUnformatted("rendering...");
       return;
     }
-    const FrameSummary f = summarize(*shown.frame);
+    const FrameSummary& f = session_.shown_summary();
     ImGui::Text("%dx%d (1/%d)  %.1f ms  %.2f Mrays/s", shown.frame->image.width, shown.frame->image.height,
                 shown.factor, 1e3 * shown.seconds, shown.seconds > 0 ? 1e-6 * double(f.rays) / shown.seconds : 0.0);
     ImGui::Text("hits %lld  projections/hit %.2f  capped %lld", (long long)f.hits, f.mean_iterations, (long long)f.capped);
@@ -269,6 +268,8 @@ class Viewer {
 };
 
 }  // namespace
+
+bool has_window() { return true; }
 
 int run_viewer(const ViewerOptions& options) {
   std::vector<Step> steps;

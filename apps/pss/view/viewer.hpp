@@ -25,18 +25,16 @@ struct ViewerOptions {
 // Opens the window and runs until it is closed or the script ends. A file that cannot be
 // read or prepared is shown as a message in the window (and on stderr). Returns the exit
 // status: 0, or 1 when the window cannot be opened or a script step cannot be carried out.
-// In builds with GLFW and Dear ImGui only (kHasWindow).
+// In a build without GLFW and Dear ImGui (has_window() false) it says so and returns 1.
 int run_viewer(const ViewerOptions& options);
+
+// Whether this build has the window (viewer.cpp) or not (no_window.cpp).
+bool has_window();
 
 // --headless: runs the script's steps (options.script, required) with no window and no
 // display, as the window would: the same frames, reduced while a view is new, the same
 // screenshots and timings. Returns 0, or 1 when a file or a step cannot be carried out.
 int run_headless(const ViewerOptions& options);
 
-#if PSS_HAVE_VIEWER_WINDOW
-inline constexpr bool kHasWindow = true;
-#else
-inline constexpr bool kHasWindow = false;
-#endif
 
 }  // namespace pss::app::view

@@ -21,9 +21,25 @@ struct FrameSummary {
   std::int64_t converged = 0, capped = 0;
   double mean_iterations = 0;  // projections per primary ray that hit
   std::int64_t iterations = 0;  // projections of all primary rays, misses included
+
+  // Counts one primary ray; mean_iterations is set by finish().
+  void add(bool found, bool converged_hit, bool capped_hit, std::int64_t projections) {
+    ++rays;
+    iterations += projections;
+    if (!found) return;
+    ++hits;
+    hit_iterations_ += projections;
+    converged += converged_hit;
+    capped += capped_hit;
+  }
+  void finish() { mean_iterations = hits ? double(hit_iterations_) / double(hits) : 0.0; }
+
+ private:
+  std::int64_t hit_iterations_ = 0;
 };
 
-// The counts of hits packed by hit_counts (frame_kernels.hpp), one a pixel.
+// The counts of hits packed by hit_counts (frame_kernels.hpp), one a pixel: their projections
+// up to 8191 each.
 FrameSummary summary_of_counts(const std::vector<std::uint16_t>& counts, std::int64_t secondary_rays);
 
 // Which per-pixel hits come back with a frame: all of them (what --hits, an EXR's depth and
