@@ -15,6 +15,7 @@
 
 #include "pss/points/project_cloud.hpp"
 #include "pss/points/robust_implicit.hpp"
+#include "support/render_truth.hpp"
 #include "support/shapes.hpp"
 
 namespace pss {
@@ -192,30 +193,11 @@ TEST(Rimls, NormalsAreThoseOfItsZeroSetNotTheSamplesMean) {
   EXPECT_LT(mean / count, 6.0);
 }
 
-// The surface of the box [-1, 1]³ sampled on a grid of `spacing` on each face (half a step
-// off the edges), with the faces' normals.
-PointCloud box(float spacing) {
-  PointCloud cloud;
-  const int n = int(std::round(2 / spacing));
-  for (int axis = 0; axis < 3; ++axis)
-    for (float side : {-1.0f, 1.0f})
-      for (int i = 0; i < n; ++i)
-        for (int j = 0; j < n; ++j) {
-          vec3 p, normal(0.0f);
-          p[axis] = side;
-          p[(axis + 1) % 3] = -1 + (i + 0.5f) * spacing;
-          p[(axis + 2) % 3] = -1 + (j + 0.5f) * spacing;
-          normal[axis] = side;
-          cloud.positions.push_back(p);
-          cloud.normals.push_back(normal);
-        }
-  return cloud;
-}
 
 // Next to the box's edges (0.5h to 2h from the nearest), RIMLS's normals are the face's and
 // its points stay on the face; MLS's plane, fitted across the edge, rounds it.
 TEST(Rimls, KeepsTheCreasesOfABox) {
-  const PointCloud cloud = box(0.04f);
+  const PointCloud cloud = test::sample(test::BoredBox{0.0f}, 0.04f);  // no bore: the box [-1, 1]³
   const float h = test::suggested_h(cloud);
   struct Errors {
     double mean_angle = 0, mean_distance = 0;

@@ -86,6 +86,105 @@ void expect_like_the_sphere(const RenderTruth& t, const char* name) {
   EXPECT_LT(t.mean_normal_deg, 6.0);
 }
 
+float BoredBox::distance(vec3 p) const {
+  const vec3 q = glm::abs(p) - vec3(1.0f);
+  const float box = glm::length(glm::max(q, vec3(0.0f))) + std::min(std::max(q.x, std::max(q.y, q.z)), 0.0f);
+  return std::max(box, bore - std::sqrt(p.x * p.x + p.y * p.y));
+}
+
+vec3 BoredBox::normal(vec3 p) const {
+  const float r = std::sqrt(p.x * p.x + p.y * p.y);
+  const vec3 a = glm::abs(p);
+  const float box = std::max(a.x, std::max(a.y, a.z)) - 1;
+  if (bore - r > box) return -vec3(p.x, p.y, 0.0f) / r;  // the bore's wall faces its axis
+  if (a.x >= a.y && a.x >= a.z) return vec3(p.x > 0 ? 1.0f : -1.0f, 0, 0);
+  if (a.y >= a.z) return vec3(0, p.y > 0 ? 1.0f : -1.0f, 0);
+  return vec3(0, 0, p.z > 0 ? 1.0f : -1.0f);
+}
+
+float BoredBox::to_crease(vec3 p) const {
+  const float r = std::sqrt(p.x * p.x + p.y * p.y);
+  const vec3 a = glm::abs(p);
+  if (bore - r > std::max(a.x, std::max(a.y, a.z)) - 1) return 1 - a.z;  // on the bore: its rims
+  const vec3 n = normal(p);
+  float d = kInfinity;
+  for (int k = 0; k < 3; ++k)
+    if (n[k] == 0) d = std::min(d, 1 - a[k]);  // the face's edges
+  if (n.z != 0) d = std::min(d, r - bore);  // a face the bore opens: its rim
+  return d;
+}
+
+PointCloud sample(const BoredBox& box, float spacing) {
+  PointCloud cloud;
+  const int n = int(std::lround(2 / spacing));
+  for (int axis = 0; axis < 3; ++axis)
+    for (float side : {-1.0f, 1.0f})
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+          vec3 p, normal(0.0f);
+          p[axis] = side;
+          p[(axis + 1) % 3] = -1 + (i + 0.5f) * spacing;
+          p[(axis + 2) % 3] = -1 + (j + 0.5f) * spacing;
+          if (axis == 2 && p.x * p.x + p.y * p.y < box.bore * box.bore) continue;  // the bore's mouth
+          normal[axis] = side;
+          cloud.positions.push_back(p);
+          cloud.normals.push_back(normal);
+        }
+  const int around = int(std::lround(2 * 3.14159265f * box.bore / spacing));
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < around; ++k) {
+      const float a = 2 * 3.14159265f * (k + 0.5f) / float(around);
+      const vec3 d(std::cos(a), std::sin(a), 0.0f);
+      cloud.positions.push_back(box.bore * d + vec3(0, 0, -1 + (i + 0.5f) * spacing));
+      cloud.normals.push_back(-d);
+    }
+  return cloud;
+}
+
+CreaseTruth against_bored_box(const RenderedFrame& frame, const BoredBox& box, float near, float h) {
+  CreaseTruth truth;
+  std::int64_t flat = 0, crease = 0;
+  const Camera& camera = frame.camera;
+  for (int y = 0; y < camera.height; ++y)
+    for (int x = 0; x < camera.width; ++x) {
+      const Ray ray = camera.primary_ray(x, y);
+      const Hit& hit = frame.hits[std::size_t(y) * std::size_t(camera.width) + std::size_t(x)];
+      // Sphere tracing: the distance is a lower bound, so no crossing is stepped over.
+      float t = 0, t_first = kInfinity;
+      for (int step = 0; step < 400 && t < 100; ++step) {
+        const float d = box.distance(ray.at(t));
+        if (d < 1e-5f) {
+          t_first = t;
+          break;
+        }
+        t += d;
+      }
+      const bool meets = t_first < kInfinity && -glm::dot(box.normal(ray.at(t_first)), ray.dir) > 0.3f &&
+                         box.to_crease(ray.at(t_first)) > 2 * near;
+      const bool on = hit.found() && std::abs(box.distance(hit.point)) <= near &&
+                      (t_first == kInfinity || hit.t <= t_first + 4 * near);
+      if (meets) {
+        ++truth.data_pixels;
+        truth.holes += !on;
+      }
+      if (hit.found() && !on) ++truth.extra;
+      if (!on) continue;
+      const float cosine = std::min(1.0f, std::abs(glm::dot(glm::normalize(hit.normal), box.normal(hit.point))));
+      const double degrees = std::acos(cosine) * 180.0 / 3.14159265358979;
+      const float to_crease = box.to_crease(hit.point);
+      if (to_crease > 3 * h) {
+        truth.flat_normal_deg += degrees;
+        ++flat;
+      } else if (to_crease > 0.5f * h && to_crease < 2 * h) {
+        truth.crease_normal_deg += degrees;
+        ++crease;
+      }
+    }
+  if (flat) truth.flat_normal_deg /= double(flat);
+  if (crease) truth.crease_normal_deg /= double(crease);
+  return truth;
+}
+
 RenderTruth render_sphere(const PointCloud& cloud, SurfaceOperator surface, OutlierPolicy outliers, Backend backend) {
   RayPssParams params = RayPssParams::from_h(suggested_h(cloud));
   params.projection.surface = surface;

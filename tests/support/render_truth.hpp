@@ -31,6 +31,29 @@ struct RenderTruth {
 
 RenderTruth against_sphere(const RenderedFrame& frame, const Sphere& sphere, float near);
 
+// A cube [-1, 1]³ with a bore of radius 0.4 along z (issue 26's CAD part: creases, circular
+// rims, known normals). The solid is the box minus the cylinder.
+struct BoredBox {
+  float bore = 0.4f;
+  float distance(vec3 p) const;  // signed, negative inside: exact near the faces, a bound elsewhere
+  vec3 normal(vec3 p) const;     // outward, of the nearest face
+  float to_crease(vec3 p) const;  // from a point on the surface to the nearest edge or rim
+};
+
+// Its surface on a grid of `spacing` (half a step off the edges), with the exact normals;
+// bore 0: the plain box.
+PointCloud sample(const BoredBox& box, float spacing);
+
+struct CreaseTruth {
+  std::int64_t data_pixels = 0, holes = 0, extra = 0;  // as RenderTruth's
+  double flat_normal_deg = 0;   // mean over the hits farther than 3 widths from a crease
+  double crease_normal_deg = 0;  // mean over the hits 0.5 to 2 widths from one
+};
+
+// The frame against the bored box (sphere tracing finds each ray's first crossing); `h` sets
+// the bands of flat_normal_deg and crease_normal_deg.
+CreaseTruth against_bored_box(const RenderedFrame& frame, const BoredBox& box, float near, float h);
+
 // `cloud` (a unit sphere's samples, and strays) rendered at 160² on `backend` with the
 // default parameters, this surface and outlier policy, against the unit sphere (near: 0.05).
 RenderTruth render_sphere(const PointCloud& cloud, SurfaceOperator surface, OutlierPolicy outliers, Backend backend);
