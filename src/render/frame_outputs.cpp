@@ -13,11 +13,14 @@
 namespace pss {
 
 FrameSummary summarize(const RenderedFrame& frame) {
-  if (frame.hits.empty()) return frame.summary;
   FrameSummary s;
-  for (const Hit& h : frame.hits) s.add(h.found(), h.flags & kHitConverged, h.flags & kHitCapped, h.iterations);
+  if (frame.hits.empty()) {
+    s = frame.summary;  // the hits stayed where they were made (FrameHits::summary)
+  } else {
+    for (const Hit& h : frame.hits) s.add(h.found(), h.flags & kHitConverged, h.flags & kHitCapped, h.iterations);
+    s.finish();
+  }
   s.secondary_rays = frame.secondary_rays;
-  s.finish();
   return s;
 }
 

@@ -2,10 +2,9 @@
 
 namespace pss {
 
-FrameSummary summary_of_counts(const std::vector<std::uint16_t>& counts, std::int64_t secondary_rays) {
+FrameSummary summary_of_counts(const std::vector<std::uint16_t>& counts) {
   FrameSummary s;
   for (const std::uint16_t c : counts) s.add(c & 1, c & 2, c & 4, c >> 3);
-  s.secondary_rays = secondary_rays;
   s.finish();
   return s;
 }

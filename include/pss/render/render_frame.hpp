@@ -48,7 +48,7 @@ RenderedFrame render_frame(Backend backend, const Finder& finder, const Camera& 
   } else {
     Mirror<std::uint16_t> counts(backend, std::size_t(n));
     parallel_for(backend, "hit counts", n, HitCountsKernel{hits.data(), counts.data()}, stats);
-    frame.summary = summary_of_counts(counts.take(), frame.secondary_rays);
+    frame.summary = summary_of_counts(counts.take());
   }
   frame.image.width = camera.width;
   frame.image.height = camera.height;

@@ -39,8 +39,8 @@ struct FrameSummary {
 };
 
 // The counts of hits packed by hit_counts (frame_kernels.hpp), one a pixel: their projections
-// up to 8191 each.
-FrameSummary summary_of_counts(const std::vector<std::uint16_t>& counts, std::int64_t secondary_rays);
+// up to 8191 each (secondary_rays is the frame's, which summarize() adds).
+FrameSummary summary_of_counts(const std::vector<std::uint16_t>& counts);
 
 // Which per-pixel hits come back with a frame: all of them (what --hits, an EXR's depth and
 // normals and the viewer's screenshots read), or only their counts, for the frames a window
@@ -51,7 +51,7 @@ enum class FrameHits : unsigned char { all, summary };
 struct RenderedFrame {
   Camera camera;
   std::vector<Hit> hits;  // per pixel, row-major from the top row; empty with FrameHits::summary
-  FrameSummary summary;   // with FrameHits::summary, the hits' counts; read through summarize()
+  FrameSummary summary;   // with FrameHits::summary, the primary hits' counts; read through summarize()
   Image image;
   std::int64_t secondary_rays = 0;
   glm::dvec3 origin{0.0};  // the world position of the frame's zero (a cloud's origin, cloud.hpp)
