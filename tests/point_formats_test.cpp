@@ -272,6 +272,27 @@ TEST_F(FormatTest, StlErrors) {
   expect_refused(pss::read_stl, write("nan.stl", nan_facet), "facet 1 has a non-finite coordinate");
 }
 
+// A file that declares faces holds a mesh's vertices, whose surface ends at them (`pss render
+// --borders auto` clips it, points/borders.hpp); points alone are a scan's.
+TEST_F(FormatTest, MeshFilesSayTheirPointsAreVertices) {
+  const std::string tri = "0 0 0\n1 0 0\n0 1 0\n";
+  EXPECT_TRUE(pss::read_off(write("f.off", "OFF\n3 1 0\n" + tri + "3 0 1 2\n")).mesh_vertices);
+  EXPECT_FALSE(pss::read_off(write("p.off", "OFF\n3 0 0\n" + tri)).mesh_vertices);
+  EXPECT_TRUE(pss::read_obj(write("f.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")).mesh_vertices);
+  EXPECT_FALSE(pss::read_obj(write("p.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n")).mesh_vertices);
+  EXPECT_TRUE(pss::read_stl(write("f.stl", binary_stl(2))).mesh_vertices);
+  const std::string ply = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                          "property float z\n";
+  EXPECT_TRUE(pss::read_ply(write("f.ply", ply + "element face 1\nproperty list uchar int vertex_indices\nend_header\n" +
+                                               tri + "3 0 1 2\n"))
+                  .mesh_vertices);
+  EXPECT_FALSE(pss::read_ply(write("z.ply", ply + "element face 0\nproperty list uchar int vertex_indices\nend_header\n" +
+                                                tri))
+                   .mesh_vertices);
+  EXPECT_FALSE(pss::read_ply(write("p.ply", ply + "end_header\n" + tri)).mesh_vertices);
+  EXPECT_FALSE(pss::read_point_cloud(write("p.xyz", tri)).mesh_vertices);
+}
+
 // ---------------------------------------------------------------------------------------
 // PCD
 

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <string>
 
@@ -128,6 +129,44 @@ TEST_F(RenderFlags, CandidatesCapTheBallsARayTries) {
   EXPECT_EQ(defaults["params"]["max_candidates"], 32);
   EXPECT_LT(one["hits"].get<std::int64_t>(), defaults["hits"].get<std::int64_t>());
   EXPECT_GT(one["hits"].get<std::int64_t>(), defaults["hits"].get<std::int64_t>() * 9 / 10);
+}
+
+// --borders (points/borders.hpp): auto clips a mesh's vertices (an OFF file with faces) and
+// extends a scan (the same points as XYZ); clip and extend force either. An open square's
+// surface runs on past its samples only where extended: more hits, none of them clipped
+// ones; a value that is no mode is refused, naming the flag.
+TEST_F(RenderFlags, BordersClipAMeshsVerticesAndExtendAScan) {
+  test::SampleOptions o;
+  o.count = 3000;
+  const PointCloud square = test::sample_plane(1.0f, o);
+  write_xyz(path("square.xyz"), square);
+  {
+    std::ofstream off(path("square.off"));
+    off << "OFF\n" << square.size() << " 1 0\n";
+    for (const vec3& p : square.positions) off << p.x << ' ' << p.y << ' ' << p.z << '\n';
+    off << "3 0 1 2\n";
+  }
+  const auto render = [&](const std::string& file, const std::string& flags, const std::string& name) {
+    const test::CliResult r = test::run_pss("render " + path(file) + " --up 0,0,1 --view 20,50 --size 64x64 -o " +
+                                            path(name + ".png") + " --stats " + path(name + ".json") + flags);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return read_json(path(name + ".json"));
+  };
+  const nlohmann::json mesh = render("square.off", "", "mesh"), scan = render("square.xyz", "", "scan");
+  EXPECT_EQ(mesh["params"]["borders"], "clip");
+  EXPECT_EQ(scan["params"]["borders"], "extend");
+  const auto hits = [](const nlohmann::json& j) { return j["hits"].get<std::int64_t>(); };
+  EXPECT_GT(hits(scan), hits(mesh) + 30);
+  const nlohmann::json mesh_extended = render("square.off", " --borders extend", "mesh_extended");
+  const nlohmann::json scan_clipped = render("square.xyz", " --borders clip", "scan_clipped");
+  EXPECT_EQ(mesh_extended["params"]["borders"], "extend");
+  EXPECT_EQ(scan_clipped["params"]["borders"], "clip");
+  EXPECT_EQ(hits(mesh_extended), hits(scan));
+  EXPECT_EQ(hits(scan_clipped), hits(mesh));
+  const test::CliResult bad = test::run_pss("render " + path("square.xyz") + " -o " + path("bad.png") + " --borders trim");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("--borders"), std::string::npos) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(path("bad.png")));
 }
 
 using ProjectFlags = test::CliTest;

@@ -83,6 +83,37 @@ TEST_F(ViewerHeadless, AVolumesChangesReachItsFrames) {
   EXPECT_NE(read(path("b.png")), read(path("c.png")));
 }
 
+// `set borders` (points/borders.hpp): a mesh's vertices open clipped (auto), and each choice
+// reaches the screenshots, which are `pss render --borders`'s images; a value that is no mode
+// is refused on its line.
+TEST_F(ViewerHeadless, TheBordersChoiceReachesItsFrames) {
+  test::SampleOptions o;
+  o.count = 2000;
+  const PointCloud square = test::sample_plane(1.0f, o);
+  std::ofstream off(path("square.off"));
+  off.precision(9);
+  off << "OFF\n" << square.size() << " 1 0\n";
+  for (const vec3& p : square.positions) off << p.x << ' ' << p.y << ' ' << p.z << '\n';
+  off << "3 0 1 2\n";
+  off.close();
+  const test::CliResult r = test::run_pss(
+      "view " + path("square.off") + " --headless --size 96x96 --script " +
+      write("steps.txt", "view 20 50\nscreenshot a\nset borders extend\nscreenshot b\nset borders auto\nscreenshot c\n"
+                         "set borders trim\n") +
+      " --screenshot-dir " + dir_.string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("steps.txt:7: expected auto or clip or extend"), std::string::npos) << r.err;
+  const auto rendered = [&](const std::string& flags, const std::string& name) {
+    EXPECT_EQ(test::run_pss("render " + path("square.off") + " --size 96x96 --camera " + path("a.json") + flags + " -o " +
+                            path(name)).exit_code, 0);
+    return read(path(name));
+  };
+  EXPECT_EQ(read(path("a.png")), rendered(" --borders clip", "ra.png"));
+  EXPECT_EQ(read(path("b.png")), rendered(" --borders extend", "rb.png"));
+  EXPECT_EQ(read(path("c.png")), read(path("a.png")));
+  EXPECT_NE(read(path("a.png")), read(path("b.png")));
+}
+
 TEST_F(ViewerHeadless, RefusesWhatItCannotDo) {
   test::CliResult r = test::run_pss("view " + path("sphere.xyz") + " --headless");
   EXPECT_EQ(r.exit_code, 1);

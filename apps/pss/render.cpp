@@ -24,6 +24,7 @@ struct RenderCloudOptions {
   std::string iterations = "2";
   int candidates = RayPssParams::from_h(1).max_candidates;
   std::string secondary = "full";
+  std::string borders = "auto";
   std::string support;  // empty: support_of's default
   SurfaceOptions surface;
   bool color = false;  // shade with the samples' colours
@@ -65,6 +66,7 @@ void run_render(const RenderCloudOptions& o) {
   params.max_iterations = iterations_of(o.iterations);
   params.max_candidates = o.candidates;
   params.secondary = o.secondary == "paper" ? SecondaryMode::paper : SecondaryMode::full;
+  params.projection.borders = borders_for(border_choice_of(o.borders), cloud);
   validate(params);
 
   const Camera camera = make_camera(o.render, cloud.bounds(), cloud.origin);
@@ -82,10 +84,11 @@ void run_render(const RenderCloudOptions& o) {
               "BVH %.3f s (%s backend, %d threads)\n", o.input.c_str(), cloud.size(), camera.width, camera.height,
               seconds, frame_s, 1.0 / frame_s, stats.time("preprocess"), stats.time("acceleration structure"),
               backend_name(backend), cpu_threads());
-  std::printf("%lld rays, %lld hits, %.2f projections per hit, %lld secondary rays; %s surface%s, %lld outliers set "
-              "aside, h = %g (%s), b = %g, eps = %g\n",
+  std::printf("%lld rays, %lld hits, %.2f projections per hit, %lld secondary rays; %s surface%s, borders %s, %lld "
+              "outliers set aside, h = %g (%s), b = %g, eps = %g\n",
               (long long)s.rays, (long long)s.hits, s.mean_iterations, (long long)s.secondary_rays,
               surface_name(params.projection.surface), normals_text(prepared.normals_used()),
+              border_name(params.projection.borders),
               (long long)prepared.outliers().set_aside, params.projection.h,
               support_text(params.projection.support, prepared.widths()).c_str(), params.ball_radius, params.epsilon);
 
@@ -106,6 +109,7 @@ void run_render(const RenderCloudOptions& o) {
                    {"ball_spacing", params.ball_spacing},
                    {"epsilon", params.epsilon}, {"iterations", o.iterations},
                    {"max_candidates", params.max_candidates}, {"secondary", o.secondary},
+                   {"borders", border_name(params.projection.borders)},
                    {"secondary_offset", params.secondary_offset}, {"color", o.color}};
     stats.write(o.render.compute.stats_path);
   }
@@ -158,6 +162,12 @@ void add_render_command(CLI::App& app, Action action) {
   command->add_option("--secondary", o->secondary,
                       "secondary rays: full (projected like primary rays) or paper (first local-polynomial hit)")
       ->check(CLI::IsMember({"full", "paper"}))
+      ->capture_default_str();
+  command->add_option("--borders", o->borders,
+                      "where the surface ends: clip (at its samples: no band past an open rim or a thin part's "
+                      "edge), extend (as far as the projection reaches, about b past the last samples: the paper), "
+                      "or auto (clip for a mesh's vertices, whose surface ends at them; extend for scans)")
+      ->check(CLI::IsMember({"auto", "clip", "extend"}))
       ->capture_default_str();
   command->add_flag("--color", o->color,
                     "shade with the points' own colours (the file's red green blue), averaged at each hit with the "

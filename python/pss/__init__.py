@@ -135,7 +135,7 @@ def project(points, h=None, *, normals=None, surface="mls", outliers="set-aside"
 
 def render(points, h=None, *, normals=None, colors=None, surface="mls", outliers="set-aside", rho=None, support=None,
            b=None, epsilon=None, ball_spacing=None,
-           iterations=2, secondary="full", size=None, view=None, fov=None, look_at=None, up=None, distance=None,
+           iterations=2, secondary="full", borders="extend", size=None, view=None, fov=None, look_at=None, up=None, distance=None,
            zoom=None, roll=None, camera=None, shadows=False, reflections=False, reflectivity=None,
            transparent=False, backend="auto", full_output=False):
     """Ray trace the point set surface of (N, 3) points (the paper's section 5.2), as `pss render`.
@@ -146,6 +146,9 @@ def render(points, h=None, *, normals=None, colors=None, surface="mls", outliers
     ball_spacing (default b/2; 0 keeps one polynomial per sample, as the paper),
     iterations: projections per ray candidate, 1 to 32 or 'auto' (default 2, the paper's),
     secondary: 'full' or 'paper' (the paper's rough secondary hits); normals: optional hints.
+    borders: 'extend' (the surface runs on past the last points, as the paper's and as `pss
+    render` does for scans) or 'clip' (it ends at them: what `pss render --borders auto` does
+    for a mesh's vertices, whose faces the points cannot tell).
     surface: 'mls', 'apss' or 'rimls', as for project (the given normals fitted, or estimated);
     outliers: 'set-aside' or 'keep', as for project (full_output's stats: outliers_set_aside).
     colors: (N, 3) sRGB colours of the points (uint8 0..255, or floats 0..1) to shade with, as
@@ -156,7 +159,8 @@ def render(points, h=None, *, normals=None, colors=None, surface="mls", outliers
     options.update({"normals": normals, "colors": colors, "surface": surface, "outliers": outliers, "h": h, "rho": rho,
                     "support": support,
                     "b": b,
-                    "epsilon": epsilon, "ball_spacing": ball_spacing, "iterations": iterations, "secondary": secondary})
+                    "epsilon": epsilon, "ball_spacing": ball_spacing, "iterations": iterations, "secondary": secondary,
+                    "borders": borders})
     return _pss.render(points, options)
 
 

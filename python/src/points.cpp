@@ -111,6 +111,7 @@ py::object render(const py::handle& points, const py::dict& o) {
                                  : integer_in(o, "iterations", 1, kAutoIterations);
   const SecondaryMode secondary =
       choice(o, "secondary", {"full", "paper"}) == "paper" ? SecondaryMode::paper : SecondaryMode::full;
+  const BorderMode borders = choice(o, "borders", {"extend", "clip"}) == "clip" ? BorderMode::clip : BorderMode::extend;
   const std::optional<float> spacing = is_given(o, "ball_spacing")
                                            ? std::optional<float>(float(number_in(o, "ball_spacing", 0, 1e30)))
                                            : std::nullopt;
@@ -135,6 +136,7 @@ py::object render(const py::handle& points, const py::dict& o) {
     if (epsilon) params.epsilon = *epsilon;
     params.max_iterations = max_iterations;
     params.secondary = secondary;
+    params.projection.borders = borders;
     validate(params);
     const PreparedCloud prepared(cloud, params, backend, stats,
                                  cloud.has_colors() ? SurfaceColor::samples : SurfaceColor::albedo);
@@ -145,7 +147,7 @@ py::object render(const py::handle& points, const py::dict& o) {
                                 {"normals", normals_used_name(prepared.normals_used())},
                                 {"h_least", prepared.widths().least}, {"h_largest", prepared.widths().largest},
                                 {"ball_spacing", params.ball_spacing}, {"epsilon", params.epsilon},
-                                {"iterations", params.max_iterations}};
+                                {"iterations", params.max_iterations}, {"borders", border_name(borders)}};
     return render_cloud(prepared, camera, settings, backend, stats);
   });
   stats.values()["backend"] = backend_name(backend);

@@ -77,6 +77,7 @@ PointCloud read_obj(const std::filesystem::path& path) {
       numbers(n);
       normals.emplace_back(glm::dvec3(n[0], n[1], n[2]));  // a non-finite one drops them all (tidy_normals)
     } else if (words[0] == "f") {
+      cloud.mesh_vertices = true;
       for (std::size_t i = 1; i < words.size(); ++i) {
         // v, v/vt, v/vt/vn or v//vn: only corners with a normal matter.
         const std::string_view corner = words[i];

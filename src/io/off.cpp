@@ -78,19 +78,21 @@ PointCloud read_off(const std::filesystem::path& path) {
   }
   if (words.size() - first < 2 || words.size() - first > 3)
     throw fail("expected the counts 'vertices faces [edges]'");
-  std::uint64_t vertices = 0;
+  std::uint64_t vertices = 0, faces = 0;
   for (std::size_t i = first; i < words.size(); ++i) {
     double v;
     // Compared before any cast: a count beyond uint64 (1e30, inf) is refused, not converted.
     if (!io::parse_number(words[i], v) || !(v >= 0) || v > 9e15 || v != std::floor(v))
       throw fail("malformed count " + quote(words[i], 40));
     if (i == first) vertices = std::uint64_t(v);
+    if (i == first + 1) faces = std::uint64_t(v);
   }
   if (vertices == 0) throw fail("no vertices");
 
   const std::size_t normal_at = 3, color_at = layout.normals ? 6 : 3;
   const std::size_t fixed = color_at + (layout.texture ? 2 : 0);
   PointCloud cloud;
+  cloud.mesh_vertices = faces > 0;
   std::vector<glm::dvec3> world;
   // The count may lie: nothing is reserved from it, and the lines must be there.
   for (std::uint64_t k = 0; k < vertices; ++k) {

@@ -318,6 +318,8 @@ PointCloud read_data(const fs::path& path, const Header& header, Cursor in) {
   for (std::size_t j = 0; j < slots.size(); ++j)
     if (slots[j] >= kColor && slots[j] < kSlots) color_types[slots[j] - kColor] = vertex->properties[j].type;
   PointCloud cloud;
+  cloud.mesh_vertices = std::any_of(header.elements.begin(), header.elements.end(),
+                                    [](const Element& e) { return e.name == "face" && e.count > 0; });
   std::vector<glm::dvec3> world;
   const std::uint64_t capacity = std::min(vertex->count, max_records(in, *vertex));
   world.reserve(capacity);

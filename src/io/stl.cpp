@@ -134,6 +134,7 @@ PointCloud read_stl(const fs::path& path) {
     cloud = read_ascii(path, file);
   }
   if (cloud.positions.empty()) throw file_error(path, "no facets");
+  cloud.mesh_vertices = true;
   return cloud;
 }
 

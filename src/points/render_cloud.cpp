@@ -158,6 +158,7 @@ void PreparedCloud::set_search(const RayPssParams& p) {
   params_.max_candidates = p.max_candidates;
   params_.secondary = p.secondary;
   params_.secondary_offset = p.secondary_offset;
+  params_.projection.borders = p.projection.borders;
   if (p.projection.surface != SurfaceOperator::mls && grid_.normals().empty())
     throw Error("the cloud was prepared without the samples' normals that APSS and RIMLS need; prepare it again");
   params_.projection.surface = p.projection.surface;

@@ -89,6 +89,18 @@ TEST(GpuRender, NoisySphereWithStraysIsTheSphereForEverySurface) {
 }
 
 // FrameHits::summary on the device: the hits' counts come back (HitCountsKernel), not the hits.
+// `--borders clip` on the device (tests/borders_test.cpp): an open square ends at its samples,
+// whole inside; extended, it runs on past them as on the CPU.
+TEST(GpuRender, AnOpenSquareEndsAtItsSamplesWhenClipped) {
+  if (cuda::device_count() == 0) GTEST_SKIP() << "no CUDA device";
+  const test::BorderTruth clip = test::render_open_square(BorderMode::clip, SurfaceOperator::mls, Backend::cuda);
+  const test::BorderTruth extend = test::render_open_square(BorderMode::extend, SurfaceOperator::mls, Backend::cuda);
+  ASSERT_GT(clip.inner_pixels, 6000);
+  EXPECT_EQ(clip.holes, 0);
+  EXPECT_LT(clip.overshoot, 0.25);
+  EXPECT_GT(extend.beyond, 200);
+}
+
 TEST(GpuRender, AFrameWithoutItsHitsHasTheirCounts) {
   if (cuda::device_count() == 0) GTEST_SKIP() << "no CUDA device";
   const PointCloud cloud = noisy_torus();

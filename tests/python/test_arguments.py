@@ -48,6 +48,7 @@ def test_points_that_are_not_finite_rows_of_three_are_refused(points, message):
     ({"support": "wide"}, r"^support: expected one of 'adaptive', 'global' \(got 'wide'\)$"),
     ({"surface": "rbf"}, r"^surface: expected one of 'mls', 'apss', 'rimls' \(got 'rbf'\)$"),
     ({"outliers": "drop"}, r"^outliers: expected one of 'set-aside', 'keep' \(got 'drop'\)$"),
+    ({"borders": "auto"}, r"^borders: expected one of 'extend', 'clip' \(got 'auto'\)$"),
     ({"backend": "tpu"}, r"^backend: expected one of 'auto', 'cpu', 'cuda' \(got 'tpu'\)$"),
     ({"shadows": 1}, r"^shadows: expected True or False \(got 1\)$"),
     ({"camera": {"eye": [0, 0, 1]}}, r"^camera: camera field \"forward\" is missing$"),

@@ -126,6 +126,26 @@ def test_surface_fits_the_given_normals_or_estimates_them():
     assert stats["params"]["surface"] == "mls" and stats["params"]["normals"] == "none"
 
 
+def test_borders_are_the_cli_s_and_extended_by_default(tmp_path):
+    rng = np.random.default_rng(5)
+    square = np.column_stack([rng.uniform(-1, 1, (3000, 2)), np.zeros(3000)]).astype(np.float32)
+    np.savetxt(tmp_path / "square.xyz", square, fmt="%.9g")
+    flags = ["--up", "0,0,1", "--view", "20,50", "--size", "48x48"]
+    counts = {}
+    for borders in ["extend", "clip"]:
+        cli_ok("render", tmp_path / "square.xyz", *flags, "--borders", borders, "-o", tmp_path / "s.png",
+               "--hits", tmp_path / "s.ply")
+        cli = read_binary_ply(tmp_path / "s.ply")
+        _, hits, stats = pss.render(square, up=(0, 0, 1), view=(20, 50), size=(48, 48), borders=borders,
+                                    full_output=True)
+        assert stats["params"]["borders"] == borders
+        counts[borders] = stats["hits"]
+        assert counts[borders] == len(cli["x"])
+    assert counts["extend"] > counts["clip"] + 20  # the band past the square's edge
+    _, _, stats = pss.render(square, up=(0, 0, 1), view=(20, 50), size=(48, 48), full_output=True)
+    assert stats["hits"] == counts["extend"]
+
+
 def test_project_takes_any_array_like_and_hands_back_arrays_it_does_not_copy(bunny):
     as_list = bunny[:2000].astype(np.float64).tolist()
     points, _, _ = pss.project(as_list, 0.004)

@@ -141,6 +141,42 @@ PointCloud sample(const BoredBox& box, float spacing) {
   return cloud;
 }
 
+BorderTruth render_open_square(BorderMode borders, SurfaceOperator surface, Backend backend) {
+  SampleOptions o;
+  o.count = 4000;
+  const PointCloud cloud = sample_plane(1.0f, o);
+  const float h = suggested_h(cloud);
+  RayPssParams params = RayPssParams::from_h(h);
+  params.projection.surface = surface;
+  params.projection.borders = borders;
+  Stats stats;
+  const PreparedCloud prepared(cloud, params, backend, stats);
+  CameraSettings view;
+  view.width = view.height = 160;
+  view.azimuth_deg = 25;
+  view.elevation_deg = 60;
+  view.up = vec3(0, 0, 1);
+  const Camera camera = Camera::framing(cloud.bounds(), view);
+  const RenderedFrame frame =
+      render_cloud(prepared, camera, TraceSettings::for_camera(camera, false, false), backend, stats);
+  BorderTruth truth;
+  for (int y = 0; y < camera.height; ++y)
+    for (int x = 0; x < camera.width; ++x) {
+      const Ray ray = camera.primary_ray(x, y);
+      const Hit& hit = frame.hits[std::size_t(y) * std::size_t(camera.width) + std::size_t(x)];
+      const vec3 crossing = ray.at(-ray.origin.z / ray.dir.z);
+      if (std::max(std::abs(crossing.x), std::abs(crossing.y)) < 1 - 2 * h) {
+        ++truth.inner_pixels;
+        truth.holes += !hit.found() || glm::length(hit.point - crossing) > 0.01f;
+      }
+      if (!hit.found()) continue;
+      const double past = (std::max(std::abs(hit.point.x), std::abs(hit.point.y)) - 1) / h;
+      truth.beyond += past > 0.25;
+      truth.overshoot = std::max(truth.overshoot, past);
+    }
+  return truth;
+}
+
 CreaseTruth against_bored_box(const RenderedFrame& frame, const BoredBox& box, float near, float h) {
   CreaseTruth truth;
   std::int64_t flat = 0, crease = 0;

@@ -63,4 +63,15 @@ RenderTruth render_sphere(const PointCloud& cloud, SurfaceOperator surface, Outl
 // (σ = 0.016, noisy_sphere_with_strays(12000, 0.5, ·)) and their normals within 6 degrees.
 void expect_like_the_sphere(const RenderTruth& t, const char* name);
 
+// An open square [-1, 1]² at z = 0 (4,000 samples at random, spacing about 0.03) rendered at
+// 160² from above and aside with these borders and surface on `backend`: the widest reach of
+// a hit past the square's edge, in h, and the pixels whose ray meets the square at least 2h
+// inside its edge and found no hit there (within 0.01).
+struct BorderTruth {
+  std::int64_t inner_pixels = 0, holes = 0;
+  std::int64_t beyond = 0;    // hits more than 0.25h past the edge
+  double overshoot = 0;       // the farthest hit past the edge, in h (0: none)
+};
+BorderTruth render_open_square(BorderMode borders, SurfaceOperator surface, Backend backend);
+
 }  // namespace pss::test

@@ -46,6 +46,7 @@ class CloudScene : public Scene {
     params.epsilon = s.epsilon;
     params.max_iterations = s.iterations;
     params.secondary = s.secondary_full ? SecondaryMode::full : SecondaryMode::paper;
+    params.projection.borders = borders_for(s.borders, cloud_);
     validate(params);
     // APSS and RIMLS need the samples' normals, which a cloud prepared for MLS lacks; once
     // there, every operator renders from the same preparation.

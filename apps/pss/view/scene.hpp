@@ -6,6 +6,7 @@
 
 #include <atomic>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,7 @@ struct ViewSettings {
   float epsilon = 0;
   int iterations = 2;
   bool secondary_full = true;
+  std::optional<BorderMode> borders;  // --borders: clip, extend, or (none) auto
   // Volumes: the flags of `pss volume`.
   VolumeSettings volume;
   bool debug_projection = false;  // the paper's Figure 2

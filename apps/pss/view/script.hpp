@@ -7,7 +7,7 @@
 //   camera FILE.json     the camera of a file (--camera's format), until the next move
 //   set NAME VALUE       a panel value: h, rho, support (adaptive|global), surface
 //                        (mls|apss|rimls), epsilon,
-//                        iterations, secondary (full|paper),
+//                        iterations, secondary (full|paper), borders (auto|clip|extend),
 //                        shadows, reflections, debug (on|off), iso, threshold, gradient
 //                        (on|off), method (predictor|predictor-corrector)
 //   wait                 until the full-size frame of the current view is drawn

@@ -8,6 +8,7 @@
 #include "pss/core/error.hpp"
 #include "pss/core/text.hpp"
 #include "pss/io/output_file.hpp"
+#include "pss/points/render_cloud.hpp"
 #include "pss/render/camera_file.hpp"
 #include "pss/render/frame_outputs.hpp"
 
@@ -47,6 +48,7 @@ void set_value(ViewSettings& v, const Step& s, const std::string& script) {
   else if (name == "epsilon") v.epsilon = number_of(s, 1, script);
   else if (name == "iterations") v.iterations = int(number_of(s, 1, script));
   else if (name == "secondary") v.secondary_full = value != "paper";
+  else if (name == "borders") v.borders = border_choice_of(choice_of(s, {"auto", "clip", "extend"}, script));
   else if (name == "shadows") v.shadows = switch_of(s, script);
   else if (name == "reflections") v.reflections = switch_of(s, script);
   else if (name == "debug") v.debug_projection = switch_of(s, script);

@@ -179,6 +179,10 @@ class Viewer {
     int secondary = s.secondary_full ? 0 : 1;
     const char* modes[] = {"full", "paper"};
     if (ImGui::Combo("secondary", &secondary, modes, 2)) s.secondary_full = secondary == 0;
+    int borders = s.borders ? int(*s.borders) + 1 : 0;
+    const char* border_modes[] = {"auto", "clip", "extend"};  // none, then BorderMode's order
+    if (ImGui::Combo("borders", &borders, border_modes, 3))
+      s.borders = borders == 0 ? std::nullopt : std::optional<BorderMode>(BorderMode(borders - 1));
   }
 
   void volume_panel(ViewSettings& s, const SceneInfo& info) {

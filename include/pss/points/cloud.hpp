@@ -39,6 +39,10 @@ struct PointCloud {
   std::vector<vec3> normals;            // empty, or one per position
   std::vector<Rgb8> colors;             // empty, or one per position
   std::vector<ScalarProperty> scalars;  // in the file's order
+  // The points are a mesh's vertices (the file declares faces): its surface ends at its
+  // boundary vertices, where a scan's ends somewhere past its last points (the ray tracer's
+  // `--borders auto`, points/borders.hpp).
+  bool mesh_vertices = false;
 
   std::size_t size() const { return positions.size(); }
   bool has_normals() const { return !normals.empty(); }

@@ -58,6 +58,13 @@ enum class NormalSource : unsigned char { file, estimate };
 // (points/outliers.hpp, `--outliers set-aside|keep`).
 enum class OutlierPolicy : unsigned char { set_aside, keep };
 
+// Whether the surface ends at its samples (points/borders.hpp: what the ray tracer shows,
+// `--borders clip`) or runs on past the last of them as the projection extrapolates (the
+// paper; what `pss project` computes for any point given).
+enum class BorderMode : unsigned char { clip, extend };
+
+inline const char* border_name(BorderMode m) { return m == BorderMode::clip ? "clip" : "extend"; }
+
 struct ProjectionParams {
   float h = 0;    // Gaussian width of θ3, the local level of detail (with adaptive support, the least h_i)
   float rho = 0;  // range-query radius, 2h in the paper
@@ -66,6 +73,7 @@ struct ProjectionParams {
   SurfaceOperator surface = SurfaceOperator::mls;
   NormalSource normals = NormalSource::file;  // read on the host, before any kernel
   OutlierPolicy outliers = OutlierPolicy::set_aside;  // likewise
+  BorderMode borders = BorderMode::extend;  // clip: Projection::surrounded is computed
   // The MLS alternations of t and n; for APSS and RIMLS, the fits moved to the last point
   // (with PlaneFitMethod::wls, one fit at r, as the ray tracer's loop takes).
   int max_mls_iterations = 4;
@@ -90,6 +98,7 @@ struct Projection {
   float t;
   int neighbours;
   ProjectionStatus status;
+  bool surrounded = true;  // with BorderMode::clip, whether P(r) lies among its samples
 };
 
 // What a projection that cannot start returns: r itself, with the hint's normal (or +z).

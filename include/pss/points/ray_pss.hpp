@@ -41,6 +41,8 @@ struct RayPssParams {
   // - δ = b/2: every surface point within b/2 of a sample then lies within b of a kept
   //   polynomial's sample, inside its ball; δ = 0.6b lets grazing rays through a sphere's
   //   silhouette (tests/ray_pss_test.cpp).
+  // - borders extend, the paper's: projection.borders = clip bounds the surface by its
+  //   samples (points/borders.hpp), what `pss render` chooses for a mesh's vertices.
   // - offset = b/2: a secondary ray leaves from above the neighbours' polynomials, which
   //   follow the surface to within noise, and so does not re-hit its own surface.
   static RayPssParams from_h(float h) {
@@ -178,10 +180,14 @@ PSS_INLINE Hit intersect_pss(const PointSurfaceView& s, const Ray& ray, float t_
     vec3 hint = lp.normal;
     for (int it = 1;; ++it) {
       const vec3 r = ray.at(t);
-      const Projection p = project_onto_surface(s.grid, r, prm.projection, hint);
+      // Whether P(r) lies among its samples matters where r becomes the hit: within ε, or
+      // at the last iteration.
+      const Projection p =
+          project_onto_surface(s.grid, r, prm.projection, hint, it >= max_iterations ? kInfinity : epsilon);
       ++hit.iterations;
       if (p.status == ProjectionStatus::too_few_neighbours) break;
       if (length2(p.point - r) < epsilon * epsilon) {
+        if (!p.surrounded) break;  // past the last samples (--borders clip)
         hit.t = t;
         hit.point = r;
         hit.normal = p.normal;  // g has no linear terms: n is the graph's normal at γ
@@ -203,6 +209,7 @@ PSS_INLINE Hit intersect_pss(const PointSurfaceView& s, const Ray& ray, float t_
       t = t_next;
       hint = p.normal;
       if (it >= max_iterations) {
+        if (!p.surrounded) break;
         hit.t = t;
         hit.point = ray.at(t);
         const vec3 l = p.frame.to_local(hit.point);

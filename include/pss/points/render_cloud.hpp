@@ -4,7 +4,9 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include "pss/backend/backend.hpp"
@@ -41,6 +43,19 @@ struct PointFinder {
 // each hit (points/sample_colors.hpp).
 enum class SurfaceColor : unsigned char { albedo, samples };
 
+// `--borders auto|clip|extend` (points/borders.hpp); auto is no choice (nullopt): a mesh's
+// vertices are clipped, their surface ending at them, and a scan's surface extends past its
+// last points, which stand for the surface around them (its border is where the scanner
+// stopped, not where the object ends). A name it does not give is auto (callers check it).
+inline std::optional<BorderMode> border_choice_of(std::string_view name) {
+  if (name == "clip") return BorderMode::clip;
+  if (name == "extend") return BorderMode::extend;
+  return std::nullopt;
+}
+inline BorderMode borders_for(std::optional<BorderMode> choice, const PointCloud& cloud) {
+  return choice.value_or(cloud.mesh_vertices ? BorderMode::clip : BorderMode::extend);
+}
+
 // The host owner of everything a PointSurfaceView points to.
 class PreparedCloud {
  public:
@@ -55,7 +70,7 @@ class PreparedCloud {
   ~PreparedCloud();
 
   // Takes the parameters of `params` that the preparation does not depend on: ε, the
-  // iterations and candidates per ray, the secondary rays' mode and offset, and the surface
+  // iterations and candidates per ray, the secondary rays' mode and offset, the borders, and the surface
   // operator among those prepared for (MLS always; APSS and RIMLS when the cloud was
   // prepared with one of them, which gives the grid the samples' normals; an Error
   // otherwise). A viewer changes them without preparing again. validate(params) first.

@@ -5,6 +5,7 @@
 #include <type_traits>
 
 #include "pss/points/algebraic_sphere.hpp"
+#include "pss/points/borders.hpp"
 #include "pss/points/projection.hpp"
 #include "pss/points/robust_implicit.hpp"
 
@@ -19,21 +20,34 @@ namespace pss {
 // one neighbourhood, not one per operator.
 template <class Nb = Neighbourhood>
 PSS_HOST_DEVICE Projection project_onto_surface(const SupportGridView& grid, vec3 r, const ProjectionParams& params,
-                                                vec3 normal_hint) {
+                                                vec3 normal_hint, float bounded_within = kInfinity) {
   const int steps = params.plane == PlaneFitMethod::mls ? params.max_mls_iterations : 1;
+  // With BorderMode::clip, whether P(r) lies among N(r) (points/borders.hpp), read from the
+  // same gather; only where P(r) is within `bounded_within` of r (the ray tracer asks where
+  // it would take the point as a hit).
+  auto bounded = [&](const auto& samples, Projection p) {
+    if (params.borders == BorderMode::clip && p.status != ProjectionStatus::too_few_neighbours &&
+        length2(p.point - r) < bounded_within * bounded_within)
+      p.surrounded = samples_surround(samples, p.point, p.normal);
+    return p;
+  };
   if constexpr (std::is_same_v<Nb, SampleIndices>) {
     const Nb samples(grid, r);
     switch (params.surface) {
-      case SurfaceOperator::apss: return project_apss(samples, r, params, normal_hint, steps);
-      case SurfaceOperator::rimls: return project_rimls(samples, r, params, normal_hint, steps);
+      case SurfaceOperator::apss: return bounded(samples, project_apss(samples, r, params, normal_hint, steps));
+      case SurfaceOperator::rimls: return bounded(samples, project_rimls(samples, r, params, normal_hint, steps));
       case SurfaceOperator::mls: break;
     }
-    return project_mls(samples, r, params, normal_hint);
+    return bounded(samples, project_mls(samples, r, params, normal_hint));
   } else {
-    if (params.surface == SurfaceOperator::mls) return project_to_pss<Nb>(grid, r, params, normal_hint);
+    if (params.surface == SurfaceOperator::mls) {
+      const Nb neighbours(grid, r);
+      return bounded(neighbours, project_mls(neighbours, r, params, normal_hint));
+    }
     const SampleIndices samples(grid, r);
-    return params.surface == SurfaceOperator::apss ? project_apss(samples, r, params, normal_hint, steps)
-                                                   : project_rimls(samples, r, params, normal_hint, steps);
+    return bounded(samples, params.surface == SurfaceOperator::apss
+                                ? project_apss(samples, r, params, normal_hint, steps)
+                                : project_rimls(samples, r, params, normal_hint, steps));
   }
 }
 
