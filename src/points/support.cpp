@@ -8,6 +8,7 @@
 #include "pss/core/error.hpp"
 #include "pss/core/progress.hpp"
 #include "kd_tree.hpp"
+#include "rows.hpp"
 #include "unit_frame.hpp"
 
 namespace pss {
@@ -35,11 +36,19 @@ double surface_variation(const double c[6]) {  // xx, yy, zz, xy, xz, yz
 // far from the rest has a large d_k but takes its neighbours' width, which leaves it too few
 // samples to make a surface of its own (no floating blob); and widths vary smoothly, so the
 // surface does not pucker where two neighbours' widths differ by chance. Beside it, the least
-// d_k of p_i's neighbours over that median (kSparseEvenness).
+// d_k of p_i's neighbours over that median (kSparseEvenness). In a cloud sampled in rows
+// (rows.hpp) a row's sample takes the distance to the next row for its d_k; the widths then
+// widen against the median of the plain d_k, what h was estimated from.
 struct NeighbourhoodSpacing {
   std::vector<float> spacing;  // s_i, in the input's units
   std::vector<float> least;    // min over the k nearest neighbours of d_k, over s_i
+  float rows_median = 0;       // in a cloud of rows, the median of the plain d_k (input units); else 0
 };
+
+float median_of(std::vector<float> values) {
+  std::nth_element(values.begin(), values.begin() + std::ptrdiff_t(values.size() / 2), values.end());
+  return values[values.size() / 2];
+}
 NeighbourhoodSpacing neighbourhood_spacing(std::span<const vec3> unit, double scale, const points_detail::KdTree& tree,
                                            int k) {
   const auto n = std::int64_t(unit.size());
@@ -56,6 +65,11 @@ NeighbourhoodSpacing neighbourhood_spacing(std::span<const vec3> unit, double sc
     const std::size_t eighth = std::min<std::size_t>(8, found - 1);
     own[std::size_t(i)] = float(std::min(std::sqrt(double(d2[found - 1])), 2 * std::sqrt(double(d2[eighth]))));
   }, &progress);
+  const std::vector<float> gaps = points_detail::row_gaps(unit, tree, own);
+  if (!gaps.empty()) {
+    out.rows_median = float(double(median_of(own)) * scale);
+    for (std::size_t i = 0; i < own.size(); ++i) own[i] = std::max(own[i], gaps[i]);
+  }
   cpu::parallel_for(n, [&](std::int64_t i) {
     unsigned index[kSupportNeighbour + 1];
     float d2[kSupportNeighbour + 1];
@@ -106,9 +120,7 @@ SupportWidths support_widths(std::span<const vec3> points, const ProjectionParam
   tree.buildIndex();
   const NeighbourhoodSpacing spacing = neighbourhood_spacing(unit, frame.scale, tree, k);
   const std::vector<float>& d = spacing.spacing;
-  std::vector<float> sorted = d;
-  std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(sorted.size() / 2), sorted.end());
-  const float median_d = sorted[sorted.size() / 2];
+  const float median_d = spacing.rows_median > 0 ? spacing.rows_median : median_of(d);
   if (!(median_d > 0)) return out;  // most samples coincide with k others: no spacing to follow
 
   // Never narrower than h: where the cloud is denser than its median the paper's width stays
@@ -141,9 +153,7 @@ SupportWidths support_widths(std::span<const vec3> points, const ProjectionParam
     out.least = std::min(out.least, out.h[i]);
     out.largest = std::max(out.largest, out.h[i]);
   }
-  sorted = out.h;
-  std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(sorted.size() / 2), sorted.end());
-  out.median = sorted[sorted.size() / 2];
+  out.median = median_of(out.h);
   return out;
 }
 
