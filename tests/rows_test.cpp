@@ -76,17 +76,8 @@ TEST(Rows, ASphereSampledInRingsRendersWhole) {
   const auto render = [&](Support support) {
     RayPssParams params = RayPssParams::from_h(h);
     params.projection.support = support;
-    Stats stats;
-    const PreparedCloud prepared(cloud, params, Backend::cpu, stats);
-    CameraSettings view;
-    view.width = view.height = 160;
-    view.azimuth_deg = 30;
-    view.elevation_deg = 10;
-    view.up = vec3(0, 0, 1);
-    const Camera camera = Camera::framing(cloud.bounds(), view);
-    return test::against_sphere(
-        render_cloud(prepared, camera, TraceSettings::for_camera(camera, false, false), Backend::cpu, stats),
-        test::Sphere{}, 0.05f);
+    return test::against_sphere(test::render_at_160(cloud, params, Backend::cpu, cloud.bounds(), 30, 10, vec3(0, 0, 1)),
+                                test::Sphere{}, 0.05f);
   };
   const test::RenderTruth adaptive = render(Support::adaptive), global = render(Support::global);
   std::printf("holes: adaptive %lld, one width %lld of %lld\n", (long long)adaptive.holes, (long long)global.holes,

@@ -141,6 +141,19 @@ PointCloud sample(const BoredBox& box, float spacing) {
   return cloud;
 }
 
+RenderedFrame render_at_160(const PointCloud& cloud, const RayPssParams& params, Backend backend, const Aabb& frame,
+                            float azimuth_deg, float elevation_deg, vec3 up) {
+  Stats stats;
+  const PreparedCloud prepared(cloud, params, backend, stats);
+  CameraSettings view;
+  view.width = view.height = 160;
+  view.azimuth_deg = azimuth_deg;
+  view.elevation_deg = elevation_deg;
+  view.up = up;
+  const Camera camera = Camera::framing(frame, view);
+  return render_cloud(prepared, camera, TraceSettings::for_camera(camera, false, false), backend, stats);
+}
+
 BorderTruth render_open_square(BorderMode borders, SurfaceOperator surface, Backend backend) {
   SampleOptions o;
   o.count = 4000;
@@ -149,16 +162,8 @@ BorderTruth render_open_square(BorderMode borders, SurfaceOperator surface, Back
   RayPssParams params = RayPssParams::from_h(h);
   params.projection.surface = surface;
   params.projection.borders = borders;
-  Stats stats;
-  const PreparedCloud prepared(cloud, params, backend, stats);
-  CameraSettings view;
-  view.width = view.height = 160;
-  view.azimuth_deg = 25;
-  view.elevation_deg = 60;
-  view.up = vec3(0, 0, 1);
-  const Camera camera = Camera::framing(cloud.bounds(), view);
-  const RenderedFrame frame =
-      render_cloud(prepared, camera, TraceSettings::for_camera(camera, false, false), backend, stats);
+  const RenderedFrame frame = render_at_160(cloud, params, backend, cloud.bounds(), 25, 60, vec3(0, 0, 1));
+  const Camera& camera = frame.camera;
   BorderTruth truth;
   for (int y = 0; y < camera.height; ++y)
     for (int x = 0; x < camera.width; ++x) {
@@ -225,19 +230,10 @@ RenderTruth render_sphere(const PointCloud& cloud, SurfaceOperator surface, Outl
   RayPssParams params = RayPssParams::from_h(suggested_h(cloud));
   params.projection.surface = surface;
   params.projection.outliers = outliers;
-  Stats stats;
-  const PreparedCloud prepared(cloud, params, backend, stats);
-  CameraSettings view;
-  view.width = view.height = 160;
-  view.azimuth_deg = 30;
-  view.elevation_deg = 20;
   Aabb sphere_box;  // the sphere's, not the strays'
   sphere_box.grow(vec3(-1.0f));
   sphere_box.grow(vec3(1.0f));
-  const Camera camera = Camera::framing(sphere_box, view);
-  const RenderedFrame frame =
-      render_cloud(prepared, camera, TraceSettings::for_camera(camera, false, false), backend, stats);
-  return against_sphere(frame, Sphere{}, 0.05f);
+  return against_sphere(render_at_160(cloud, params, backend, sphere_box, 30, 20), Sphere{}, 0.05f);
 }
 
 }  // namespace pss::test

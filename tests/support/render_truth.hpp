@@ -8,6 +8,7 @@
 #include "pss/backend/backend.hpp"
 #include "pss/points/cloud.hpp"
 #include "pss/points/projection.hpp"
+#include "pss/points/ray_pss.hpp"
 #include "pss/render/camera.hpp"
 #include "pss/render/rendered_frame.hpp"
 #include "shapes.hpp"
@@ -53,6 +54,11 @@ struct CreaseTruth {
 // The frame against the bored box (sphere tracing finds each ray's first crossing); `h` sets
 // the bands of flat_normal_deg and crease_normal_deg.
 CreaseTruth against_bored_box(const RenderedFrame& frame, const BoredBox& box, float near, float h);
+
+// `cloud` rendered with `params` on `backend` at 160², no shadows or reflections, from
+// (azimuth, elevation) about `up`, framing `frame`.
+RenderedFrame render_at_160(const PointCloud& cloud, const RayPssParams& params, Backend backend, const Aabb& frame,
+                            float azimuth_deg, float elevation_deg, vec3 up = vec3(0, 1, 0));
 
 // `cloud` (a unit sphere's samples, and strays) rendered at 160² on `backend` with the
 // default parameters, this surface and outlier policy, against the unit sphere (near: 0.05).
