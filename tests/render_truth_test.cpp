@@ -63,5 +63,28 @@ TEST(RenderTruth, ABoredBoxKeepsItsFacesAndRimlsItsCreases) {
   EXPECT_LT(crease_deg[int(SurfaceOperator::rimls)], 0.5 * crease_deg[int(SurfaceOperator::mls)]);
 }
 
+// The same box without its normals: APSS and RIMLS estimate them (each sample's plane, oriented
+// along a spanning tree), and keep the faces as with the file's.
+TEST(RenderTruth, ABoredBoxWithoutNormalsEstimatesThem) {
+  const test::BoredBox box;
+  PointCloud cloud = test::sample(box, 0.03f);
+  cloud.normals.clear();
+  const float h = test::suggested_h(cloud);
+  for (const SurfaceOperator surface : {SurfaceOperator::apss, SurfaceOperator::rimls}) {
+    RayPssParams params = RayPssParams::from_h(h);
+    params.projection.surface = surface;
+    const test::CreaseTruth t =
+        test::against_bored_box(test::render_at_160(cloud, params, Backend::cpu, cloud.bounds(), 30, 35), box, 0.02f, h);
+    std::printf("%s, estimated normals: holes %lld, extra %lld of %lld; normals %.2f deg on the faces\n",
+                surface_name(surface), (long long)t.holes, (long long)t.extra, (long long)t.data_pixels,
+                t.flat_normal_deg);
+    SCOPED_TRACE(surface_name(surface));
+    ASSERT_GT(t.data_pixels, 4000);
+    EXPECT_LE(double(t.holes), 0.005 * double(t.data_pixels));
+    EXPECT_LE(double(t.extra), 0.01 * double(t.data_pixels));
+    EXPECT_LT(t.flat_normal_deg, 1.0);
+  }
+}
+
 }  // namespace
 }  // namespace pss

@@ -192,7 +192,9 @@ PSS_HOST_DEVICE Projection project_mls(const Nb& neighbours, vec3 r, const Proje
   const float h = local_width(moments);
   const float t_tolerance = params.t_tolerance * (h / params.h);
 
-  EigenResult eig = smallest_eigenvector(moments.covariance_about_mean(), out.normal);
+  // The hint itself, not unprojected()'s +z when there is none: a start vector orthogonal to
+  // the normal never turns to it where the data are exactly planar (a CAD face x = const).
+  EigenResult eig = smallest_eigenvector(moments.covariance_about_mean(), normal_hint);
   vec3 n = eig.vector;
   float t = glm::dot(moments.mean() - r, n);
   ProjectionStatus status = ProjectionStatus::converged;
