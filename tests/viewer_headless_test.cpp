@@ -99,10 +99,10 @@ TEST_F(ViewerHeadless, TheBordersChoiceReachesItsFrames) {
   const test::CliResult r = test::run_pss(
       "view " + path("square.off") + " --headless --size 96x96 --script " +
       write("steps.txt", "view 20 50\nscreenshot a\nset borders extend\nscreenshot b\nset borders auto\nscreenshot c\n"
-                         "set borders trim\n") +
+                         "set borders extend\nset borders clip\nscreenshot d\nset borders trim\n") +
       " --screenshot-dir " + dir_.string());
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_NE(r.err.find("steps.txt:7: expected auto or clip or extend"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("steps.txt:10: expected auto or clip or extend"), std::string::npos) << r.err;
   const auto rendered = [&](const std::string& flags, const std::string& name) {
     EXPECT_EQ(test::run_pss("render " + path("square.off") + " --size 96x96 --camera " + path("a.json") + flags + " -o " +
                             path(name)).exit_code, 0);
@@ -111,6 +111,7 @@ TEST_F(ViewerHeadless, TheBordersChoiceReachesItsFrames) {
   EXPECT_EQ(read(path("a.png")), rendered(" --borders clip", "ra.png"));
   EXPECT_EQ(read(path("b.png")), rendered(" --borders extend", "rb.png"));
   EXPECT_EQ(read(path("c.png")), read(path("a.png")));
+  EXPECT_EQ(read(path("d.png")), read(path("a.png")));
   EXPECT_NE(read(path("a.png")), read(path("b.png")));
 }
 

@@ -135,7 +135,8 @@ def project(points, h=None, *, normals=None, surface="mls", outliers="set-aside"
 
 def render(points, h=None, *, normals=None, colors=None, surface="mls", outliers="set-aside", rho=None, support=None,
            b=None, epsilon=None, ball_spacing=None,
-           iterations=2, secondary="full", borders="extend", size=None, view=None, fov=None, look_at=None, up=None, distance=None,
+           iterations=2, secondary="full", borders="extend",
+           size=None, view=None, fov=None, look_at=None, up=None, distance=None,
            zoom=None, roll=None, camera=None, shadows=False, reflections=False, reflectivity=None,
            transparent=False, backend="auto", full_output=False):
     """Ray trace the point set surface of (N, 3) points (the paper's section 5.2), as `pss render`.

@@ -43,34 +43,32 @@ std::vector<unsigned> chains(std::span<const vec3> unit, const KdTree& tree) {
 
 }  // namespace
 
-std::vector<float> row_gaps(std::span<const vec3> unit, const KdTree& tree, std::span<const float> kth) {
+std::vector<float> row_gaps(std::span<const vec3> unit, const KdTree& tree, std::span<const float> kth,
+                            std::span<const float> wide) {
   const std::size_t n = unit.size();
+  // Fewer samples than two rows: a cloud of rows needs more than one.
   if (n < 2 * std::size_t(kRowLength)) return {};
+  const auto most = [n](const std::vector<char>& flags) {
+    return 2 * std::count(flags.begin(), flags.end(), 1) >= std::ptrdiff_t(n);
+  };
+  std::vector<char> on_row(n);
+  for (std::size_t i = 0; i < n; ++i) on_row[i] = wide[i] > kRowGrowth * kth[i];
+  if (!most(on_row)) return {};  // the usual case, before any chain is built
   const std::vector<unsigned> chain = chains(unit, tree);
   std::vector<unsigned> size(n, 0);
   for (unsigned c : chain) ++size[c];
-  constexpr int kWide = 30;
-  std::vector<char> on_row(n, 0);
-  cpu::parallel_for(std::int64_t(n), [&](std::int64_t s) {
-    const auto i = std::size_t(s);
-    if (size[chain[i]] < unsigned(kRowLength)) return;
-    unsigned index[kWide + 1];
-    float d2[kWide + 1];
-    const std::size_t found = tree.knnSearch(&unit[i].x, kWide + 1, index, d2);
-    on_row[i] = found == kWide + 1 && std::sqrt(d2[kWide]) > kRowGrowth * kth[i];
-  });
-  if (2 * std::count(on_row.begin(), on_row.end(), 1) < std::ptrdiff_t(n)) return {};
+  for (std::size_t i = 0; i < n; ++i) on_row[i] = on_row[i] && size[chain[i]] >= unsigned(kRowLength);
+  if (!most(on_row)) return {};
 
   std::vector<float> gap(n, 0.0f);
   cpu::parallel_for(std::int64_t(n), [&](std::int64_t s) {
     const auto i = std::size_t(s);
     if (!on_row[i]) return;
-    std::vector<unsigned> index;
-    std::vector<float> d2;
-    for (const std::size_t k : {std::size_t(64), std::size_t(512)}) {
-      index.resize(std::min(k, n));
-      d2.resize(index.size());
-      const std::size_t found = tree.knnSearch(&unit[i].x, index.size(), index.data(), d2.data());
+    constexpr std::size_t kFarthest = 512;
+    unsigned index[kFarthest];
+    float d2[kFarthest];
+    for (const std::size_t k : {std::size_t(64), kFarthest}) {
+      const std::size_t found = tree.knnSearch(&unit[i].x, std::min(k, n), index, d2);
       for (std::size_t j = 1; j < found; ++j)
         if (chain[index[j]] != chain[i]) {
           gap[i] = std::sqrt(d2[j]);

@@ -42,6 +42,7 @@ std::vector<vec3> sample_normals(const SupportGrid& grid, std::span<const vec3> 
   ProjectionParams plane = params;
   plane.surface = SurfaceOperator::mls;
   plane.plane = PlaneFitMethod::wls;
+  plane.borders = BorderMode::extend;  // a sample's plane, wherever it lies
   {
     const GridMirror g(backend, grid);
     const Mirror<vec3> hint(backend, hints);

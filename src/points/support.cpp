@@ -52,20 +52,23 @@ float median_of(std::vector<float> values) {
 NeighbourhoodSpacing neighbourhood_spacing(std::span<const vec3> unit, double scale, const points_detail::KdTree& tree,
                                            int k) {
   const auto n = std::int64_t(unit.size());
-  std::vector<float> own(unit.size());
+  std::vector<float> own(unit.size()), wide(unit.size());
   NeighbourhoodSpacing out{std::vector<float>(unit.size()), std::vector<float>(unit.size())};
   Progress progress("support widths", 2 * n);
-  // k + 1 below: each query finds its own point at distance 0.
+  // 2k + 1 below: each query finds its own point at distance 0; the 2k-th nearest tells a
+  // row from a surface (rows.hpp).
   cpu::parallel_for(n, [&](std::int64_t i) {
-    unsigned index[kSupportNeighbour + 1];
-    float d2[kSupportNeighbour + 1];
-    const std::size_t found = tree.knnSearch(&unit[std::size_t(i)].x, std::size_t(k + 1), index, d2);
+    unsigned index[2 * kSupportNeighbour + 1];
+    float d2[2 * kSupportNeighbour + 1];
+    const std::size_t found = tree.knnSearch(&unit[std::size_t(i)].x, std::size_t(2 * k + 1), index, d2);
     // A sample of a small cluster, apart from the rest, finds its 15th neighbour beyond the
     // gap: on an even sampling d_15 ≈ 1.4·d_8, so more than 2·d_8 is a gap, not spacing.
+    const std::size_t kth = std::min<std::size_t>(std::size_t(k), found - 1);
     const std::size_t eighth = std::min<std::size_t>(8, found - 1);
-    own[std::size_t(i)] = float(std::min(std::sqrt(double(d2[found - 1])), 2 * std::sqrt(double(d2[eighth]))));
+    own[std::size_t(i)] = float(std::min(std::sqrt(double(d2[kth])), 2 * std::sqrt(double(d2[eighth]))));
+    wide[std::size_t(i)] = std::sqrt(d2[found - 1]);
   }, &progress);
-  const std::vector<float> gaps = points_detail::row_gaps(unit, tree, own);
+  const std::vector<float> gaps = points_detail::row_gaps(unit, tree, own, wide);
   if (!gaps.empty()) {
     out.rows_median = float(double(median_of(own)) * scale);
     for (std::size_t i = 0; i < own.size(); ++i) own[i] = std::max(own[i], gaps[i]);

@@ -88,7 +88,6 @@ TEST(GpuRender, NoisySphereWithStraysIsTheSphereForEverySurface) {
   }
 }
 
-// FrameHits::summary on the device: the hits' counts come back (HitCountsKernel), not the hits.
 // `--borders clip` on the device (tests/borders_test.cpp): an open square ends at its samples,
 // whole inside; extended, it runs on past them as on the CPU.
 TEST(GpuRender, AnOpenSquareEndsAtItsSamplesWhenClipped) {
@@ -101,6 +100,7 @@ TEST(GpuRender, AnOpenSquareEndsAtItsSamplesWhenClipped) {
   EXPECT_GT(extend.beyond, 200);
 }
 
+// FrameHits::summary on the device: the hits' counts come back (HitCountsKernel), not the hits.
 TEST(GpuRender, AFrameWithoutItsHitsHasTheirCounts) {
   if (cuda::device_count() == 0) GTEST_SKIP() << "no CUDA device";
   const PointCloud cloud = noisy_torus();

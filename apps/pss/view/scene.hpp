@@ -39,7 +39,7 @@ struct ViewSettings {
   float epsilon = 0;
   int iterations = 2;
   bool secondary_full = true;
-  std::optional<BorderMode> borders;  // --borders: clip, extend, or (none) auto
+  std::optional<BorderMode> borders;  // as render's --borders: clip, extend, or (none) auto
   // Volumes: the flags of `pss volume`.
   VolumeSettings volume;
   bool debug_projection = false;  // the paper's Figure 2

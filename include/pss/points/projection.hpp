@@ -98,7 +98,7 @@ struct Projection {
   float t;
   int neighbours;
   ProjectionStatus status;
-  bool surrounded = true;  // with BorderMode::clip, whether P(r) lies among its samples
+  bool surrounded = true;  // with BorderMode::clip, whether P(r) lies among its samples; true where not tested
 };
 
 // What a projection that cannot start returns: r itself, with the hint's normal (or +z).

@@ -209,7 +209,7 @@ PSS_INLINE Hit intersect_pss(const PointSurfaceView& s, const Ray& ray, float t_
       t = t_next;
       hint = p.normal;
       if (it >= max_iterations) {
-        if (!p.surrounded) break;
+        if (!p.surrounded) break;  // a capped hit past the last samples too
         hit.t = t;
         hit.point = ray.at(t);
         const vec3 l = p.frame.to_local(hit.point);
