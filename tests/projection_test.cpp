@@ -14,6 +14,7 @@
 
 #include "pss/core/error.hpp"
 #include "pss/points/project_cloud.hpp"
+#include "pss/points/surface_projection.hpp"
 #include "support/render_truth.hpp"
 #include "support/shapes.hpp"
 
@@ -175,7 +176,7 @@ TEST(Projection, ProjectedPointsAreNearlyFixed) {
   const SupportGrid grid = test::support_grid(cloud.positions, params);
   double first = 0, second = 0, worst = 0;
   for (std::size_t i = 0; i < cloud.size(); ++i) {
-    const Projection again = project_to_pss(grid.view(), once.cloud.positions[i], params, once.cloud.normals[i]);
+    const Projection again = project_onto_surface(grid.view(), once.cloud.positions[i], params, once.cloud.normals[i]);
     first += glm::length(once.cloud.positions[i] - cloud.positions[i]);
     const double moved = glm::length(again.point - once.cloud.positions[i]);
     second += moved;
@@ -203,8 +204,8 @@ TEST(Projection, NeighbourhoodsBeyondTheBufferProjectAsIfStored) {
   int beyond = 0;
   for (std::size_t i = 0; i < cloud.size(); i += 10) {
     const vec3 r = cloud.positions[i];
-    const Projection walked = project_to_pss(grid.view(), r, params, vec3(0.0f));
-    const Projection stored = project_to_pss<NeighbourhoodOf<4096>>(grid.view(), r, params, vec3(0.0f));
+    const Projection walked = project_onto_surface(grid.view(), r, params, vec3(0.0f));
+    const Projection stored = project_onto_surface<NeighbourhoodOf<4096>>(grid.view(), r, params, vec3(0.0f));
     ASSERT_LE(stored.neighbours, 4096);
     beyond += walked.neighbours > Neighbourhood::kCapacity;
     EXPECT_LT(glm::length(walked.point - stored.point), 1e-4f * params.h) << i;
@@ -229,9 +230,9 @@ TEST(Projection, NeighbourIndicesProjectAsStoredNeighbourhoods) {
     int overflowed = 0;
     for (std::size_t i = 0; i < cloud.size(); i += 8) {
       const vec3 r = cloud.positions[i] + vec3(0.3f * params.h, -0.2f * params.h, 0.1f * params.h);
-      const Projection stored = project_to_pss<NeighbourhoodOf<4096>>(grid.view(), r, params, vec3(0.0f));
-      const Projection indices = project_to_pss<NeighbourIndicesOf<96>>(grid.view(), r, params, vec3(0.0f));
-      const Projection walked = project_to_pss<NeighbourIndicesOf<8>>(grid.view(), r, params, vec3(0.0f));
+      const Projection stored = project_onto_surface<NeighbourhoodOf<4096>>(grid.view(), r, params, vec3(0.0f));
+      const Projection indices = project_onto_surface<NeighbourIndicesOf<96>>(grid.view(), r, params, vec3(0.0f));
+      const Projection walked = project_onto_surface<NeighbourIndicesOf<8>>(grid.view(), r, params, vec3(0.0f));
       overflowed += stored.neighbours > 8;
       for (const Projection* p : {&indices, &walked}) {
         EXPECT_EQ(p->neighbours, stored.neighbours) << i;
@@ -257,8 +258,8 @@ TEST(Projection, NeighbourIndicesAtAndPastTheirCapacity) {
     const ProjectionParams params = ProjectionParams::from_h(0.5f, PlaneFitMethod::mls);
     const SupportGrid grid = test::support_grid(cloud.positions, params);
     const vec3 r(0.1f, -0.05f, 0.2f);
-    const Projection stored = project_to_pss<NeighbourhoodOf<4096>>(grid.view(), r, params, vec3(0.0f));
-    const Projection indices = project_to_pss<NeighbourIndicesOf<8>>(grid.view(), r, params, vec3(0.0f));
+    const Projection stored = project_onto_surface<NeighbourhoodOf<4096>>(grid.view(), r, params, vec3(0.0f));
+    const Projection indices = project_onto_surface<NeighbourIndicesOf<8>>(grid.view(), r, params, vec3(0.0f));
     ASSERT_EQ(stored.neighbours, inside);
     EXPECT_EQ(indices.neighbours, inside);
     EXPECT_EQ(indices.status, stored.status) << inside;

@@ -36,20 +36,12 @@ TEST(RenderTruth, ABoredBoxKeepsItsFacesAndRimlsItsCreases) {
   const test::BoredBox box;
   const PointCloud cloud = test::sample(box, 0.03f);
   const float h = test::suggested_h(cloud);
-  CameraSettings view;
-  view.width = view.height = 160;
-  view.azimuth_deg = 30;
-  view.elevation_deg = 35;
-  const Camera camera = Camera::framing(cloud.bounds(), view);
   double crease_deg[3] = {};
   for (const SurfaceOperator surface : {SurfaceOperator::mls, SurfaceOperator::apss, SurfaceOperator::rimls}) {
     RayPssParams params = RayPssParams::from_h(h);
     params.projection.surface = surface;
-    Stats stats;
-    const PreparedCloud prepared(cloud, params, Backend::cpu, stats);
-    const RenderedFrame frame =
-        render_cloud(prepared, camera, TraceSettings::for_camera(camera, false, false), Backend::cpu, stats);
-    const test::CreaseTruth t = test::against_bored_box(frame, box, 0.02f, h);
+    const test::CreaseTruth t =
+        test::against_bored_box(test::render_at_160(cloud, params, Backend::cpu, cloud.bounds(), 30, 35), box, 0.02f, h);
     std::printf("%s: %lld pixels on the box; holes %lld, extra %lld; normals %.2f deg on the faces, %.2f by the creases\n",
                 surface_name(surface), (long long)t.data_pixels, (long long)t.holes, (long long)t.extra,
                 t.flat_normal_deg, t.crease_normal_deg);

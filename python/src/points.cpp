@@ -111,7 +111,7 @@ py::object render(const py::handle& points, const py::dict& o) {
                                  : integer_in(o, "iterations", 1, kAutoIterations);
   const SecondaryMode secondary =
       choice(o, "secondary", {"full", "paper"}) == "paper" ? SecondaryMode::paper : SecondaryMode::full;
-  const BorderMode borders = choice(o, "borders", {"extend", "clip"}) == "clip" ? BorderMode::clip : BorderMode::extend;
+  const BorderMode borders = *border_choice_of(choice(o, "borders", {"extend", "clip"}));
   const std::optional<float> spacing = is_given(o, "ball_spacing")
                                            ? std::optional<float>(float(number_in(o, "ball_spacing", 0, 1e30)))
                                            : std::nullopt;

@@ -234,11 +234,4 @@ PSS_HOST_DEVICE Projection project_mls(const Nb& neighbours, vec3 r, const Proje
   return out;
 }
 
-template <class Nb = Neighbourhood>
-PSS_HOST_DEVICE Projection project_to_pss(const SupportGridView& grid, vec3 r, const ProjectionParams& params,
-                                          vec3 normal_hint) {
-  const Nb neighbours(grid, r);
-  return project_mls(neighbours, r, params, normal_hint);
-}
-
 }  // namespace pss
