@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "pss/points/render_cloud.hpp"
 #include "support/shapes.hpp"
@@ -65,6 +66,74 @@ TEST(RayPss, NearestLocalHitIsTheNearestOfAllLocalPolynomials) {
   }
   EXPECT_GT(hits, 1000);
   EXPECT_GT(grazing, 50);
+}
+
+// (Not LocalHit: std::sort would find pss::swap beside std::swap.)
+struct Crossing {
+  float t;
+  int local;
+};
+
+// Every crossing, inside its ball and beyond t_min, of every local polynomial, nearest first.
+std::vector<Crossing> brute_force_crossings(std::span<const LocalPolynomial> locals, const Ray& ray, float t_min) {
+  std::vector<Crossing> all;
+  for (std::size_t k = 0; k < locals.size(); ++k) {
+    const LocalPolynomial& lp = locals[k];
+    float t0, t1;
+    if (!ray_ball(ray, lp.origin, lp.radius, t0, t1)) continue;
+    const float lo = std::max(t0, t_min);
+    if (!(lo < t1)) continue;
+    const Frame frame = lp.frame();
+    float roots[2];
+    const int n = intersect_graph(lp.g, frame.to_local(ray.at(lo)), frame.direction_to_local(ray.dir), roots);
+    for (int i = 0; i < n; ++i)
+      if (lo + roots[i] > t_min && roots[i] >= 0 && lo + roots[i] <= t1) all.push_back({lo + roots[i], int(k)});
+  }
+  std::sort(all.begin(), all.end(), [](const Crossing& a, const Crossing& b) { return a.t < b.t; });
+  return all;
+}
+
+// The batches a ray's candidates come in (one BVH walk each), chained from each batch's last
+// crossing, are the sequence of all its crossings in order, a second crossing of one
+// polynomial included.
+TEST(RayPss, BatchesOfLocalHitsAreEveryCrossingInOrder) {
+  test::SampleOptions o;
+  o.count = 3000;
+  o.noise = 0.01f;
+  const PointCloud cloud = test::sample(test::Torus{}, o);
+  Stats stats;
+  const PreparedCloud prepared(cloud, RayPssParams::from_h(test::suggested_h(cloud)), Backend::cpu, stats);
+  const PointSurfaceView view = prepared.view();
+  const float tolerance = 1e-3f * view.params.ball_radius;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  int long_sequences = 0, second_crossings = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const vec3 from = 3.0f * glm::normalize(vec3(u(rng), u(rng), u(rng)));
+    const vec3 to(1.3f * u(rng), 1.3f * u(rng), 0.4f * u(rng));
+    const Ray ray{from, glm::normalize(to - from)};
+    const std::vector<Crossing> all = brute_force_crossings(prepared.locals(), ray, 0.0f);
+    std::vector<Crossing> chained;
+    float t_min = 0;
+    for (int batches = 0; batches < 1000; ++batches) {
+      const LocalHitBatch batch = nearest_local_hits(view, ray, t_min, kInfinity);
+      ASSERT_LE(batch.count, LocalHitBatch::kSize);
+      for (int j = 0; j < batch.count; ++j) chained.push_back({batch.t[j], batch.local[j]});
+      if (batch.complete) break;
+      ASSERT_EQ(batch.count, LocalHitBatch::kSize);
+      t_min = batch.t[batch.count - 1];
+    }
+    ASSERT_EQ(chained.size(), all.size()) << i;
+    for (std::size_t j = 0; j < all.size(); ++j) {
+      EXPECT_NEAR(chained[j].t, all[j].t, tolerance) << i << ", crossing " << j;
+      if (j > 0) EXPECT_GE(chained[j].t, chained[j - 1].t) << i;
+    }
+    long_sequences += all.size() > 2 * LocalHitBatch::kSize;
+    for (std::size_t j = 1; j < all.size(); ++j)
+      for (std::size_t k = 0; k < j; ++k) second_crossings += all[j].local == all[k].local;
+  }
+  EXPECT_GT(long_sequences, 200);
+  EXPECT_GT(second_crossings, 20);
 }
 
 // Every hit, a capped one (iterations spent, not converged) included, lies within b of the

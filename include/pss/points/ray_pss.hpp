@@ -85,18 +85,21 @@ struct LocalHit {
   int local = -1;  // index into PointSurfaceView::locals; -1 when none
 };
 
-// The ray's first crossing of the local polynomial g of `lp` inside its ball B(p_i, b_i), in
-// (t_min, t_best): lowers t_best to it and returns true, or returns false (paper §5.2,
-// "Intersection"). Every search for the nearest local hit runs this one test. `margin`
-// widens the slab by the rounding of the ray origin's coordinates (coordinate_rounding),
-// which z0 and ray.at(lo) below carry; lp.height holds the sample's part.
-PSS_INLINE bool local_hit_before(const LocalPolynomial& lp, const Ray& ray, float margin, float t_min, float& t_best) {
+// The ray's crossings of the local polynomial g of `lp` inside its ball B(p_i, b_i), in
+// (t_min, t_max), nearest first: how many (0–2) are written to `ts` (paper §5.2,
+// "Intersection"). Every search for local hits runs this one test. `margin` widens the slab
+// by the rounding of the ray origin's coordinates (coordinate_rounding), which z0 and
+// ray.at(lo) below carry; lp.height holds the sample's part.
+PSS_INLINE int local_crossings(const LocalPolynomial& lp, const Ray& ray, float margin, float t_min, float t_max,
+                               float ts[2]) {
   float t0, t1;
-  if (!ray_ball(ray, lp.origin, lp.radius, t0, t1)) return false;
-  // Plain comparisons: fminf/fmaxf are library calls here, and NaN cannot occur.
-  float lo = t0 > t_min ? t0 : t_min;
-  float hi = t1 < t_best ? t1 : t_best;
-  if (!(lo < hi)) return false;
+  if (!ray_ball(ray, lp.origin, lp.radius, t0, t1)) return 0;
+  // Plain comparisons: fminf/fmaxf are library calls here, and NaN cannot occur. The
+  // interval starts at the ball's entry whatever t_min is, so that a crossing found again by
+  // the walk from it (the next batch) comes out the same float, which t_min then excludes.
+  float lo = t0;
+  float hi = t1 < t_max ? t1 : t_max;
+  if (!(t_min < hi && lo < hi)) return 0;
   // Clip to the slab |z| ≤ height that holds the graph inside the ball.
   const float z0 = glm::dot(ray.origin - lp.origin, lp.normal);
   const float dz = glm::dot(ray.dir, lp.normal);
@@ -107,9 +110,9 @@ PSS_INLINE bool local_hit_before(const LocalPolynomial& lp, const Ray& ray, floa
     const float enter = ta < tb ? ta : tb, exit = ta < tb ? tb : ta;
     lo = enter > lo ? enter : lo;
     hi = exit < hi ? exit : hi;
-    if (!(lo <= hi)) return false;
+    if (!(lo <= hi && t_min < hi)) return 0;
   } else if (abs(z0) > height) {
-    return false;
+    return 0;
   }
   // Intersect from the ball's entry point, in the sample's frame: coordinates of order b
   // keep the quadratic's coefficients well scaled however far the camera is.
@@ -118,17 +121,15 @@ PSS_INLINE bool local_hit_before(const LocalPolynomial& lp, const Ray& ray, floa
   const vec3 d = frame.direction_to_local(ray.dir);
   // Most of the balls a ray meets after its first hit cross it farther on: refuse them
   // before solving (graph_crossed is exact up to rounding at the interval's ends).
-  if (!graph_crossed(lp.g, o, d, hi - lo)) return false;
+  if (!graph_crossed(lp.g, o, d, hi - lo)) return 0;
   float roots[2];
-  const int n = intersect_graph(lp.g, o, d, roots);
+  const int n = intersect_graph(lp.g, o, d, roots);  // ascending
+  int count = 0;
   for (int i = 0; i < n; ++i) {
     const float t = lo + roots[i];
-    if (t > t_min && t >= lo && t <= hi && t < t_best) {
-      t_best = t;
-      return true;
-    }
+    if (t > t_min && t >= lo && t <= hi && t < t_max) ts[count++] = t;
   }
-  return false;
+  return count;
 }
 
 // The nearest intersection with t in (t_min, t_max) of the ray and a local polynomial g_i,
@@ -138,10 +139,52 @@ PSS_INLINE LocalHit nearest_local_hit(const PointSurfaceView& s, const Ray& ray,
   best.t = t_max;
   const float margin = coordinate_rounding(ray.origin);
   s.bvh.closest(ray, t_min, best.t, [&](int k, float& t_best) {
-    if (local_hit_before(s.locals[k], ray, margin, t_min, t_best)) best.local = k;
+    float ts[2];
+    if (local_crossings(s.locals[k], ray, margin, t_min, t_best, ts) == 0) return;
+    t_best = ts[0];
+    best.local = k;
   });
   if (best.local < 0) best.t = kInfinity;
   return best;
+}
+
+// The next few crossings of the ray with local polynomials beyond t_min, nearest first, from
+// one walk of the BVH. A ray grazing the surface tries many candidates, each rejected after
+// a projection; walking the BVH from its root for each was the longest chain of dependent
+// steps in a GPU frame (docs/benchmarks.md, issue 29). The walk prunes at the batch's last
+// crossing instead of its first, which costs little: the crossings near a ray's first one
+// come from the same few balls.
+struct LocalHitBatch {
+  static constexpr int kSize = 4;
+  float t[kSize];
+  int local[kSize];
+  int count = 0;
+  bool complete = false;  // no crossing beyond t[count − 1] was left out
+};
+
+PSS_INLINE LocalHitBatch nearest_local_hits(const PointSurfaceView& s, const Ray& ray, float t_min, float t_max) {
+  LocalHitBatch batch;
+  float bound = t_max;
+  const float margin = coordinate_rounding(ray.origin);
+  const auto add = [&](float t, int k) {  // t < bound: insert, sorted, dropping the farthest
+    int i = batch.count < LocalHitBatch::kSize ? batch.count++ : LocalHitBatch::kSize - 1;
+    for (; i > 0 && batch.t[i - 1] > t; --i) {
+      batch.t[i] = batch.t[i - 1];
+      batch.local[i] = batch.local[i - 1];
+    }
+    batch.t[i] = t;
+    batch.local[i] = k;
+    if (batch.count == LocalHitBatch::kSize) bound = batch.t[LocalHitBatch::kSize - 1];
+  };
+  s.bvh.closest(ray, t_min, bound, [&](int k, float& prune) {
+    float ts[2];
+    const int n = local_crossings(s.locals[k], ray, margin, t_min, prune, ts);
+    if (n > 0) add(ts[0], k);
+    if (n > 1 && ts[1] < bound) add(ts[1], k);  // a second crossing of the same graph
+    prune = bound;
+  });
+  batch.complete = batch.count < LocalHitBatch::kSize;
+  return batch;
 }
 
 // A rough hit, the paper's choice for secondary rays: the local polynomial's point and
@@ -168,10 +211,17 @@ PSS_INLINE Hit intersect_pss(const PointSurfaceView& s, const Ray& ray, float t_
                              int max_iterations) {
   Hit hit;
   const RayPssParams& prm = s.params;
-  float t_from = t_min;
+  LocalHitBatch next;
+  int taken = 0;
   for (int candidate = 0; candidate < prm.max_candidates; ++candidate) {
-    const LocalHit c = nearest_local_hit(s, ray, t_from, t_max);
-    if (c.local < 0) break;
+    if (taken == next.count) {  // "jump to the next ball": the next batch beyond the last
+      if (next.complete) break;
+      next = nearest_local_hits(s, ray, taken > 0 ? next.t[taken - 1] : t_min, t_max);
+      taken = 0;
+      if (next.count == 0) break;
+    }
+    const LocalHit c{next.t[taken], next.local[taken]};
+    ++taken;
     const LocalPolynomial& lp = s.locals[c.local];
     const float b2 = lp.radius * lp.radius;
     hit.scale = lp.radius / prm.ball_radius;  // the sample's h_i/h
@@ -218,7 +268,6 @@ PSS_INLINE Hit intersect_pss(const PointSurfaceView& s, const Ray& ray, float t_
         return hit;
       }
     }
-    t_from = c.t;  // "jump to the next ball"
   }
   return hit;
 }
