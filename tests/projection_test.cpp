@@ -316,16 +316,22 @@ TEST(Projection, ResultsFollowTheInputOrder) {
 }
 
 // Input normals orient each projection (and no orientation pass runs): the file's normal of
-// each point, through the grid's order, must reach that point. On a sphere, every third
-// point's normal inward and the others outward: each projection follows its own point's.
+// each point, through the grid's order, must reach that point. Two spheres, their points
+// interleaved in the file, one with outward normals and the other inward (each consistent,
+// so none is turned as contradicting its neighbours): each projection follows its own point's.
 TEST(Projection, InputNormalsOrientTheirOwnPoints) {
   test::SampleOptions o;
   o.noise = 0.005f;
   o.count = 3000;
-  PointCloud cloud = test::sample(test::Sphere{}, o);
-  for (std::size_t i = 0; i < cloud.size(); ++i)
-    cloud.normals.push_back((i % 3 == 0 ? -1.0f : 1.0f) * glm::normalize(cloud.positions[i]));
-  const CloudProjection out = run(cloud, test::suggested_h(cloud), PlaneFitMethod::mls);
+  const PointCloud sphere = test::sample(test::Sphere{}, o);
+  PointCloud cloud;
+  for (std::size_t i = 0; i < sphere.size(); ++i) {
+    const float side = i % 2 == 0 ? -1.0f : 1.0f;  // the sphere's centre at x = ±3, normals out or in
+    cloud.positions.push_back(sphere.positions[i] + vec3(3.0f * side, 0, 0));
+    cloud.normals.push_back(side * glm::normalize(sphere.positions[i]));
+  }
+  const CloudProjection out = run(cloud, test::suggested_h(sphere), PlaneFitMethod::mls);
+  EXPECT_EQ(out.normals_turned, 0u);
   for (std::size_t i = 0; i < cloud.size(); ++i)
     ASSERT_GT(glm::dot(out.cloud.normals[i], cloud.normals[i]), 0.9f) << i;
 }

@@ -21,7 +21,8 @@ using SurfaceCli = test::CliTest;
 
 nlohmann::json read_json(const std::string& file) { return nlohmann::json::parse(std::ifstream(file)); }
 
-// A unit sphere as XYZ, with its exact normals (six columns) or wrong ones (+x everywhere).
+// A unit sphere as XYZ, with its exact normals (six columns), wrong ones (+x everywhere) or
+// exact ones flipped on the half x > 0.
 std::string sphere(const std::string& file, const char* normals) {
   test::SampleOptions o;
   o.count = 6000;
@@ -31,6 +32,10 @@ std::string sphere(const std::string& file, const char* normals) {
     out << p.x << ' ' << p.y << ' ' << p.z;
     if (normals == std::string("exact")) out << ' ' << p.x << ' ' << p.y << ' ' << p.z;
     if (normals == std::string("wrong")) out << " 1 0 0";
+    if (normals == std::string("flipped")) {
+      const float sign = p.x > 0 ? -1.0f : 1.0f;
+      out << ' ' << sign * p.x << ' ' << sign * p.y << ' ' << sign * p.z;
+    }
     out << '\n';
   }
   return file;
@@ -70,6 +75,41 @@ TEST_F(SurfaceCli, ProjectFitsTheChosenSurfaceWithTheChosenNormals) {
   EXPECT_LT(worst_radius_error(path("wrong_estimated.ply")), 10 * mls_error);
   project(exact, " --surface rimls", "rimls");
   EXPECT_EQ(read_json(path("rimls.json"))["params"]["surface"], "rimls");
+}
+
+// A file whose normals are flipped on half the sphere: `project` and `render` turn that half
+// (points/turn_flipped_normals.hpp), say so and count it, and APSS fits the sphere as with the
+// exact normals; a file that agrees, or normals not taken from the file, turn none.
+TEST_F(SurfaceCli, AFlippedHalfOfTheFilesNormalsIsTurned) {
+  const std::string exact = sphere(path("exact.xyz"), "exact"), flipped = sphere(path("flipped.xyz"), "flipped");
+  std::size_t half = 0;
+  {
+    std::ifstream in(flipped);
+    float x, y, z, nx, ny, nz;
+    std::size_t positive = 0, all = 0;
+    while (in >> x >> y >> z >> nx >> ny >> nz) positive += x > 0, ++all;
+    half = std::min(positive, all - positive);
+  }
+  ASSERT_GT(half, 2500u);
+  const auto run = [&](const std::string& command, const std::string& cloud, const std::string& flags,
+                       const std::string& name, const char* extension) {
+    const test::CliResult r = test::run_pss(command + " " + cloud + " -o " + path(name + extension) + " --stats " +
+                                            path(name + ".json") + flags);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return r.out;
+  };
+  const std::string turned = run("project", flipped, " --surface apss", "flipped", ".ply");
+  EXPECT_NE(turned.find("turned " + std::to_string(half) + " of the file's normals (of 6000 points)"), std::string::npos)
+      << turned;
+  EXPECT_EQ(read_json(path("flipped.json"))["normals_turned"], half);
+  EXPECT_LT(worst_radius_error(path("flipped.ply")), 2e-6);
+  EXPECT_EQ(run("project", exact, " --surface apss", "exact", ".ply").find("turned"), std::string::npos);
+  EXPECT_EQ(read_json(path("exact.json"))["normals_turned"], 0);
+  EXPECT_EQ(run("project", flipped, " --surface apss --normals estimate", "estimated", ".ply").find("turned"),
+            std::string::npos);
+  EXPECT_EQ(read_json(path("estimated.json"))["normals_turned"], 0);
+  EXPECT_NE(run("render", flipped, " --surface rimls --size 48x48", "render", ".png").find("turned"), std::string::npos);
+  EXPECT_EQ(read_json(path("render.json"))["normals_turned"], half);
 }
 
 TEST_F(SurfaceCli, RenderRecordsAndShowsTheChosenSurface) {

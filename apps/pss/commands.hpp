@@ -45,6 +45,10 @@ void apply_surface_options(const SurfaceOptions& options, ProjectionParams& para
 // " (the file's normals)", " (estimated normals)" or "", after "<surface> surface".
 const char* normals_text(NormalsUsed used);
 
+// A line on stdout when some of the file's normals were turned as contradicting the points
+// (points/turn_flipped_normals.hpp); nothing when none were.
+void print_normals_turned(std::size_t turned, std::size_t points);
+
 // What a chosen subcommand does once CLI11 has parsed and validated its options: run, or
 // only check the options that need more than one flag's validator (the --iso/--gradient
 // choice, the raw-volume flags together), which reads no file and writes none. The fuzz

@@ -97,4 +97,10 @@ const char* normals_text(NormalsUsed used) {
   return used == NormalsUsed::file ? " (the file's normals)" : used == NormalsUsed::estimated ? " (estimated normals)" : "";
 }
 
+void print_normals_turned(std::size_t turned, std::size_t points) {
+  if (turned > 0)
+    std::printf("turned %zu of the file's normals (of %zu points): they contradicted their neighbours', as where a "
+                "part of the cloud was flipped\n", turned, points);
+}
+
 }  // namespace pss::app

@@ -78,6 +78,7 @@ void run_project(const ProjectOptions& o) {
               support_text(params.support, result.widths).c_str(), params.rho, o.method.c_str(), (long long)c.converged,
               (long long)c.not_converged, (long long)c.too_few_neighbours, (long long)c.degenerate_normal,
               (long long)result.outliers.set_aside);
+  print_normals_turned(result.normals_turned, cloud.size());
 
   if (!o.compute.stats_path.empty()) {
     auto& v = stats.values();
@@ -97,6 +98,7 @@ void run_project(const ProjectOptions& o) {
     v["status"] = {{"converged", c.converged}, {"not_converged", c.not_converged},
                    {"too_few_neighbours", c.too_few_neighbours}, {"degenerate_normal", c.degenerate_normal}};
     v["outliers_set_aside"] = result.outliers.set_aside;
+    v["normals_turned"] = result.normals_turned;
     v["points_per_second"] = double(cloud.size()) / projection_s;
     stats.write(o.compute.stats_path);
   }

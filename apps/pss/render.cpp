@@ -91,6 +91,7 @@ void run_render(const RenderCloudOptions& o) {
               border_name(params.projection.borders),
               (long long)prepared.outliers().set_aside, params.projection.h,
               support_text(params.projection.support, prepared.widths()).c_str(), params.ball_radius, params.epsilon);
+  print_normals_turned(prepared.normals_turned(), cloud.size());
 
   if (!o.render.compute.stats_path.empty()) {
     record_render_stats(stats, o.render, frame, settings, backend, "render", o.input);
@@ -98,6 +99,7 @@ void run_render(const RenderCloudOptions& o) {
     v["points"] = cloud.size();
     v["samples_left_out"] = prepared.left_out();
     v["outliers_set_aside"] = prepared.outliers().set_aside;
+    v["normals_turned"] = prepared.normals_turned();
     v["local_polynomials"] = prepared.locals().size();
     v["params"] = {{"h", params.projection.h}, {"rho", params.projection.rho}, {"b", params.ball_radius},
                    {"support", support_name(params.projection.support)},

@@ -68,7 +68,8 @@ CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& p
   SupportWidths widths;
   NormalsUsed normals_used = NormalsUsed::none;
   OutlierReport outliers;
-  const bool file_hints = input.has_normals() && params.normals == NormalSource::file;
+  std::size_t normals_turned = 0;
+  bool file_hints = false;  // the file's normals orient the projections
   {
     {
       ScopedPhase phase(stats, "support widths", params.support == Support::global);  // else its Progress shows it
@@ -78,7 +79,10 @@ CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& p
     SupportGrid grid =
         grid_of_samples(positions, widths.h, unit_params.rho / unit_params.h, params.outliers, backend, stats, outliers);
     phase.stop();
-    prepare_sample_normals(grid, input.normals, unit_params, backend, stats, normals_used);
+    const FileNormals file = file_normals(grid, input.normals, unit_params, stats);
+    normals_turned = file.turned;
+    file_hints = !file.sorted.empty();
+    prepare_sample_normals(grid, file, unit_params, backend, stats, normals_used);
     // The samples are projected in the grid's order, so that neighbouring threads gather
     // neighbouring samples from the cache; in a scan's random order, 10⁷ points projected at
     // a fifth of the rate of 10⁶ on a GPU (docs/benchmarks.md, issue 29). Without input
@@ -86,9 +90,8 @@ CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& p
     // aside follow (below).
     const std::span<const int> original = grid.original_index();
     const std::size_t m = original.size();
-    std::vector<vec3> hints(m, vec3(0.0f));
-    if (file_hints)
-      cpu::parallel_for(std::int64_t(m), [&](std::int64_t k) { hints[k] = input.normals[std::size_t(original[k])]; });
+    std::vector<vec3> hints = file.sorted;
+    hints.resize(m, vec3(0.0f));
     // The points set aside are not samples, but points all the same: projected after.
     std::vector<int> set_aside;
     if (m < n) {
@@ -138,6 +141,7 @@ CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& p
     }
   }
   out.normals = normals_used;
+  out.normals_turned = normals_turned;
   out.outliers = outliers;
   // APSS's and RIMLS's normals follow the samples' oriented ones already.
   if (!file_hints && params.surface == SurfaceOperator::mls) {

@@ -34,13 +34,12 @@ void validate(const RayPssParams& p) {
 
 namespace {
 
-std::vector<LocalFit> fit_all(const SupportGrid& grid, const PointCloud& cloud, const RayPssParams& params,
+std::vector<LocalFit> fit_all(const SupportGrid& grid, const FileNormals& file, const RayPssParams& params,
                               Backend backend, Stats& stats) {
   // In the grid's (cell-sorted) order, so that neighbouring samples share cached cells.
   const std::size_t n = grid.sorted_points().size();
-  std::vector<vec3> hints(n, vec3(0.0f));
-  if (cloud.has_normals() && params.projection.normals == NormalSource::file)
-    for (std::size_t i = 0; i < n; ++i) hints[i] = cloud.normals[grid.original_index()[i]];
+  std::vector<vec3> hints = file.sorted;
+  hints.resize(n, vec3(0.0f));
   const GridMirror g(backend, grid);
   const Mirror<vec3> hint(backend, hints);
   Mirror<LocalFit> fits(backend, n);
@@ -130,11 +129,13 @@ PreparedCloud::PreparedCloud(const PointCloud& cloud, const RayPssParams& params
       params_((validate(params), params)),
       grid_(timed_grid(cloud, params.projection, backend, stats, widths_, outliers_)),
       bvh_(std::span<const Aabb>{}) {
-  prepare_sample_normals(grid_, cloud.normals, params.projection, backend, stats, normals_used_);
+  const FileNormals file = file_normals(grid_, cloud.normals, params.projection, stats);
+  normals_turned_ = file.turned;
+  prepare_sample_normals(grid_, file, params.projection, backend, stats, normals_used_);
   {
     ScopedPhase phase(stats, "preprocess");
     if (color == SurfaceColor::samples) colors_ = linear_colors(grid_, cloud);
-    for (const LocalFit& f : fit_all(grid_, cloud, params, backend, stats)) {
+    for (const LocalFit& f : fit_all(grid_, file, params, backend, stats)) {
       if (f.status == LocalFitStatus::too_few_neighbours)
         ++left_out_;
       else

@@ -6,37 +6,36 @@
 #include "pss/backend/parallel_for.hpp"
 #include "pss/points/orient_normals.hpp"
 #include "pss/points/project_points.hpp"
+#include "pss/points/turn_flipped_normals.hpp"
 #include "pss/spatial/grid_mirror.hpp"
 
 namespace pss {
 
-namespace {
-
-// The file's normals in the grid's order, normalised; false when one has no direction
-// (zero, or not finite): a file that lies about some cannot be trusted for any.
-bool file_normals_in_grid_order(const SupportGrid& grid, std::span<const vec3> file_normals, std::vector<vec3>& out) {
+FileNormals file_normals(const SupportGrid& grid, std::span<const vec3> input_normals, const ProjectionParams& params,
+                         Stats& stats) {
+  FileNormals file;
+  if (input_normals.empty() || params.normals != NormalSource::file) return file;
   const std::span<const int> original = grid.original_index();
-  out.resize(original.size());
-  for (std::size_t i = 0; i < out.size(); ++i) {
-    const vec3 n = file_normals[std::size_t(original[i])];
+  file.sorted.resize(original.size());
+  for (std::size_t i = 0; i < file.sorted.size(); ++i) {
+    const vec3 n = input_normals[std::size_t(original[i])];
     const float length = glm::length(n);
-    if (!(length > 0) || !std::isfinite(length)) return false;
-    out[i] = n / length;
+    if (!(length > 0) || !std::isfinite(length)) return {};
+    file.sorted[i] = n / length;
   }
-  return true;
+  ScopedPhase phase(stats, "check file normals");
+  file.turned = turn_flipped_normals(grid, file.sorted);
+  return file;
 }
 
-}  // namespace
-
-std::vector<vec3> sample_normals(const SupportGrid& grid, std::span<const vec3> file_normals,
-                                 const ProjectionParams& params, Backend backend, Stats& stats, NormalsUsed& used) {
-  std::vector<vec3> normals;
-  const bool have_file = !file_normals.empty() && file_normals_in_grid_order(grid, file_normals, normals);
-  if (have_file && params.normals == NormalSource::file) {
+std::vector<vec3> sample_normals(const SupportGrid& grid, const FileNormals& file, const ProjectionParams& params,
+                                 Backend backend, Stats& stats, NormalsUsed& used) {
+  if (!file.sorted.empty()) {
     used = NormalsUsed::file;
-    return normals;
+    return file.sorted;
   }
   used = NormalsUsed::estimated;
+  std::vector<vec3> normals;
   const std::size_t n = grid.sorted_points().size();
   const std::vector<vec3> hints(n, vec3(0.0f));
   ProjectionParams plane = params;
@@ -61,11 +60,11 @@ std::vector<vec3> sample_normals(const SupportGrid& grid, std::span<const vec3> 
   return normals;
 }
 
-void prepare_sample_normals(SupportGrid& grid, std::span<const vec3> file_normals, const ProjectionParams& params,
-                            Backend backend, Stats& stats, NormalsUsed& used) {
+void prepare_sample_normals(SupportGrid& grid, const FileNormals& file, const ProjectionParams& params, Backend backend,
+                            Stats& stats, NormalsUsed& used) {
   used = NormalsUsed::none;
   if (params.surface == SurfaceOperator::mls) return;
-  grid.set_normals(sample_normals(grid, file_normals, params, backend, stats, used));
+  grid.set_normals(sample_normals(grid, file, params, backend, stats, used));
 }
 
 const char* normals_used_name(NormalsUsed used) {

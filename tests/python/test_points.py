@@ -126,6 +126,16 @@ def test_surface_fits_the_given_normals_or_estimates_them():
     assert stats["params"]["surface"] == "mls" and stats["params"]["normals"] == "none"
 
 
+def test_a_flipped_half_of_the_given_normals_is_turned():
+    points = unit_sphere()
+    flipped = np.where(points[:, :1] > 0, -points, points)
+    half = int(min((points[:, 0] > 0).sum(), (points[:, 0] <= 0).sum()))
+    _, _, stats = pss.render(points, normals=flipped, surface="rimls", size=(32, 32), full_output=True)
+    assert stats["normals_turned"] == half > 100
+    _, _, stats = pss.render(points, normals=points, surface="rimls", size=(32, 32), full_output=True)
+    assert stats["normals_turned"] == 0
+
+
 def test_borders_are_the_cli_s_and_extended_by_default(tmp_path):
     rng = np.random.default_rng(5)
     square = np.column_stack([rng.uniform(-1, 1, (3000, 2)), np.zeros(3000)]).astype(np.float32)

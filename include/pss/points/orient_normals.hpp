@@ -3,7 +3,8 @@
 // smoothest paths; each connected part starts from its highest point, oriented to +z.
 // The graph links p_i to every p_j within radius[j] of it: with the samples' supports ρ_j,
 // the samples of p_i's own neighbourhood N(p_i), so that a sparse part, whose samples lie
-// farther apart, stays connected.
+// farther apart, stays connected. The parts the tree flipped, which show as seams, are then
+// turned (turn_flipped_normals.hpp).
 #pragma once
 
 #include <span>

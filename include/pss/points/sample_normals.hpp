@@ -16,16 +16,26 @@ namespace pss {
 // Why the normals are what they are, for the summary line and --stats.
 enum class NormalsUsed : unsigned char { none, file, estimated };
 
-// One normal per sample of `grid`, in its sorted order. `file_normals` are the cloud's, in
-// its input order (empty when it has none): taken, normalised, when params.normals is
-// NormalSource::file and every one has a length; else estimated on `backend` (phase
-// "sample normals") and oriented.
-std::vector<vec3> sample_normals(const SupportGrid& grid, std::span<const vec3> file_normals,
-                                 const ProjectionParams& params, Backend backend, Stats& stats, NormalsUsed& used);
+// The file's normals of the grid's samples, in its sorted order, unit length, those that
+// contradict the points turned (turn_flipped_normals.hpp); empty when params.normals is
+// NormalSource::estimate, the cloud has none (`input_normals` empty; in its input order) or
+// one has no direction (zero, not finite): a file that lies about some cannot be trusted
+// for any.
+struct FileNormals {
+  std::vector<vec3> sorted;
+  std::size_t turned = 0;
+};
+FileNormals file_normals(const SupportGrid& grid, std::span<const vec3> input_normals, const ProjectionParams& params,
+                         Stats& stats);
+
+// One normal per sample of `grid`, in its sorted order: the file's when it has them, else
+// estimated on `backend` (phase "sample normals") and oriented.
+std::vector<vec3> sample_normals(const SupportGrid& grid, const FileNormals& file, const ProjectionParams& params,
+                                 Backend backend, Stats& stats, NormalsUsed& used);
 
 // Whether `params` needs the samples' normals (APSS, RIMLS), and gives the grid them.
-void prepare_sample_normals(SupportGrid& grid, std::span<const vec3> file_normals, const ProjectionParams& params,
-                            Backend backend, Stats& stats, NormalsUsed& used);
+void prepare_sample_normals(SupportGrid& grid, const FileNormals& file, const ProjectionParams& params, Backend backend,
+                            Stats& stats, NormalsUsed& used);
 
 const char* normals_used_name(NormalsUsed used);
 

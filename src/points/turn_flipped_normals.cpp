@@ -1,0 +1,185 @@
+#include "pss/points/turn_flipped_normals.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+#include <unordered_map>
+#include <vector>
+
+namespace pss {
+
+namespace {
+
+// Agreeing and opposed normals: 45° of slack either way, far from a crease's 90°.
+constexpr float kAgree = 0.7f;
+// |offset along the normals| / distance: side by side below, stacked above.
+constexpr float kSideBySide = 0.3f;
+// |mean unit direction| of a sample's opposed neighbours above which they lie to one side.
+constexpr float kOneSided = 0.4f;
+// |facing| (Pair) above which a pair off each other's tangent planes tells a side.
+constexpr float kFacing = 0.05f;
+
+struct UnionFind {
+  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  int find(int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  }
+  void join(int a, int b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  }
+  std::vector<int> parent;
+};
+
+// As UnionFind, each member with its parity against its root: linking a and b as flipped
+// against each other (odd) or not. A link that contradicts the parities already set is refused.
+struct ParityUnionFind {
+  explicit ParityUnionFind(std::size_t n) : parent(n), parity(n, 0) { std::iota(parent.begin(), parent.end(), 0); }
+  int find(int i, int& p) {
+    p = 0;
+    while (parent[i] != i) {
+      p ^= parity[i];
+      i = parent[i];
+    }
+    return i;
+  }
+  void link(int a, int b, int odd) {
+    int pa, pb;
+    const int ra = find(a, pa), rb = find(b, pb);
+    if (ra == rb) return;
+    parent[rb] = ra;
+    parity[rb] = char(pa ^ pb ^ odd);
+  }
+  std::vector<int> parent;
+  std::vector<char> parity;
+};
+
+// Two neighbours: the squared distance in ρ_i, n_i·n_j, the larger squared offset along a
+// normal over the squared distance, and −(e·n_i)(e·n_j)/|e|² for e = p_j − p_i: positive
+// where the two agree on which side of each other they lie (each behind the other's face,
+// or each before it), negative where one faces toward the other and the other away.
+struct Pair {
+  int i, j;
+  float in_rho2, agreement, offset2, facing;
+};
+
+// For turning one patch against another, and for keeping them as they are.
+struct Evidence {
+  std::int64_t flip = 0, keep = 0;
+};
+
+// Patches a and b, flipped against each other (odd) or not, by this much more evidence.
+struct Link {
+  std::int64_t strength;
+  int a, b, odd;
+};
+
+}  // namespace
+
+std::size_t turn_flipped_normals(const SupportGrid& grid, std::span<vec3> normals) {
+  const std::span<const vec3> points = grid.sorted_points();
+  const std::span<const float> inv_h2 = grid.inv_h2();
+  const SupportGridView view = grid.view();
+  const std::size_t n = points.size();
+  // Sample i's neighbours j > i within its support ρ_i: each pair once.
+  const auto for_each_pair = [&](auto&& f) {
+    for (std::size_t i = 0; i < n; ++i)
+      view.for_each_near(points[i], [&](vec3 q, int j) {
+        if (std::size_t(j) <= i) return;
+        const vec3 e = q - points[i];
+        const float d2 = glm::dot(e, e);
+        if (!view.covers(int(i), d2) || d2 == 0) return;
+        const float zi = glm::dot(e, normals[i]), zj = glm::dot(e, normals[std::size_t(j)]);
+        Pair pair;
+        pair.i = int(i);
+        pair.j = j;
+        pair.in_rho2 = d2 * inv_h2[i] / view.kappa2;
+        pair.agreement = glm::dot(normals[i], normals[std::size_t(j)]);
+        pair.offset2 = std::max(zi * zi, zj * zj) / d2;
+        pair.facing = -zi * zj / d2;
+        f(pair);
+      });
+  };
+  UnionFind patches(n);
+  for_each_pair([&](const Pair& p) {
+    if (p.in_rho2 <= 0.25f && p.agreement > kAgree && p.offset2 < kSideBySide * kSideBySide) patches.join(p.i, p.j);
+  });
+  // Where sample i's opposed and agreeing neighbours lie in its tangent plane: the sums of
+  // their unit directions. Along a seam the opposed ones lie to one side, and the agreeing
+  // ones all around or to the other; on a thin part the other face's samples surround i
+  // (their mean is short), or, at its rim, lie on the same side as i's own.
+  std::vector<vec3> toward_opposed(n, vec3(0.0f)), toward_agreeing(n, vec3(0.0f));
+  std::vector<int> opposed(n, 0), agreeing(n, 0);
+  const auto add_direction = [&](int i, vec3 e, bool agrees) {
+    const vec3 tangential = e - glm::dot(e, normals[i]) * normals[i];
+    const float length = glm::length(tangential);
+    if (!(length > 0)) return;
+    (agrees ? toward_agreeing : toward_opposed)[i] += tangential / length;
+    (agrees ? agreeing : opposed)[i] += 1;
+  };
+  for_each_pair([&](const Pair& p) {
+    if (!(p.agreement < -kAgree) && !(p.agreement > kAgree)) return;
+    const vec3 e = points[std::size_t(p.j)] - points[std::size_t(p.i)];
+    add_direction(p.i, e, p.agreement > 0);
+    add_direction(p.j, -e, p.agreement > 0);
+  });
+  const auto one_sided = [&](int i) {
+    const float length = glm::length(toward_opposed[i]);
+    return length > kOneSided * float(opposed[i]) &&
+           glm::dot(toward_opposed[i], toward_agreeing[i]) < kOneSided * length * float(agreeing[i]);
+  };
+  // The evidence between patches, each pair seen from both its samples.
+  std::unordered_map<std::uint64_t, Evidence> between;
+  for_each_pair([&](const Pair& p) {
+    const int a = patches.find(p.i), b = patches.find(p.j);
+    if (a == b) return;
+    Evidence& e = between[(std::uint64_t(std::min(a, b)) << 32) | std::uint64_t(std::max(a, b))];
+    for (const int k : {p.i, p.j}) {
+      if (p.offset2 < kSideBySide * kSideBySide) {
+        // In each other's tangent plane: a seam where the normals oppose and lie to one side.
+        if (p.agreement > kAgree) ++e.keep;
+        if (p.agreement < -kAgree && one_sided(k)) ++e.flip;
+      } else if (p.facing > kFacing) {
+        ++e.keep;  // each behind the other's face (a convex crease, a thin part) or each before it (a slot)
+      } else if (p.facing < -kFacing) {
+        ++e.flip;  // one behind the other's face and the other before it
+      }
+    }
+  });
+  std::vector<Link> links;
+  for (const auto& [key, e] : between) {
+    const int a = int(key >> 32), b = int(key & 0xffffffffu);
+    if (e.flip >= 2 && e.flip > 2 * e.keep) links.push_back({e.flip - e.keep, a, b, 1});
+    if (e.keep >= 2 && e.keep > 2 * e.flip) links.push_back({e.keep - e.flip, a, b, 0});
+  }
+  if (links.empty()) return 0;
+  std::sort(links.begin(), links.end(), [](const Link& x, const Link& y) {
+    return x.strength != y.strength ? x.strength > y.strength : (x.a != y.a ? x.a < y.a : x.b < y.b);
+  });
+  ParityUnionFind flips(n);
+  for (const Link& l : links) flips.link(l.a, l.b, l.odd);
+  // Each group of linked patches: count its samples by side, then turn the smaller side.
+  std::vector<std::int64_t> odd(n, 0), even(n, 0);
+  std::vector<int> group(n), side(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    int p;
+    group[i] = flips.find(patches.find(int(i)), p);
+    side[i] = p;
+    (p ? odd : even)[std::size_t(group[i])] += 1;
+  }
+  std::size_t turned = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t g = std::size_t(group[i]);
+    // Ties keep the side of the group's root patch.
+    if (side[i] == (odd[g] > even[g] ? 0 : 1)) {
+      normals[i] = -normals[i];
+      ++turned;
+    }
+  }
+  return turned;
+}
+
+}  // namespace pss
