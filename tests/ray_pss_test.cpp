@@ -136,6 +136,73 @@ TEST(RayPss, BatchesOfLocalHitsAreEveryCrossingInOrder) {
   EXPECT_GT(second_crossings, 20);
 }
 
+// intersect_pss against the paper's loop taken literally: one walk of the BVH per candidate,
+// the next from the last one's crossing. The batches must try the same candidates in the same
+// order, so every ray gets the same hit; grazing rays on a noisy torus and across an open
+// patch's edges, many of them past their fourth candidate (a second batch and more).
+TEST(RayPss, BatchesTryTheCandidatesOneWalkEachWould) {
+  test::SampleOptions o;
+  o.count = 4000;
+  o.noise = 0.01f;
+  const PointCloud torus = test::sample(test::Torus{}, o);
+  o.noise = 0.005f;
+  const PointCloud patch = test::sample_plane(1.0f, o);
+  int past_first_batch = 0, hits = 0;
+  for (const PointCloud* cloud : {&torus, &patch}) {
+    Stats stats;
+    const RayPssParams params = RayPssParams::from_h(test::suggested_h(*cloud));
+    const PreparedCloud prepared(*cloud, params, Backend::cpu, stats);
+    const PointSurfaceView view = prepared.view();
+    std::mt19937 rng(13);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    for (int i = 0; i < 6000; ++i) {
+      // Toward points near the shape from all around, nearly along its surface.
+      const vec3 to(1.2f * u(rng), 1.2f * u(rng), 0.3f * u(rng));
+      const vec3 dir = glm::normalize(vec3(u(rng), u(rng), 0.05f * u(rng)));
+      const Ray ray{to - 3.0f * dir, dir};
+      Hit expected;
+      int candidates = 0;
+      for (float t_from = 0; candidates < params.max_candidates; ++candidates) {
+        const LocalHit c = nearest_local_hit(view, ray, t_from, kInfinity);
+        if (c.local < 0 || candidate_hit(view, ray, c, 0.0f, kInfinity, params.max_iterations, expected)) break;
+        t_from = c.t;
+      }
+      const Hit hit = intersect_pss(view, ray, 0.0f, kInfinity, params.max_iterations);
+      ASSERT_EQ(hit.found(), expected.found()) << i << ", " << candidates << " candidates";
+      if (!hit.found()) continue;
+      ++hits;
+      past_first_batch += candidates >= LocalHitBatch::kSize;
+      EXPECT_EQ(hit.t, expected.t) << i;
+      EXPECT_EQ(hit.iterations, expected.iterations) << i;
+    }
+  }
+  EXPECT_GT(hits, 1500);
+  EXPECT_GT(past_first_batch, 20);  // 47
+}
+
+// Where APSS's or RIMLS's fit has no surface (degenerate_normal: here every sample's normal
+// zero, so RIMLS's gradient vanishes), the projection returns r itself; that is no hit,
+// though r is within ε of it.
+TEST(RayPss, AFitWithoutASurfaceIsNoHit) {
+  test::SampleOptions o;
+  o.count = 3000;
+  const PointCloud cloud = test::sample(test::Sphere{}, o);
+  for (const SurfaceOperator surface : {SurfaceOperator::apss, SurfaceOperator::rimls}) {
+    RayPssParams params = RayPssParams::from_h(test::suggested_h(cloud));
+    params.projection.surface = surface;
+    Stats stats;
+    const PreparedCloud prepared(cloud, params, Backend::cpu, stats);
+    PointSurfaceView view = prepared.view();
+    const Ray ray{vec3(0, 0, 3), vec3(0, 0, -1)};
+    ASSERT_TRUE(intersect_pss(view, ray, 0.0f, kInfinity, params.max_iterations).found());
+    const std::vector<vec3> zero(std::size_t(view.grid.count), vec3(0.0f));
+    view.grid.normals = zero.data();
+    const Projection p = project_onto_surface(view.grid, vec3(0, 0, 1.01f), params.projection, vec3(0, 0, 1), 0.0f);
+    ASSERT_EQ(p.status, ProjectionStatus::degenerate_normal) << surface_name(surface);
+    EXPECT_FALSE(intersect_pss(view, ray, 0.0f, kInfinity, params.max_iterations).found()) << surface_name(surface);
+  }
+}
+
 // Every hit, a capped one (iterations spent, not converged) included, lies within b of the
 // clean sphere, and is the ray's first crossing, also for the grazing rays near the
 // silhouette, where the polynomials' intersections jump farthest. (Dropping the paper's

@@ -204,70 +204,81 @@ PSS_INLINE Hit rough_hit(const PointSurfaceView& s, const Ray& ray, float t_min,
   return hit;
 }
 
-// The full intersection of paper §5.2 (see the file comment). `max_iterations` caps the
-// projections per candidate; when the cap is reached the last ray/polynomial intersection
-// is the hit, as after the paper's last rendering pass.
+// One candidate of paper §5.2's intersection (see the file comment): from the crossing `c`
+// of a local polynomial, projections and intersections with the projections' polynomials
+// until one converges (true: `hit` is it) or leaves the candidate's ball. `max_iterations`
+// caps the projections; when the cap is reached the last ray/polynomial intersection is the
+// hit, as after the paper's last rendering pass. hit.iterations counts the projections.
+PSS_INLINE bool candidate_hit(const PointSurfaceView& s, const Ray& ray, LocalHit c, float t_min, float t_max,
+                              int max_iterations, Hit& hit) {
+  const RayPssParams& prm = s.params;
+  const LocalPolynomial& lp = s.locals[c.local];
+  const float b2 = lp.radius * lp.radius;
+  hit.scale = lp.radius / prm.ball_radius;  // the sample's h_i/h
+  const float epsilon = prm.epsilon * hit.scale;
+  float t = c.t;
+  vec3 hint = lp.normal;
+  for (int it = 1;; ++it) {
+    const vec3 r = ray.at(t);
+    // Whether P(r) lies among its samples matters where r becomes the hit: within ε, or
+    // at the last iteration.
+    const Projection p =
+        project_onto_surface(s.grid, r, prm.projection, hint, it >= max_iterations ? kInfinity : epsilon);
+    ++hit.iterations;
+    if (p.status == ProjectionStatus::too_few_neighbours) return false;
+    // APSS's and RIMLS's fits without a surface leave r where it was: no hit (MLS's plane
+    // through collinear samples still has its polynomial's point).
+    if (p.status == ProjectionStatus::degenerate_normal && prm.projection.surface != SurfaceOperator::mls) return false;
+    if (length2(p.point - r) < epsilon * epsilon) {
+      if (!p.surrounded) return false;  // past the last samples (--borders clip)
+      hit.t = t;
+      hit.point = r;
+      hit.normal = p.normal;  // g has no linear terms: n is the graph's normal at γ
+      hit.flags = kHitFound | kHitConverged;
+      return true;
+    }
+    // The ray against the new polynomial, from r in the projection's frame; the root
+    // nearest r keeps the iteration on the same sheet of the surface.
+    const vec3 o = p.frame.to_local(r);
+    const vec3 d = p.frame.direction_to_local(ray.dir);
+    float roots[2];
+    const int n = intersect_graph(p.polynomial, o, d, roots);
+    float step = kInfinity;
+    for (int i = 0; i < n; ++i)
+      if (t + roots[i] > t_min && t + roots[i] < t_max && abs(roots[i]) < abs(step)) step = roots[i];
+    if (!(abs(step) < kInfinity)) return false;
+    const float t_next = t + step;
+    if (length2(ray.at(t_next) - lp.origin) > b2) return false;  // left B(p_i, b_i)
+    t = t_next;
+    hint = p.normal;
+    if (it >= max_iterations) {
+      if (!p.surrounded) return false;  // a capped hit past the last samples too
+      hit.t = t;
+      hit.point = ray.at(t);
+      const vec3 l = p.frame.to_local(hit.point);
+      hit.normal = p.frame.direction_to_world(p.polynomial.normal(l.x, l.y));
+      hit.flags = kHitFound | kHitCapped;
+      return true;
+    }
+  }
+}
+
+// The full intersection of paper §5.2: the candidates, nearest first, each tried in turn
+// ("jump to the next ball" when one is rejected), up to max_candidates of them.
 PSS_INLINE Hit intersect_pss(const PointSurfaceView& s, const Ray& ray, float t_min, float t_max,
                              int max_iterations) {
   Hit hit;
-  const RayPssParams& prm = s.params;
   LocalHitBatch next;
   int taken = 0;
-  for (int candidate = 0; candidate < prm.max_candidates; ++candidate) {
-    if (taken == next.count) {  // "jump to the next ball": the next batch beyond the last
+  for (int candidate = 0; candidate < s.params.max_candidates; ++candidate) {
+    if (taken == next.count) {  // the next batch, beyond the last
       if (next.complete) break;
       next = nearest_local_hits(s, ray, taken > 0 ? next.t[taken - 1] : t_min, t_max);
       taken = 0;
       if (next.count == 0) break;
     }
-    const LocalHit c{next.t[taken], next.local[taken]};
+    if (candidate_hit(s, ray, LocalHit{next.t[taken], next.local[taken]}, t_min, t_max, max_iterations, hit)) return hit;
     ++taken;
-    const LocalPolynomial& lp = s.locals[c.local];
-    const float b2 = lp.radius * lp.radius;
-    hit.scale = lp.radius / prm.ball_radius;  // the sample's h_i/h
-    const float epsilon = prm.epsilon * hit.scale;
-    float t = c.t;
-    vec3 hint = lp.normal;
-    for (int it = 1;; ++it) {
-      const vec3 r = ray.at(t);
-      // Whether P(r) lies among its samples matters where r becomes the hit: within ε, or
-      // at the last iteration.
-      const Projection p =
-          project_onto_surface(s.grid, r, prm.projection, hint, it >= max_iterations ? kInfinity : epsilon);
-      ++hit.iterations;
-      if (p.status == ProjectionStatus::too_few_neighbours) break;
-      if (length2(p.point - r) < epsilon * epsilon) {
-        if (!p.surrounded) break;  // past the last samples (--borders clip)
-        hit.t = t;
-        hit.point = r;
-        hit.normal = p.normal;  // g has no linear terms: n is the graph's normal at γ
-        hit.flags = kHitFound | kHitConverged;
-        return hit;
-      }
-      // The ray against the new polynomial, from r in the projection's frame; the root
-      // nearest r keeps the iteration on the same sheet of the surface.
-      const vec3 o = p.frame.to_local(r);
-      const vec3 d = p.frame.direction_to_local(ray.dir);
-      float roots[2];
-      const int n = intersect_graph(p.polynomial, o, d, roots);
-      float step = kInfinity;
-      for (int i = 0; i < n; ++i)
-        if (t + roots[i] > t_min && t + roots[i] < t_max && abs(roots[i]) < abs(step)) step = roots[i];
-      if (!(abs(step) < kInfinity)) break;
-      const float t_next = t + step;
-      if (length2(ray.at(t_next) - lp.origin) > b2) break;  // left B(p_i, b_i)
-      t = t_next;
-      hint = p.normal;
-      if (it >= max_iterations) {
-        if (!p.surrounded) break;  // a capped hit past the last samples too
-        hit.t = t;
-        hit.point = ray.at(t);
-        const vec3 l = p.frame.to_local(hit.point);
-        hit.normal = p.frame.direction_to_world(p.polynomial.normal(l.x, l.y));
-        hit.flags = kHitFound | kHitCapped;
-        return hit;
-      }
-    }
   }
   return hit;
 }
