@@ -1,11 +1,16 @@
 #include "pss/points/turn_flipped_normals.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <numeric>
 #include <unordered_map>
 #include <vector>
+
+#include <omp.h>
+
+#include "pss/backend/cpu/parallel_for.hpp"
 
 namespace pss {
 
@@ -20,21 +25,36 @@ constexpr float kOneSided = 0.4f;
 // |facing| (Pair) above which a pair off each other's tangent planes tells a side.
 constexpr float kFacing = 0.05f;
 
-struct UnionFind {
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+// The patches: joined by all threads at once. A root is only ever linked under a smaller
+// index, so each component's root is its least member whatever the order of the joins: the
+// result is the same for any thread count.
+struct ConcurrentUnionFind {
+  explicit ConcurrentUnionFind(std::size_t n) : parent(n) {
+    for (std::size_t i = 0; i < n; ++i) parent[i].store(int(i), std::memory_order_relaxed);
+  }
   int find(int i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
+    for (;;) {
+      int p = parent[std::size_t(i)].load(std::memory_order_acquire);
+      if (p == i) return i;
+      const int grandparent = parent[std::size_t(p)].load(std::memory_order_acquire);
+      if (grandparent != p) parent[std::size_t(i)].compare_exchange_weak(p, grandparent, std::memory_order_acq_rel);
+      i = p;
+    }
   }
   void join(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    for (;;) {
+      a = find(a);
+      b = find(b);
+      if (a == b) return;
+      if (a < b) std::swap(a, b);
+      int root = a;
+      if (parent[std::size_t(a)].compare_exchange_strong(root, b, std::memory_order_acq_rel)) return;
+    }
   }
-  std::vector<int> parent;
+  std::vector<std::atomic<int>> parent;
 };
 
-// As UnionFind, each member with its parity against its root: linking a and b as flipped
+// A union-find of the patches, each member with its parity against its root: linking a and b as flipped
 // against each other (odd) or not. A link that contradicts the parities already set is refused.
 struct ParityUnionFind {
   explicit ParityUnionFind(std::size_t n) : parent(n), parity(n, 0) { std::iota(parent.begin(), parent.end(), 0); }
@@ -84,64 +104,67 @@ std::size_t turn_flipped_normals(const SupportGrid& grid, std::span<vec3> normal
   const std::span<const float> inv_h2 = grid.inv_h2();
   const SupportGridView view = grid.view();
   const std::size_t n = points.size();
-  // Sample i's neighbours j > i within its support ρ_i: each pair once.
-  const auto for_each_pair = [&](auto&& f) {
-    for (std::size_t i = 0; i < n; ++i)
-      view.for_each_near(points[i], [&](vec3 q, int j) {
-        if (std::size_t(j) <= i) return;
-        const vec3 e = q - points[i];
-        const float d2 = glm::dot(e, e);
-        if (!view.covers(int(i), d2) || d2 == 0) return;
-        const float zi = glm::dot(e, normals[i]), zj = glm::dot(e, normals[std::size_t(j)]);
-        Pair pair;
-        pair.i = int(i);
-        pair.j = j;
-        pair.in_rho2 = d2 * inv_h2[i] / view.kappa2;
-        pair.agreement = glm::dot(normals[i], normals[std::size_t(j)]);
-        pair.offset2 = std::max(zi * zi, zj * zj) / d2;
-        pair.facing = -zi * zj / d2;
-        f(pair);
-      });
+  // f(pair) for sample i's neighbours j ≠ i within its support ρ_i.
+  const auto for_each_neighbour = [&](int i, auto&& f) {
+    view.for_each_near(points[std::size_t(i)], [&](vec3 q, int j) {
+      if (j == i) return;
+      const vec3 e = q - points[std::size_t(i)];
+      const float d2 = glm::dot(e, e);
+      if (!view.covers(i, d2) || d2 == 0) return;
+      const float zi = glm::dot(e, normals[std::size_t(i)]), zj = glm::dot(e, normals[std::size_t(j)]);
+      Pair pair;
+      pair.i = i;
+      pair.j = j;
+      pair.in_rho2 = d2 * inv_h2[std::size_t(i)] / view.kappa2;
+      pair.agreement = glm::dot(normals[std::size_t(i)], normals[std::size_t(j)]);
+      pair.offset2 = std::max(zi * zi, zj * zj) / d2;
+      pair.facing = -zi * zj / d2;
+      f(pair, e);
+    });
   };
-  UnionFind patches(n);
-  for_each_pair([&](const Pair& p) {
-    if (p.in_rho2 <= 0.25f && p.agreement > kAgree && p.offset2 < kSideBySide * kSideBySide) patches.join(p.i, p.j);
+  ConcurrentUnionFind joined(n);
+  cpu::parallel_for(std::int64_t(n), [&](std::int64_t i) {
+    for_each_neighbour(int(i), [&](const Pair& p, vec3) {
+      if (p.j > p.i && p.in_rho2 <= 0.25f && p.agreement > kAgree && p.offset2 < kSideBySide * kSideBySide)
+        joined.join(p.i, p.j);
+    });
   });
-  // Where sample i's opposed and agreeing neighbours lie in its tangent plane: the sums of
-  // their unit directions. Along a seam the opposed ones lie to one side, and the agreeing
-  // ones all around or to the other; on a thin part the other face's samples surround i
-  // (their mean is short), or, at its rim, lie on the same side as i's own.
-  std::vector<vec3> toward_opposed(n, vec3(0.0f)), toward_agreeing(n, vec3(0.0f));
-  std::vector<int> opposed(n, 0), agreeing(n, 0);
-  const auto add_direction = [&](int i, vec3 e, bool agrees) {
-    const vec3 tangential = e - glm::dot(e, normals[i]) * normals[i];
-    const float length = glm::length(tangential);
-    if (!(length > 0)) return;
-    (agrees ? toward_agreeing : toward_opposed)[i] += tangential / length;
-    (agrees ? agreeing : opposed)[i] += 1;
-  };
-  for_each_pair([&](const Pair& p) {
-    if (!(p.agreement < -kAgree) && !(p.agreement > kAgree)) return;
-    const vec3 e = points[std::size_t(p.j)] - points[std::size_t(p.i)];
-    add_direction(p.i, e, p.agreement > 0);
-    add_direction(p.j, -e, p.agreement > 0);
-  });
-  const auto one_sided = [&](int i) {
-    const float length = glm::length(toward_opposed[i]);
-    return length > kOneSided * float(opposed[i]) &&
-           glm::dot(toward_opposed[i], toward_agreeing[i]) < kOneSided * length * float(agreeing[i]);
-  };
-  // The evidence between patches, each pair seen from both its samples.
-  std::unordered_map<std::uint64_t, Evidence> between;
-  for_each_pair([&](const Pair& p) {
-    const int a = patches.find(p.i), b = patches.find(p.j);
-    if (a == b) return;
-    Evidence& e = between[(std::uint64_t(std::min(a, b)) << 32) | std::uint64_t(std::max(a, b))];
-    for (const int k : {p.i, p.j}) {
+  std::vector<int> patch(n);
+  cpu::parallel_for(std::int64_t(n), [&](std::int64_t i) { patch[std::size_t(i)] = joined.find(int(i)); });
+  // The evidence between patches, each pair seen from both its samples (each thread its own
+  // tally, summed after: sums, so the same for any thread count). From sample i: where its
+  // opposed and agreeing neighbours lie in its tangent plane, the means of their unit
+  // directions. Along a seam the opposed ones lie to one side, and the agreeing ones all
+  // around or to the other; on a thin part the other face's samples surround i (their mean is
+  // short), or, at its rim, lie on the same side as i's own.
+  std::vector<std::unordered_map<std::uint64_t, Evidence>> tallies(std::size_t(std::max(1, omp_get_max_threads())));
+  cpu::parallel_for(std::int64_t(n), [&](std::int64_t i) {
+    thread_local std::vector<Pair> around;
+    around.clear();
+    const vec3 n_i = normals[std::size_t(i)];
+    vec3 toward_opposed(0.0f), toward_agreeing(0.0f);
+    int opposed = 0, agreeing = 0;
+    for_each_neighbour(int(i), [&](const Pair& p, vec3 e) {
+      around.push_back(p);
+      if (!(p.agreement < -kAgree) && !(p.agreement > kAgree)) return;
+      const vec3 tangential = e - glm::dot(e, n_i) * n_i;
+      const float length = glm::length(tangential);
+      if (!(length > 0)) return;
+      (p.agreement > 0 ? toward_agreeing : toward_opposed) += tangential / length;
+      (p.agreement > 0 ? agreeing : opposed) += 1;
+    });
+    const float length = glm::length(toward_opposed);
+    const bool one_sided = length > kOneSided * float(opposed) &&
+                           glm::dot(toward_opposed, toward_agreeing) < kOneSided * length * float(agreeing);
+    auto& tally = tallies[std::size_t(omp_get_thread_num())];
+    for (const Pair& p : around) {
+      const int a = patch[std::size_t(p.i)], b = patch[std::size_t(p.j)];
+      if (a == b) continue;
+      Evidence& e = tally[(std::uint64_t(std::min(a, b)) << 32) | std::uint64_t(std::max(a, b))];
       if (p.offset2 < kSideBySide * kSideBySide) {
         // In each other's tangent plane: a seam where the normals oppose and lie to one side.
         if (p.agreement > kAgree) ++e.keep;
-        if (p.agreement < -kAgree && one_sided(k)) ++e.flip;
+        if (p.agreement < -kAgree && one_sided) ++e.flip;
       } else if (p.facing > kFacing) {
         ++e.keep;  // each behind the other's face (a convex crease, a thin part) or each before it (a slot)
       } else if (p.facing < -kFacing) {
@@ -149,6 +172,12 @@ std::size_t turn_flipped_normals(const SupportGrid& grid, std::span<vec3> normal
       }
     }
   });
+  std::unordered_map<std::uint64_t, Evidence> between;
+  for (const auto& tally : tallies)
+    for (const auto& [key, e] : tally) {
+      between[key].flip += e.flip;
+      between[key].keep += e.keep;
+    }
   std::vector<Link> links;
   for (const auto& [key, e] : between) {
     const int a = int(key >> 32), b = int(key & 0xffffffffu);
@@ -166,7 +195,7 @@ std::size_t turn_flipped_normals(const SupportGrid& grid, std::span<vec3> normal
   std::vector<int> group(n), side(n);
   for (std::size_t i = 0; i < n; ++i) {
     int p;
-    group[i] = flips.find(patches.find(int(i)), p);
+    group[i] = flips.find(patch[i], p);
     side[i] = p;
     (p ? odd : even)[std::size_t(group[i])] += 1;
   }
