@@ -8,6 +8,11 @@
 #include "pss/points/render_cloud.hpp"
 #include "pss/render/frame_kernels.hpp"
 
+// The primary rays at 127 registers or fewer: four blocks of 128 per SM, not three (their
+// frames 3-6 % faster on an H100, docs/benchmarks.md).
+template <>
+inline constexpr int pss::cuda::kMinBlocksPerSm<pss::PrimaryRaysKernel<pss::PointFinder>> = 4;
+
 PSS_CUDA_KERNEL(pss::ProjectPointsKernel)
 PSS_CUDA_KERNEL(pss::FitLocalPolynomialsKernel)
 PSS_CUDA_KERNEL(pss::OutlierDistanceKernel)

@@ -7,7 +7,10 @@ architecture built, and fails when a report is missing or unreadable, when no ke
 reported, or when any kernel's stack exceeds the budget or has no bound ptxas can tell
 (recursion, calls through pointers): a thread's stack lives in local memory, so every byte
 of it is memory traffic and lost occupancy.
-    kernel_stacks.py --budget 1024 OBJECT...
+With --registers KERNEL=N (repeatable) it also fails when that kernel (its demangled type, as
+the table shows it) uses more than N registers on some architecture, or was not reported: a
+kernel held to its registers by a launch bound (backend/cuda/launch.cuh).
+    kernel_stacks.py --budget 1024 [--registers KERNEL=N ...] OBJECT...
 """
 import argparse, os, re, subprocess, sys
 
@@ -56,13 +59,15 @@ def short_names(mangled):
     names = []
     for m, d in zip(mangled, out + [''] * len(mangled)):
         k = re.match(r'void pss::cuda::for_each_index<(.*)>\(long, long, ', d)
-        names.append(k.group(1) if k else d or m)
+        names.append(k.group(1).strip() if k else d or m)
     return names
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
     ap.add_argument('--budget', type=int, required=True, help='bytes of stack per thread')
+    ap.add_argument('--registers', action='append', default=[], metavar='KERNEL=N',
+                    help='the most registers KERNEL may use')
     ap.add_argument('objects', nargs='+', help='the library\'s objects; those of .cu files must have reports')
     a = ap.parse_args()
     rows = []
@@ -95,7 +100,19 @@ def main():
               f'{"  OVER" if over(stack) else ""}')
     over = sum(over(r[3]) for r in rows)
     print(f'{len(rows)} kernels, {over} over the budget of {a.budget} bytes of stack per thread')
-    return 1 if over else 0
+    failed = over > 0
+    for limit in a.registers:
+        kernel, _, most = limit.rpartition('=')
+        used = [r[2] for n, r in zip(names, rows) if n == kernel]
+        if not used:
+            print(f'{kernel}: not in the reports')
+            failed = True
+        elif max(used) > int(most):
+            print(f'{kernel}: {max(used)} registers, over its {most}')
+            failed = True
+        else:
+            print(f'{kernel}: {max(used)} registers, within its {most}')
+    return 1 if failed else 0
 
 
 if __name__ == '__main__':

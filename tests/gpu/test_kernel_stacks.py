@@ -22,14 +22,14 @@ def callee(name, frame):
             f"    {frame} bytes stack frame, 8 bytes spill stores, 8 bytes spill loads\n")
 
 
-def run(tmp_path, reports, extra_objects=()):
+def run(tmp_path, reports, extra_objects=(), flags=()):
     objects = []
     for i, text in enumerate(reports):
         obj = tmp_path / f'k{i}.cu.o'
         obj.write_bytes(b'')
         (tmp_path / f'k{i}.cu.o.ptxas').write_text(text)
         objects.append(str(obj))
-    r = subprocess.run([sys.executable, str(SCRIPT), '--budget', '1024', *objects, *extra_objects],
+    r = subprocess.run([sys.executable, str(SCRIPT), '--budget', '1024', *flags, *objects, *extra_objects],
                        capture_output=True, text=True)
     return r.returncode, r.stdout
 
@@ -72,6 +72,15 @@ class KernelStacks(unittest.TestCase):
             "ptxas info    : Used 40 registers, used 0 barriers\n"
         rc, out = run(self.tmp, [text])
         self.assertTrue(rc == 1 and 'with a stack figure read' in out, out)
+
+    def test_a_kernel_over_its_registers_or_absent_fails(self):
+        report = [entry('_Z1av', 'sm_90', 16, registers=128) + entry('_Z1av', 'sm_75', 16, registers=120)]
+        rc, out = run(self.tmp, report, flags=['--registers', 'a()=128'])
+        self.assertTrue(rc == 0 and 'a(): 128 registers, within its 128' in out, out)
+        rc, out = run(self.tmp, report, flags=['--registers', 'a()=127'])
+        self.assertTrue(rc == 1 and 'a(): 128 registers, over its 127' in out, out)
+        rc, out = run(self.tmp, report, flags=['--registers', 'b()=200'])
+        self.assertTrue(rc == 1 and 'b(): not in the reports' in out, out)
 
     def test_a_missing_report_or_none_at_all_fails(self):
         missing = self.tmp / 'absent.cu.o'

@@ -19,8 +19,13 @@ inline void check(cudaError_t status, const char* what) {
 }
 #define PSS_CUDA_CHECK(call) ::pss::cuda::check((call), #call)
 
+// The blocks of at most kMaxBlock threads (below) that a kernel asks the compiler to fit on
+// one SM at once, through its registers: 1 leaves the compiler free.
 template <class F>
-__global__ void for_each_index(std::int64_t begin, std::int64_t end, F f) {
+inline constexpr int kMinBlocksPerSm = 1;
+
+template <class F>
+__global__ void __launch_bounds__(128, kMinBlocksPerSm<F>) for_each_index(std::int64_t begin, std::int64_t end, F f) {
   const std::int64_t i = begin + std::int64_t(blockIdx.x) * blockDim.x + threadIdx.x;
   if (i < end) f(i);
 }
