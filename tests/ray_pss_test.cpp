@@ -38,22 +38,31 @@ LocalHit brute_force_local_hit(const PointSurfaceView& s, std::span<const LocalP
   return best;
 }
 
-TEST(RayPss, NearestLocalHitIsTheNearestOfAllLocalPolynomials) {
+// A noisy torus: curved, uneven polynomials, slabs of every height.
+PointCloud noisy_torus(std::size_t count) {
   test::SampleOptions o;
-  o.count = 3000;
-  o.noise = 0.01f;  // curved, uneven polynomials: slabs of every height
-  const PointCloud cloud = test::sample(test::Torus{}, o);
+  o.count = count;
+  o.noise = 0.01f;
+  return test::sample(test::Torus{}, o);
+}
+
+// A ray from a sphere of radius 3 toward a point near the torus: many of them grazing.
+Ray ray_toward_torus(std::mt19937& rng) {
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  const vec3 from = 3.0f * glm::normalize(vec3(u(rng), u(rng), u(rng)));
+  const vec3 to(1.3f * u(rng), 1.3f * u(rng), 0.4f * u(rng));
+  return Ray{from, glm::normalize(to - from)};
+}
+
+TEST(RayPss, NearestLocalHitIsTheNearestOfAllLocalPolynomials) {
+  const PointCloud cloud = noisy_torus(3000);
   Stats stats;
   const PreparedCloud prepared(cloud, RayPssParams::from_h(test::suggested_h(cloud)), Backend::cpu, stats);
   const PointSurfaceView view = prepared.view();
   std::mt19937 rng(7);
-  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
   int hits = 0, grazing = 0;
   for (int i = 0; i < 4000; ++i) {
-    // Rays from a sphere of radius 3 toward points near the torus, many of them grazing.
-    const vec3 from = 3.0f * glm::normalize(vec3(u(rng), u(rng), u(rng)));
-    const vec3 to(1.3f * u(rng), 1.3f * u(rng), 0.4f * u(rng));
-    const Ray ray{from, glm::normalize(to - from)};
+    const Ray ray = ray_toward_torus(rng);
     const LocalHit fast = nearest_local_hit(view, ray, 0.0f, kInfinity);
     const LocalHit slow = brute_force_local_hit(view, prepared.locals(), ray);
     ASSERT_EQ(fast.local >= 0, slow.local >= 0) << i << ": " << fast.t << " vs " << slow.t;
@@ -97,21 +106,15 @@ std::vector<Crossing> brute_force_crossings(std::span<const LocalPolynomial> loc
 // crossing, are the sequence of all its crossings in order, a second crossing of one
 // polynomial included.
 TEST(RayPss, BatchesOfLocalHitsAreEveryCrossingInOrder) {
-  test::SampleOptions o;
-  o.count = 3000;
-  o.noise = 0.01f;
-  const PointCloud cloud = test::sample(test::Torus{}, o);
+  const PointCloud cloud = noisy_torus(3000);
   Stats stats;
   const PreparedCloud prepared(cloud, RayPssParams::from_h(test::suggested_h(cloud)), Backend::cpu, stats);
   const PointSurfaceView view = prepared.view();
   const float tolerance = 1e-3f * view.params.ball_radius;
   std::mt19937 rng(3);
-  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
   int long_sequences = 0, second_crossings = 0;
   for (int i = 0; i < 2000; ++i) {
-    const vec3 from = 3.0f * glm::normalize(vec3(u(rng), u(rng), u(rng)));
-    const vec3 to(1.3f * u(rng), 1.3f * u(rng), 0.4f * u(rng));
-    const Ray ray{from, glm::normalize(to - from)};
+    const Ray ray = ray_toward_torus(rng);
     const std::vector<Crossing> all = brute_force_crossings(prepared.locals(), ray, 0.0f);
     std::vector<Crossing> chained;
     float t_min = 0;
@@ -141,10 +144,9 @@ TEST(RayPss, BatchesOfLocalHitsAreEveryCrossingInOrder) {
 // order, so every ray gets the same hit; grazing rays on a noisy torus and across an open
 // patch's edges, many of them past their fourth candidate (a second batch and more).
 TEST(RayPss, BatchesTryTheCandidatesOneWalkEachWould) {
+  const PointCloud torus = noisy_torus(4000);
   test::SampleOptions o;
   o.count = 4000;
-  o.noise = 0.01f;
-  const PointCloud torus = test::sample(test::Torus{}, o);
   o.noise = 0.005f;
   const PointCloud patch = test::sample_plane(1.0f, o);
   int past_first_batch = 0, hits = 0;
