@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "pss/points/orient_normals.hpp"
+#include "pss/points/project_cloud.hpp"
 #include "pss/points/turn_flipped_normals.hpp"
 #include "support/cli.hpp"
 #include "support/shapes.hpp"
@@ -143,6 +144,43 @@ TEST(TurnFlippedNormals, ScatteredFlippedNormalsAreTurned) {
   ASSERT_GT(flipped, 20u);
   EXPECT_EQ(turn(s.points, normals, kSphereH), flipped);
   EXPECT_EQ(agreement(normals, s.truth).against, 0u);
+}
+
+// Normals with no order to them (each a random direction) form no patches to weigh against
+// each other: none is turned.
+TEST(TurnFlippedNormals, NormalsWithoutOrderAreLeftAsTheyAre) {
+  const Sampled s = sphere(4000);
+  std::mt19937 rng(4);
+  std::normal_distribution<float> g;
+  std::vector<vec3> normals(s.points.size());
+  for (vec3& n : normals) n = glm::normalize(vec3(g(rng), g(rng), g(rng)));
+  const std::vector<vec3> before = normals;
+  EXPECT_EQ(turn(s.points, normals, kSphereH), 0u);
+  EXPECT_EQ(normals, before);
+}
+
+// `pss project` of a sphere whose file normals are flipped on x > 0, with strays off it (set
+// aside as outliers, so not among the samples that the turn sees) carrying their side's
+// normals: every projection, the strays' too, comes out oriented as the others.
+TEST(TurnFlippedNormals, TheStraysSetAsideFollowTheTurn) {
+  Sampled s = sphere(4000);
+  std::mt19937 rng(6);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  PointCloud cloud;
+  cloud.positions = s.points;
+  for (int k = 0; k < 40; ++k) {
+    const vec3 d = glm::normalize(vec3(u(rng), u(rng), u(rng)));
+    cloud.positions.push_back((1 + 1.5f * kSphereH) * d);  // within rho of the samples, 1.5 h off them
+    s.truth.push_back(d);
+  }
+  for (std::size_t i = 0; i < cloud.positions.size(); ++i)
+    cloud.normals.push_back((cloud.positions[i].x > 0 ? -1.0f : 1.0f) * s.truth[i]);
+  Stats stats;
+  const CloudProjection out = project_cloud(cloud, ProjectionParams::from_h(kSphereH), Backend::cpu, stats);
+  ASSERT_GE(out.outliers.set_aside, 30);
+  ASSERT_GT(out.normals_turned, 1000u);
+  const Agreement a = agreement(out.cloud.normals, s.truth);
+  EXPECT_EQ(a.fewer(), 0u) << a.with << " with the truth, " << a.against << " against";
 }
 
 // The bunny's vertex normals from its faces (area-weighted), the truth for its orientation.

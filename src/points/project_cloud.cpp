@@ -51,6 +51,28 @@ void check_some_projected(const CloudProjection& projection, const ProjectionPar
   throw Error(message);
 }
 
+namespace {
+
+// A point set aside as an outlier is no sample, so the turn of the file's normals
+// (turn_flipped_normals.hpp) did not see it: its own normal, unit length, on the side of the
+// nearest sample's whose support holds it; none where it has no direction.
+vec3 set_aside_hint(const SupportGrid& grid, const FileNormals& file, vec3 position, vec3 normal) {
+  const float length = glm::length(normal);
+  if (!(length > 0) || !std::isfinite(length)) return vec3(0.0f);
+  normal /= length;
+  float nearest = kInfinity;
+  vec3 beside(0.0f);
+  grid.view().for_each_covering(position, [&](vec3, float d2, int sorted) {
+    if (d2 < nearest) {
+      nearest = d2;
+      beside = file.sorted[std::size_t(sorted)];
+    }
+  });
+  return glm::dot(normal, beside) < 0 ? -normal : normal;
+}
+
+}  // namespace
+
 CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& params, Backend backend,
                               Stats& stats) {
   validate(params);
@@ -103,7 +125,8 @@ CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& p
     std::vector<vec3> queries(grid.sorted_points().begin(), grid.sorted_points().end());
     for (int i : set_aside) {
       queries.push_back(positions[std::size_t(i)]);
-      hints.push_back(file_hints ? input.normals[std::size_t(i)] : vec3(0.0f));
+      hints.push_back(file_hints ? set_aside_hint(grid, file, positions[std::size_t(i)], input.normals[std::size_t(i)])
+                                 : vec3(0.0f));
     }
     const GridMirror g(backend, grid);
     const Mirror<vec3> query(backend, queries);

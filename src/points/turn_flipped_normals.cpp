@@ -24,6 +24,8 @@ constexpr float kSideBySide = 0.3f;
 constexpr float kOneSided = 0.4f;
 // |facing| (Pair) above which a pair off each other's tangent planes tells a side.
 constexpr float kFacing = 0.05f;
+// Patches are weighed against each other only where they average this many samples or more.
+constexpr std::size_t kFewestPerPatch = 8;
 
 // The patches: joined by all threads at once. A root is only ever linked under a smaller
 // index, so each component's root is its least member whatever the order of the joins: the
@@ -54,26 +56,40 @@ struct ConcurrentUnionFind {
   std::vector<std::atomic<int>> parent;
 };
 
-// A union-find of the patches, each member with its parity against its root: linking a and b as flipped
-// against each other (odd) or not. A link that contradicts the parities already set is refused.
+// A union-find of the patches, each member with its parity against its root: linking a and b
+// as flipped against each other (odd) or not. A link that contradicts the parities already
+// set is refused. Union by size and path compression (the parities carried along), so that
+// many links in any order stay near linear.
 struct ParityUnionFind {
-  explicit ParityUnionFind(std::size_t n) : parent(n), parity(n, 0) { std::iota(parent.begin(), parent.end(), 0); }
+  explicit ParityUnionFind(std::size_t n) : parent(n), size(n, 1), parity(n, 0) {
+    std::iota(parent.begin(), parent.end(), 0);
+  }
   int find(int i, int& p) {
-    p = 0;
-    while (parent[i] != i) {
-      p ^= parity[i];
-      i = parent[i];
+    int root = i, total = 0;
+    while (parent[std::size_t(root)] != root) {
+      total ^= parity[std::size_t(root)];
+      root = parent[std::size_t(root)];
     }
-    return i;
+    for (int at = total; parent[std::size_t(i)] != i;) {  // each node on the way now points at the root
+      const int next = parent[std::size_t(i)], own = parity[std::size_t(i)];
+      parent[std::size_t(i)] = root;
+      parity[std::size_t(i)] = char(at);
+      at ^= own;
+      i = next;
+    }
+    p = total;
+    return root;
   }
   void link(int a, int b, int odd) {
     int pa, pb;
-    const int ra = find(a, pa), rb = find(b, pb);
+    int ra = find(a, pa), rb = find(b, pb);
     if (ra == rb) return;
-    parent[rb] = ra;
-    parity[rb] = char(pa ^ pb ^ odd);
+    if (size[std::size_t(ra)] < size[std::size_t(rb)]) std::swap(ra, rb);
+    parent[std::size_t(rb)] = ra;
+    parity[std::size_t(rb)] = char(pa ^ pb ^ odd);
+    size[std::size_t(ra)] += size[std::size_t(rb)];
   }
-  std::vector<int> parent;
+  std::vector<int> parent, size;
   std::vector<char> parity;
 };
 
@@ -131,6 +147,11 @@ std::size_t turn_flipped_normals(const SupportGrid& grid, std::span<vec3> normal
   });
   std::vector<int> patch(n);
   cpu::parallel_for(std::int64_t(n), [&](std::int64_t i) { patch[std::size_t(i)] = joined.find(int(i)); });
+  // Normals so scattered that they form no patches of a few samples weigh nothing against
+  // each other (and would make the tallies below as large as the neighbourhoods).
+  std::size_t patches = 0;
+  for (std::size_t i = 0; i < n; ++i) patches += patch[i] == int(i);
+  if (patches > n / kFewestPerPatch) return 0;
   // The evidence between patches, each pair seen from both its samples (each thread its own
   // tally, summed after: sums, so the same for any thread count). From sample i: where its
   // opposed and agreeing neighbours lie in its tangent plane, the means of their unit
@@ -160,16 +181,19 @@ std::size_t turn_flipped_normals(const SupportGrid& grid, std::span<vec3> normal
     for (const Pair& p : around) {
       const int a = patch[std::size_t(p.i)], b = patch[std::size_t(p.j)];
       if (a == b) continue;
-      Evidence& e = tally[(std::uint64_t(std::min(a, b)) << 32) | std::uint64_t(std::max(a, b))];
+      int flip = 0, keep = 0;
       if (p.offset2 < kSideBySide * kSideBySide) {
         // In each other's tangent plane: a seam where the normals oppose and lie to one side.
-        if (p.agreement > kAgree) ++e.keep;
-        if (p.agreement < -kAgree && one_sided) ++e.flip;
-      } else if (p.facing > kFacing) {
-        ++e.keep;  // each behind the other's face (a convex crease, a thin part) or each before it (a slot)
-      } else if (p.facing < -kFacing) {
-        ++e.flip;  // one behind the other's face and the other before it
+        keep = p.agreement > kAgree;
+        flip = p.agreement < -kAgree && one_sided;
+      } else {
+        keep = p.facing > kFacing;   // each behind the other's face (a convex crease, a thin part) or each before it (a slot)
+        flip = p.facing < -kFacing;  // one behind the other's face and the other before it
       }
+      if (flip + keep == 0) continue;
+      Evidence& e = tally[(std::uint64_t(std::min(a, b)) << 32) | std::uint64_t(std::max(a, b))];
+      e.flip += flip;
+      e.keep += keep;
     }
   });
   std::unordered_map<std::uint64_t, Evidence> between;

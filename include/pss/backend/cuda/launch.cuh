@@ -19,23 +19,24 @@ inline void check(cudaError_t status, const char* what) {
 }
 #define PSS_CUDA_CHECK(call) ::pss::cuda::check((call), #call)
 
-// The blocks of at most kMaxBlock threads (below) that a kernel asks the compiler to fit on
-// one SM at once, through its registers: 1 leaves the compiler free.
-template <class F>
-inline constexpr int kMinBlocksPerSm = 1;
-
-template <class F>
-__global__ void __launch_bounds__(128, kMinBlocksPerSm<F>) for_each_index(std::int64_t begin, std::int64_t end, F f) {
-  const std::int64_t i = begin + std::int64_t(blockIdx.x) * blockDim.x + threadIdx.x;
-  if (i < end) f(i);
-}
-
 // The block size that keeps the most threads of this kernel resident (its registers and
 // stack decide), found once per kernel, at most 128: our items diverge (rays that miss
 // next to rays that project 30 candidates), and a block holds its place on the SM until its
 // slowest warp ends. Uncapped, the occupancy API's choice made 1920×1080 frames 13.0 → 16.9 ms
 // on an H100 (docs/benchmarks.md).
 inline constexpr int kMaxBlock = 128;
+
+// The blocks of kMaxBlock threads that a kernel asks the compiler to fit on one SM at once,
+// through its registers: 1 leaves the compiler free (the bound then only says that no block
+// has more than kMaxBlock threads). Specialised where a kernel is instantiated (its .cu file).
+template <class F>
+inline constexpr int kMinBlocksPerSm = 1;
+
+template <class F>
+__global__ void __launch_bounds__(kMaxBlock, kMinBlocksPerSm<F>) for_each_index(std::int64_t begin, std::int64_t end, F f) {
+  const std::int64_t i = begin + std::int64_t(blockIdx.x) * blockDim.x + threadIdx.x;
+  if (i < end) f(i);
+}
 
 template <class F>
 int block_size(const char* phase) {
