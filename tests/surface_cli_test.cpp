@@ -112,6 +112,28 @@ TEST_F(SurfaceCli, AFlippedHalfOfTheFilesNormalsIsTurned) {
   EXPECT_EQ(read_json(path("render.json"))["normals_turned"], half);
 }
 
+// `pss info` says whether a file's normals agree, as render and project would find.
+TEST_F(SurfaceCli, InfoSaysWhetherTheFilesNormalsAgree) {
+  const auto info = [&](const std::string& file) {
+    const test::CliResult r = test::run_pss("info " + file);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    const std::size_t at = r.out.find("normals         ");
+    return at == std::string::npos ? std::string() : r.out.substr(at, r.out.find('\n', at) - at);
+  };
+  EXPECT_EQ(info(sphere(path("exact.xyz"), "exact")), "normals         the file's agree with their neighbours'");
+  const std::string flipped = sphere(path("flipped.xyz"), "flipped");
+  const test::CliResult projected = test::run_pss("project " + flipped + " -o " + path("p.ply") + " --stats " +
+                                                  path("p.json"));
+  ASSERT_EQ(projected.exit_code, 0) << projected.err;
+  const int turned = read_json(path("p.json"))["normals_turned"];
+  ASSERT_GT(turned, 2500);
+  EXPECT_EQ(info(flipped), "normals         the file's: " + std::to_string(turned) +
+                               " of 6000 contradict their neighbours' (render and project turn them)");
+  std::ofstream(path("zero.xyz")) << "0 0 0 0 0 1\n1 0 0 0 0 0\n0 1 0 0 0 1\n1 1 0 0 0 1\n0.5 0.5 0.1 0 0 1\n";
+  EXPECT_EQ(info(path("zero.xyz")), "normals         the file's: one or more has no direction (render and project estimate them)");
+  EXPECT_EQ(info(sphere(path("plain.xyz"), "none")), "");
+}
+
 TEST_F(SurfaceCli, RenderRecordsAndShowsTheChosenSurface) {
   const std::string cloud = sphere(path("plain.xyz"), "none");
   const auto render = [&](const std::string& flags, const std::string& name) {

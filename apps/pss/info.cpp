@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "pss/io/point_cloud_file.hpp"
 #include "pss/io/volume_file.hpp"
+#include "pss/points/sample_normals.hpp"
 #include "pss/points/spacing.hpp"
 #include "pss/points/support.hpp"
 #include "pss/volume/histogram.hpp"
@@ -28,6 +29,21 @@ std::string world_coordinate(double origin, float local) {
     std::snprintf(text, sizeof text, "%.*g", digits, origin + double(local));
     if (digits == 17 || float(std::strtod(text, nullptr) - origin) == local) return text;
   }
+}
+
+// Whether the file's normals agree with each other, as render and project would find (all
+// points as samples here: those set aside as outliers are counted too).
+void print_file_normals(const PointCloud& cloud, const SupportWidths& widths, const ProjectionParams& params) {
+  const SupportGrid grid(cloud.positions, widths.h, params.rho / params.h);
+  Stats stats;
+  const FileNormals file = file_normals(grid, cloud.normals, params, stats);
+  if (file.sorted.empty())
+    std::printf("normals         the file's: one or more has no direction (render and project estimate them)\n");
+  else if (file.turned == 0)
+    std::printf("normals         the file's agree with their neighbours'\n");
+  else
+    std::printf("normals         the file's: %zu of %zu contradict their neighbours' (render and project turn them)\n",
+                file.turned, cloud.size());
 }
 
 void print_cloud(const std::string& path) {
@@ -59,6 +75,7 @@ void print_cloud(const std::string& path) {
     std::printf("adaptive h_i    from %g to %g, median %g (wider where the spacing is, or across the gaps of a cloud "
                 "sampled in rows; --support global uses h everywhere)\n",
                 double(w.least), double(w.largest), double(w.median));
+    if (cloud.has_normals()) print_file_normals(cloud, w, params);
   }
 }
 
