@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 
+#include "components.hpp"
 #include "pss/backend/cpu/parallel_for.hpp"
 
 namespace pss::points_detail {
@@ -17,28 +17,16 @@ constexpr int kLinks = 4;  // the nearest neighbours a sample is chained to
 // sampled in two dimensions is one part.
 std::vector<unsigned> chains(std::span<const vec3> unit, const KdTree& tree) {
   const std::size_t n = unit.size();
-  std::vector<unsigned> link(n * kLinks, unsigned(-1));
+  Components chained(n);
   cpu::parallel_for(std::int64_t(n), [&](std::int64_t i) {
     unsigned index[kLinks + 1] = {};
     float d2[kLinks + 1] = {};
     const std::size_t found = tree.knnSearch(&unit[std::size_t(i)].x, kLinks + 1, index, d2);
-    for (std::size_t j = 1; j < found; ++j) link[std::size_t(i) * kLinks + j - 1] = index[j];
+    for (std::size_t j = 1; j < found; ++j) chained.join(int(i), int(index[j]));
   });
-  std::vector<unsigned> parent(n);
-  std::iota(parent.begin(), parent.end(), 0u);
-  const auto root = [&](unsigned i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  };
-  for (std::size_t i = 0; i < n; ++i)
-    for (int j = 0; j < kLinks; ++j) {
-      const unsigned other = link[i * kLinks + std::size_t(j)];
-      if (other == unsigned(-1)) continue;
-      const unsigned a = root(unsigned(i)), b = root(other);
-      if (a != b) parent[std::max(a, b)] = std::min(a, b);
-    }
-  for (std::size_t i = 0; i < n; ++i) parent[i] = root(unsigned(i));
-  return parent;
+  std::vector<unsigned> chain(n);
+  cpu::parallel_for(std::int64_t(n), [&](std::int64_t i) { chain[std::size_t(i)] = unsigned(chained.find(int(i))); });
+  return chain;
 }
 
 }  // namespace

@@ -1,7 +1,6 @@
 #include "pss/points/turn_flipped_normals.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <numeric>
@@ -10,6 +9,7 @@
 
 #include <omp.h>
 
+#include "components.hpp"
 #include "pss/backend/cpu/parallel_for.hpp"
 
 namespace pss {
@@ -26,35 +26,6 @@ constexpr float kOneSided = 0.4f;
 constexpr float kFacing = 0.05f;
 // Patches are weighed against each other only where they average this many samples or more.
 constexpr std::size_t kFewestPerPatch = 8;
-
-// The patches: joined by all threads at once. A root is only ever linked under a smaller
-// index, so each component's root is its least member whatever the order of the joins: the
-// result is the same for any thread count.
-struct ConcurrentUnionFind {
-  explicit ConcurrentUnionFind(std::size_t n) : parent(n) {
-    for (std::size_t i = 0; i < n; ++i) parent[i].store(int(i), std::memory_order_relaxed);
-  }
-  int find(int i) {
-    for (;;) {
-      int p = parent[std::size_t(i)].load(std::memory_order_acquire);
-      if (p == i) return i;
-      const int grandparent = parent[std::size_t(p)].load(std::memory_order_acquire);
-      if (grandparent != p) parent[std::size_t(i)].compare_exchange_weak(p, grandparent, std::memory_order_acq_rel);
-      i = p;
-    }
-  }
-  void join(int a, int b) {
-    for (;;) {
-      a = find(a);
-      b = find(b);
-      if (a == b) return;
-      if (a < b) std::swap(a, b);
-      int root = a;
-      if (parent[std::size_t(a)].compare_exchange_strong(root, b, std::memory_order_acq_rel)) return;
-    }
-  }
-  std::vector<std::atomic<int>> parent;
-};
 
 // A union-find of the patches, each member with its parity against its root: linking a and b
 // as flipped against each other (odd) or not. A link that contradicts the parities already
@@ -138,7 +109,7 @@ std::size_t turn_flipped_normals(const SupportGrid& grid, std::span<vec3> normal
       f(pair, e);
     });
   };
-  ConcurrentUnionFind joined(n);
+  points_detail::Components joined(n);  // the patches
   cpu::parallel_for(std::int64_t(n), [&](std::int64_t i) {
     for_each_neighbour(int(i), [&](const Pair& p, vec3) {
       if (p.j > p.i && p.in_rho2 <= 0.25f && p.agreement > kAgree && p.offset2 < kSideBySide * kSideBySide)

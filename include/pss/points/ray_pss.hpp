@@ -176,12 +176,12 @@ PSS_INLINE LocalHitBatch nearest_local_hits(const PointSurfaceView& s, const Ray
     batch.local[i] = k;
     if (batch.count == LocalHitBatch::kSize) bound = batch.t[LocalHitBatch::kSize - 1];
   };
-  s.bvh.closest(ray, t_min, bound, [&](int k, float& prune) {
+  // `bound` is the walk's t_max (closest() takes it by reference): add() lowers it.
+  s.bvh.closest(ray, t_min, bound, [&](int k, float&) {
     float ts[2];
-    const int n = local_crossings(s.locals[k], ray, margin, t_min, prune, ts);
+    const int n = local_crossings(s.locals[k], ray, margin, t_min, bound, ts);
     if (n > 0) add(ts[0], k);  // (a double root once)
     if (n > 1 && ts[1] > ts[0] && ts[1] < bound) add(ts[1], k);  // a second crossing of the same graph
-    prune = bound;  // the walk's t_max: closest() passes `bound` itself; kept explicit
   });
   batch.complete = batch.count < LocalHitBatch::kSize;
   return batch;
