@@ -1,6 +1,7 @@
 #include "pss/points/orient_normals.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <queue>
 #include <vector>
@@ -44,9 +45,13 @@ void orient_normals_consistently(std::span<const vec3> points, std::span<vec3> n
       if (++oriented % 4096 == 0) progress.advance(4096);
       // Prim's order: the edge that reaches i first is its tree edge to the parent.
       if (e.parent >= 0 && glm::dot(normals[e.parent], normals[i]) < 0) normals[i] = -normals[i];
-      view.for_each_covering(points[i], [&](vec3, float, int sorted) {
+      view.for_each_covering(points[i], [&](vec3 q, float d2, int sorted) {
         const int j = original[sorted];
-        if (!done[j]) frontier.push({1.0f - std::abs(glm::dot(normals[i], normals[j])), j, i});
+        if (done[j]) return;
+        // Along the surface, not across it: a neighbour stacked above or below (the other
+        // face of a thin part, whose normal is as parallel) is reached last.
+        const float across = d2 > 0 ? std::abs(glm::dot(q - points[i], normals[i])) / std::sqrt(d2) : 0.0f;
+        frontier.push({1.0f - std::abs(glm::dot(normals[i], normals[j])) + across, j, i});
       });
     }
   }
