@@ -9,6 +9,7 @@ void configure_app(CLI::App& app, Action action) {
   app.set_version_flag("--version", "pss 0.1.0");
   add_info_command(app, action);
   add_project_command(app, action);
+  add_mesh_command(app, action);
   add_render_command(app, action);
   add_volume_command(app, action);
   add_extract_command(app, action);

@@ -60,6 +60,7 @@ void configure_app(CLI::App& app, Action action);
 
 void add_info_command(CLI::App& app, Action action);
 void add_project_command(CLI::App& app, Action action);
+void add_mesh_command(CLI::App& app, Action action);
 void add_render_command(CLI::App& app, Action action);
 void add_volume_command(CLI::App& app, Action action);
 void add_extract_command(CLI::App& app, Action action);

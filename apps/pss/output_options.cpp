@@ -24,5 +24,6 @@ CLI::Validator output_named_for(FormatOf format_of, const char* type_name) {
 
 CLI::Validator image_output() { return output_named_for(image_format_of, "IMAGE"); }
 CLI::Validator points_output() { return output_named_for(points_format_of, "POINTS"); }
+CLI::Validator mesh_output() { return output_named_for(mesh_format_of, "MESH"); }
 
 }  // namespace pss::app

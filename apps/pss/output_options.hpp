@@ -9,5 +9,6 @@ namespace pss::app {
 
 CLI::Validator image_output();   // .png, .jpg, .jpeg, .exr
 CLI::Validator points_output();  // .ply, .xyz
+CLI::Validator mesh_output();    // .ply, .obj, .stl, .off
 
 }  // namespace pss::app

@@ -4,6 +4,7 @@ The moving-least-squares surface of a point cloud or a volume (Schmitt et al.,
 "Hardware-accelerated extraction and rendering of point set surfaces"), from NumPy:
 
     points, normals, status = pss.project(points)          # every point onto the surface
+    vertices, normals, faces = pss.mesh(points)            # a triangle mesh of the surface
     image = pss.render(points, view=(30, 20))              # (H, W, 3) uint8, ray traced
     volume = pss.Volume(values, spacing=(1, 1, 1))         # values indexed [z, y, x]
     image = volume.render(iso=100)
@@ -25,7 +26,7 @@ import os as _os
 from . import _pss
 from ._pss import Error, Volume
 
-__all__ = ["Error", "Volume", "estimate_h", "project", "read_points", "read_volume", "render", "set_progress",
+__all__ = ["Error", "Volume", "estimate_h", "mesh", "project", "read_points", "read_volume", "render", "set_progress",
            "set_threads"]
 __version__ = "0.1.0"
 
@@ -131,6 +132,27 @@ def project(points, h=None, *, normals=None, surface="mls", outliers="set-aside"
     return _pss.project(points, {"normals": normals, "surface": surface, "outliers": outliers, "h": h, "method": method,
                                  "rho": rho,
                                  "support": support, "iterations": iterations, "backend": backend})
+
+
+def mesh(points, h=None, *, normals=None, surface="mls", outliers="set-aside", rho=None, support=None, cell=None,
+         borders="auto", iterations=4, backend="auto"):
+    """A triangle mesh of the point set surface, as `pss mesh`: marching tetrahedra over the
+    cubes near the points, every vertex on the surface with its normal.
+
+    points, h, normals, surface, outliers, rho, support, iterations: as for project (the
+    normals given, or estimated and oriented, say which side is out). cell: the cubes' side
+    (default h/2, about the points' spacing; smaller gives more, smaller triangles).
+    borders: 'clip' (the mesh ends at the points' hull), 'extend' (on as far as the projection
+    reaches, about rho past the last points) or 'auto' (extend: an array of points is a scan's,
+    as the CLI's auto for files without faces).
+
+    Returns (vertices, normals, faces): (V, 3) float32 (float64 for points far from zero,
+    see above), (V, 3) float32 unit normals of the surface, and (T, 3) int32 vertex indices,
+    counter-clockwise seen from outside. Closed where the surface is closed, manifold always.
+    """
+    return _pss.mesh(points, {"normals": normals, "surface": surface, "outliers": outliers, "h": h, "rho": rho,
+                              "support": support, "cell": cell, "borders": borders, "iterations": iterations,
+                              "backend": backend})
 
 
 def render(points, h=None, *, normals=None, colors=None, surface="mls", outliers="set-aside", rho=None, support=None,

@@ -9,6 +9,7 @@
 #include "options.hpp"
 #include "pss/core/error.hpp"
 #include "pss/io/point_cloud_file.hpp"
+#include "pss/mesh/mesh_cloud.hpp"
 #include "pss/points/project_cloud.hpp"
 #include "pss/points/render_cloud.hpp"
 #include "pss/points/spacing.hpp"
@@ -94,6 +95,36 @@ py::tuple project(const py::handle& points, const py::dict& o) {
                         to_numpy<std::int32_t>(std::move(status), {n}));
 }
 
+py::tuple mesh(const py::handle& points, const py::dict& o) {
+  const PointCloud cloud = cloud_of(points, option(o, "normals"));
+  const std::optional<float> h = positive_or_none(o, "h"), rho = positive_or_none(o, "rho"),
+                             cell = positive_or_none(o, "cell");
+  const int iterations = integer_in(o, "iterations", 1, 100);
+  const Support support = support_of(o, h.has_value());
+  const SurfaceOperator surface = surface_of(o);
+  const OutlierPolicy outliers = outliers_of(o);
+  const std::optional<BorderMode> borders = border_choice_of(choice(o, "borders", {"auto", "clip", "extend"}));
+  const Backend backend = backend_of(o);
+  CloudMesh result = run_interruptibly([&] {
+    if (cloud.size() < 3) throw Error("points: a mesh needs at least 3 (got " + std::to_string(cloud.size()) + ")");
+    Stats stats;
+    MeshParams params;
+    params.projection = ProjectionParams::from_h(h ? *h : suggested_h(cloud.positions));
+    if (rho) params.projection.rho = *rho;
+    params.projection.support = support;
+    params.projection.surface = surface;
+    params.projection.outliers = outliers;
+    params.projection.borders = borders_for(borders, cloud);
+    params.projection.max_mls_iterations = iterations;
+    if (cell) params.cell = *cell;
+    return mesh_cloud(cloud, params, backend, stats);
+  });
+  const auto v = py::ssize_t(result.mesh.positions.size()), t = py::ssize_t(result.mesh.triangles.size());
+  return py::make_tuple(world_numpy(std::move(result.mesh.positions), cloud.origin, {v, 3}),
+                        to_numpy(std::move(result.mesh.normals)),
+                        to_numpy<std::int32_t>(std::move(result.mesh.triangles), {t, 3}));
+}
+
 py::object render(const py::handle& points, const py::dict& o) {
   PointCloud cloud = cloud_of(points, option(o, "normals"));
   if (cloud.size() == 0) throw Error("points: there are none to render");
@@ -173,6 +204,7 @@ py::tuple read_points(const std::string& path) {
 void bind_points(py::module_& m) {
   m.def("estimate_h", &estimate_h, py::arg("points"));
   m.def("project", &project, py::arg("points"), py::arg("options"));
+  m.def("mesh", &mesh, py::arg("points"), py::arg("options"));
   m.def("render", &render, py::arg("points"), py::arg("options"));
   m.def("read_points", &read_points, py::arg("path"));
 }

@@ -12,6 +12,7 @@ using io::lowercase_extension;
 
 constexpr const char* kImageExtensions = ".png, .jpg, .jpeg or .exr";
 constexpr const char* kPointsExtensions = ".ply or .xyz";
+constexpr const char* kMeshExtensions = ".ply, .obj, .stl or .off";
 
 // Says what the name should be, so that -o cloud.ply on `render` is no mystery.
 [[noreturn]] void refuse(const std::filesystem::path& path, const std::string& what, const char* extensions) {
@@ -35,6 +36,15 @@ PointsFormat points_format_of(const std::filesystem::path& path) {
   if (ext == ".ply") return PointsFormat::ply;
   if (ext == ".xyz") return PointsFormat::xyz;
   refuse(path, "a point cloud", kPointsExtensions);
+}
+
+MeshFormat mesh_format_of(const std::filesystem::path& path) {
+  const std::string ext = lowercase_extension(path);
+  if (ext == ".ply") return MeshFormat::ply;
+  if (ext == ".obj") return MeshFormat::obj;
+  if (ext == ".stl") return MeshFormat::stl;
+  if (ext == ".off") return MeshFormat::off;
+  refuse(path, "a mesh", kMeshExtensions);
 }
 
 }  // namespace pss

@@ -11,6 +11,7 @@
 
 #include "pss/backend/backend.hpp"
 #include "pss/core/stats.hpp"
+#include "pss/points/border_choice.hpp"
 #include "pss/points/cloud.hpp"
 #include "pss/points/ray_pss.hpp"
 #include "pss/points/outliers.hpp"
@@ -42,19 +43,6 @@ struct PointFinder {
 // What colours the surface: the shading's albedo, or the samples' colours interpolated at
 // each hit (points/sample_colors.hpp).
 enum class SurfaceColor : unsigned char { albedo, samples };
-
-// `--borders auto|clip|extend` (points/borders.hpp); auto is no choice (nullopt): a mesh's
-// vertices are clipped, their surface ending at them, and a scan's surface extends past its
-// last points, which stand for the surface around them (its border is where the scanner
-// stopped, not where the object ends). A name it does not give is auto (callers check it).
-inline std::optional<BorderMode> border_choice_of(std::string_view name) {
-  if (name == "clip") return BorderMode::clip;
-  if (name == "extend") return BorderMode::extend;
-  return std::nullopt;
-}
-inline BorderMode borders_for(std::optional<BorderMode> choice, const PointCloud& cloud) {
-  return choice.value_or(cloud.mesh_vertices ? BorderMode::clip : BorderMode::extend);
-}
 
 // The host owner of everything a PointSurfaceView points to.
 class PreparedCloud {

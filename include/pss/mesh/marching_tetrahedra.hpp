@@ -1,0 +1,100 @@
+// Marching tetrahedra over a narrow band of lattice cubes (issue 27): the cubes are found by
+// following the surface from seeds, never by sweeping a grid, so that time and memory grow
+// with the surface's area, not its box's volume. Each cube splits into the six tetrahedra
+// of its main diagonal (Kuhn's split, the same in every cube, so neighbours share their
+// faces' diagonals); a tetrahedron whose corners' signs differ holds one triangle or two.
+// The triangles of such a split are an embedded surface wherever each vertex lies on its
+// edge, strictly between the corners: every vertex is a root of the implicit on its edge
+// (ImplicitSurface::cross), so the mesh lies on the surface with no self-intersection.
+// Why tetrahedra, not marching cubes' table: docs/architecture.md.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <span>
+
+#include <glm/ext/vector_double3.hpp>
+
+#include "pss/core/progress.hpp"
+#include "pss/mesh/triangle_mesh.hpp"
+
+namespace pss {
+
+// Cubes of side `cell` from `origin`, corner (i, j, k) at origin + cell·(i, j, k), at most
+// 2^20 corners along each axis (lattice_over throws a one-line Error beyond).
+struct Lattice {
+  static constexpr int kBits = 20;
+  glm::dvec3 origin{0.0};
+  double cell = 1;
+  ivec3 size{0};  // corners along each axis
+
+  vec3 position(ivec3 c) const { return vec3(origin + cell * glm::dvec3(c)); }
+  ivec3 cube_of(vec3 p) const;  // the cube holding p (may lie outside)
+  bool holds_cube(ivec3 c) const {
+    return c.x >= 0 && c.y >= 0 && c.z >= 0 && c.x + 1 < size.x && c.y + 1 < size.y && c.z + 1 < size.z;
+  }
+  static std::uint64_t key(ivec3 c) {
+    return (std::uint64_t(c.x) << (2 * kBits)) | (std::uint64_t(c.y) << kBits) | std::uint64_t(c.z);
+  }
+  static ivec3 corner(std::uint64_t key) {
+    const std::uint64_t mask = (1u << kBits) - 1;
+    return ivec3(int(key >> (2 * kBits)), int((key >> kBits) & mask), int(key & mask));
+  }
+};
+
+// The lattice over the box [lo, hi] grown by `margin` on every side; `what` names the
+// cell size in the error where the box holds too many cells ("--cell").
+Lattice lattice_over(vec3 lo, vec3 hi, double margin, double cell, const char* what);
+
+// What the implicit says at a corner: its signed distance to the surface (positive
+// outside, where the surface's normals point), a point of the surface near it (where the
+// band grows to), and whether either can be trusted (no surface there: no triangles).
+struct CornerSample {
+  float distance = 0;
+  vec3 surface_point{0.0f};
+  bool valid = false;
+};
+
+// An edge whose ends' signs differ (distance_a < 0 <= distance_b or the reverse), and the
+// vertex found on it: its position on the edge, strictly between the ends, and the
+// surface's unit normal there.
+struct EdgeCrossing {
+  vec3 a, b;
+  float distance_a, distance_b;
+};
+struct MeshVertex {
+  vec3 position, normal;
+};
+
+// The implicit, evaluated in batches (on whichever backend the caller runs).
+struct ImplicitSurface {
+  std::function<void(std::span<const vec3> corners, std::span<CornerSample> out)> sample;
+  std::function<void(std::span<const EdgeCrossing> edges, std::span<MeshVertex> out)> cross;
+};
+
+struct MarchCounts {
+  std::int64_t corners = 0;          // corners evaluated
+  std::int64_t cubes_visited = 0;
+  std::int64_t cubes_crossed = 0;    // with triangles
+  std::int64_t cubes_refused = 0;    // signs differ, but a corner invalid or a jump between two
+  std::int64_t pinched_triangles = 0;  // removed to keep every vertex one fan (remove_pinches)
+};
+
+// The mesh of the implicit's zero set in the cubes reached from the cubes holding `seeds`:
+// a cube is meshed when its eight corners are valid, their signs differ, and of any two
+// corners of opposite signs the nearer to the surface lies within `max_slope` times their
+// distance of it (where the surface passes between two points, a distance to it is at most
+// theirs at either end; where both are farther, the sign changes across a jump of the
+// implicit, not the surface); the band grows into the face neighbours across faces whose
+// corners' signs differ and into the cubes of the corners' surface points. The result is
+// edge-manifold, vertex-manifold, consistently oriented (outward: towards positive
+// distance) and deterministic: the same for any thread count and batch order.
+TriangleMesh march_tetrahedra(const Lattice& lattice, std::span<const vec3> seeds, const ImplicitSurface& implicit,
+                              float max_slope, MarchCounts& counts);
+
+// Removes the triangles of every fan but the largest at each vertex where a mesh's
+// triangles meet in more than one fan (touching at a vertex only), until none does; then
+// the vertices no triangle uses. Returns how many triangles it removed.
+std::int64_t remove_pinches(TriangleMesh& mesh);
+
+}  // namespace pss

@@ -1,0 +1,48 @@
+// The mesh of a cloud's PSS (`pss mesh`, issue 27): marching tetrahedra
+// (mesh/marching_tetrahedra.hpp) over the cubes near the samples, of the PSS's signed
+// distance (mesh/cloud_implicit.hpp), every vertex a root of it on its edge, with the PSS's
+// normal there. Any surface operator and support of `pss project`.
+#pragma once
+
+#include "pss/backend/backend.hpp"
+#include "pss/core/stats.hpp"
+#include "pss/mesh/marching_tetrahedra.hpp"
+#include "pss/points/cloud.hpp"
+#include "pss/points/outliers.hpp"
+#include "pss/points/projection.hpp"
+#include "pss/points/sample_normals.hpp"
+#include "pss/points/support.hpp"
+
+namespace pss {
+
+// The cube's side at h (or the least h_i): about the samples' spacing (h is their distance
+// to the 15th neighbour, about 2.2 spacings on a surface), so that the mesh resolves what
+// the PSS resolves, at a few triangles per sample.
+inline constexpr float kDefaultCellPerH = 0.5f;
+
+struct MeshParams {
+  ProjectionParams projection;  // its borders: clip ends the mesh where the samples end
+  float cell = 0;               // the cubes' side; 0: kDefaultCellPerH·h
+};
+
+struct CloudMesh {
+  TriangleMesh mesh;
+  MarchCounts counts;
+  float cell = 0;
+  SupportWidths widths;  // least, median, largest h_i (h is not kept)
+  NormalsUsed normals = NormalsUsed::none;  // the samples' oriented normals: the file's or estimated
+  std::size_t normals_turned = 0;
+  OutlierReport outliers;
+  // Whether the estimated normals' orientation (orient_normals.hpp: a guess at which side
+  // is out) enclosed a negative volume, and the mesh was turned inside out to face out.
+  bool turned_outward = false;
+};
+
+// Where the samples' normals were estimated, the mesh faces out: its closed components
+// enclose a positive volume (the file's normals are taken as they say).
+// Throws Error for invalid parameters (as project_cloud), a cell that is not a positive
+// number or too small for the cloud's extent, a cloud of fewer than three points, and a
+// cloud that gives no triangle.
+CloudMesh mesh_cloud(const PointCloud& cloud, const MeshParams& params, Backend backend, Stats& stats);
+
+}  // namespace pss

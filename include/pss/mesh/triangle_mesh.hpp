@@ -1,0 +1,50 @@
+// A triangle mesh on the host (what `pss mesh` makes, mesh/mesh_cloud.hpp), and what its
+// topology is: the checks a user of a mesh relies on (issue 27), computed, not assumed.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <glm/ext/vector_double3.hpp>
+
+#include "pss/core/types.hpp"
+
+namespace pss {
+
+struct TriangleMesh {
+  glm::dvec3 origin{0.0};        // world positions are origin + positions[i] (as PointCloud's)
+  std::vector<vec3> positions;   // from origin
+  std::vector<vec3> normals;     // unit, one per position: the surface's, not the faces'
+  std::vector<std::array<int, 3>> triangles;  // counter-clockwise seen from outside
+};
+
+struct MeshTopology {
+  std::int64_t vertices = 0, edges = 0, triangles = 0;
+  std::int64_t boundary_edges = 0;           // in one triangle
+  std::int64_t non_manifold_edges = 0;       // in three or more
+  std::int64_t non_manifold_vertices = 0;    // whose triangles are not one fan
+  std::int64_t misoriented_edges = 0;        // two triangles crossing it the same way
+  std::int64_t degenerate_triangles = 0;     // a vertex twice
+  std::int64_t unreferenced_vertices = 0;
+  std::int64_t components = 0;               // joined by shared edges
+  std::int64_t euler_characteristic() const { return vertices - edges + triangles; }
+  bool manifold() const {
+    return non_manifold_edges == 0 && non_manifold_vertices == 0 && misoriented_edges == 0 &&
+           degenerate_triangles == 0;
+  }
+  bool watertight() const { return manifold() && boundary_edges == 0; }
+};
+
+MeshTopology topology(const TriangleMesh& mesh);
+
+// The volume the mesh's closed components enclose, signed: positive where their triangles
+// face outward (counter-clockwise seen from outside), negative where inward. A cavity's
+// closed surface, facing into the cavity, counts negative, as it should. Components with a
+// boundary enclose nothing and count 0.
+double enclosed_volume(const TriangleMesh& mesh);
+
+// Every triangle's winding reversed and every normal negated.
+void turn_inside_out(TriangleMesh& mesh);
+
+}  // namespace pss

@@ -1,0 +1,92 @@
+#include "pss/mesh/mesh_cloud.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "pss/backend/mirror.hpp"
+#include "pss/backend/parallel_for.hpp"
+#include "pss/core/error.hpp"
+#include "pss/mesh/cloud_implicit.hpp"
+#include "pss/points/project_cloud.hpp"
+#include "pss/spatial/grid_mirror.hpp"
+
+namespace pss {
+
+namespace {
+
+// Regula falsi stops within this share of the cube's side of the surface, or after
+// kRootSteps projections (measured: 3 on average on the torus and the bunny).
+constexpr float kRootTolerance = 1e-3f;
+constexpr int kRootSteps = 8;
+
+// Where the surface passes between two corners, the nearer lies within their distance of it
+// (marching_tetrahedra.hpp: farther, the change of sign is a jump of the implicit).
+constexpr float kMaxSlope = 1.0f;
+
+template <class Kernel>
+void run(Backend backend, const char* phase, std::int64_t n, const Kernel& kernel, Stats& stats) {
+  Progress progress(phase, n);
+  parallel_for(backend, phase, n, kernel, stats, &progress);
+}
+
+}  // namespace
+
+CloudMesh mesh_cloud(const PointCloud& cloud, const MeshParams& params, Backend backend, Stats& stats) {
+  const ProjectionParams& projection = params.projection;
+  validate(projection);
+  if (cloud.size() < 3)
+    throw Error("a mesh needs at least 3 points (the cloud has " + std::to_string(cloud.size()) + ")");
+  const Aabb box = cloud.bounds();
+  check_neighbourhood(projection, double(glm::length(box.extent())));
+  CloudMesh out;
+  if (!(params.cell >= 0) || !std::isfinite(params.cell))
+    throw Error("the cell size must be a positive number (got " + std::to_string(params.cell) + ")");
+  out.cell = params.cell > 0 ? params.cell : kDefaultCellPerH * projection.h;
+  const Lattice lattice = lattice_over(box.lo, box.hi, 2.0 * double(out.cell), double(out.cell), "the cell size");
+
+  {
+    ScopedPhase phase(stats, "support widths", projection.support == Support::global);
+    out.widths = support_widths(cloud.positions, projection);
+  }
+  SupportGrid grid = grid_of_samples(cloud.positions, out.widths.h, projection.rho / projection.h,
+                                     projection.outliers, backend, stats, out.outliers);
+  out.widths.h = {};
+  // Every operator's mesh needs the samples' oriented normals: they say which side is out.
+  const FileNormals file = file_normals(grid, cloud.normals, projection, stats);
+  out.normals_turned = file.turned;
+  grid.set_normals(sample_normals(grid, file, projection, backend, stats, out.normals));
+
+  const GridMirror g(backend, grid);
+  ImplicitSurface implicit;
+  implicit.sample = [&](std::span<const vec3> corners, std::span<CornerSample> samples) {
+    const Mirror<vec3> in(backend, corners);
+    Mirror<CornerSample> result(backend, corners.size());
+    run(backend, "mesh corners", std::int64_t(corners.size()),
+        SampleCornersKernel{g.view(), in.data(), result.data(), projection}, stats);
+    const std::vector<CornerSample> taken = result.take();
+    std::copy(taken.begin(), taken.end(), samples.begin());
+  };
+  implicit.cross = [&](std::span<const EdgeCrossing> edges, std::span<MeshVertex> vertices) {
+    const Mirror<EdgeCrossing> in(backend, edges);
+    Mirror<MeshVertex> result(backend, edges.size());
+    run(backend, "mesh vertices", std::int64_t(edges.size()),
+        CrossEdgesKernel{g.view(), in.data(), result.data(), projection, kRootTolerance * out.cell, kRootSteps}, stats);
+    const std::vector<MeshVertex> taken = result.take();
+    std::copy(taken.begin(), taken.end(), vertices.begin());
+  };
+  {
+    ScopedPhase phase(stats, "mesh", false);  // its kernels show their progress
+    out.mesh = march_tetrahedra(lattice, grid.sorted_points(), implicit, kMaxSlope, out.counts);
+  }
+  out.mesh.origin = cloud.origin;
+  if (out.normals == NormalsUsed::estimated && enclosed_volume(out.mesh) < 0) {
+    turn_inside_out(out.mesh);
+    out.turned_outward = true;
+  }
+  if (out.mesh.triangles.empty())
+    throw Error("the surface gave no triangle: h = " + std::to_string(projection.h) +
+                " is likely too small for the sample spacing (pss info suggests one), or the cell too large");
+  return out;
+}
+
+}  // namespace pss

@@ -1,0 +1,276 @@
+// `pss mesh` as a user runs it: a mesh in each format that reads back as the same closed,
+// oriented surface; the summary and --stats say what the mesh is; every option changes what
+// it should; bad input gets one line and no output.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <nlohmann/json.hpp>
+
+#include "pss/io/ply.hpp"
+#include "pss/mesh/triangle_mesh.hpp"
+#include "support/cli.hpp"
+#include "support/mesh_readers.hpp"
+#include "support/shapes.hpp"
+
+namespace pss {
+namespace {
+
+// A number as the command line takes it, to float precision.
+std::string number(float v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.9g", double(v));
+  return text;
+}
+
+class MeshCli : public test::CliTest {
+ protected:
+  // A unit sphere's samples, and its mesh by `pss mesh ... flags`; the mesh read back.
+  std::string sphere(std::size_t count = 3000) {
+    test::SampleOptions o;
+    o.count = count;
+    write_ply(path("sphere.ply"), test::sample(test::Sphere{}, o));
+    return path("sphere.ply");
+  }
+  test::CliResult mesh(const std::string& input, const std::string& output, const std::string& flags = "") {
+    return test::run_pss("mesh " + input + " -o " + path(output) + " --progress never " + flags);
+  }
+  nlohmann::json stats(const std::string& name) {
+    std::ifstream in(path(name));
+    return nlohmann::json::parse(in);
+  }
+};
+
+// The largest |‖p‖ − 1| over the vertices, and whether every triangle turns outward.
+struct SphereFit {
+  float distance = 0;
+  bool outward = true;
+};
+SphereFit fit(const TriangleMesh& m) {
+  SphereFit f;
+  for (const vec3& p : m.positions) f.distance = std::max(f.distance, std::abs(glm::length(p) - 1));
+  for (const auto& t : m.triangles) {
+    const vec3 a = m.positions[std::size_t(t[0])], b = m.positions[std::size_t(t[1])], c = m.positions[std::size_t(t[2])];
+    f.outward = f.outward && glm::dot(glm::cross(b - a, c - a), a + b + c) > 0;
+  }
+  return f;
+}
+
+TEST_F(MeshCli, WritesEachFormatAsTheSameClosedOrientedSurface) {
+  const std::string input = sphere();
+  std::size_t vertices = 0, triangles = 0;
+  for (const char* name : {"m.ply", "m.obj", "m.off", "m.stl", "M.PLY"}) {
+    SCOPED_TRACE(name);
+    const test::CliResult r = mesh(input, name, std::string(name) == "m.ply" ? "--stats " + path("s.json") : "");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("wrote " + path(name)), std::string::npos);
+    const TriangleMesh m = test::read_mesh(path(name));
+    const MeshTopology t = topology(m);
+    EXPECT_TRUE(t.watertight());
+    EXPECT_EQ(t.euler_characteristic(), 2);
+    EXPECT_EQ(t.unreferenced_vertices, 0);
+    const SphereFit f = fit(m);
+    EXPECT_LT(f.distance, 0.01f);
+    EXPECT_TRUE(f.outward);
+    if (!m.normals.empty()) {
+      ASSERT_EQ(m.normals.size(), m.positions.size());
+      for (std::size_t i = 0; i < m.positions.size(); ++i)
+        ASSERT_GT(glm::dot(m.normals[i], glm::normalize(m.positions[i])), 0.98f);
+    }
+    if (vertices == 0) {
+      vertices = m.positions.size();
+      triangles = m.triangles.size();
+    }
+    EXPECT_EQ(m.positions.size(), vertices);  // the same mesh in every format
+    EXPECT_EQ(m.triangles.size(), triangles);
+  }
+  const nlohmann::json s = stats("s.json");
+  EXPECT_EQ(s["command"], "mesh");
+  EXPECT_EQ(s["mesh"]["vertices"], vertices);
+  EXPECT_EQ(s["mesh"]["triangles"], triangles);
+  EXPECT_EQ(s["mesh"]["watertight"], true);
+  EXPECT_EQ(s["mesh"]["euler_characteristic"], 2);
+  EXPECT_EQ(s["mesh"]["components"], 1);
+  EXPECT_GT(s["band"]["corners"].get<int>(), 0);
+  EXPECT_TRUE(s["seconds"].contains("mesh corners")) << s["seconds"].dump();
+  EXPECT_TRUE(s["seconds"].contains("mesh vertices")) << s["seconds"].dump();
+}
+
+TEST_F(MeshCli, TheSummarySaysWhatTheMeshIs) {
+  const test::CliResult r = mesh(sphere(), "m.ply");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const TriangleMesh m = test::read_mesh(path("m.ply"));
+  EXPECT_NE(r.out.find(std::to_string(m.positions.size()) + " vertices, " + std::to_string(m.triangles.size()) +
+                       " triangles, 1 component, watertight, 0 boundary edges, Euler characteristic 2"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("mls surface (estimated normals)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("borders extend"), std::string::npos) << r.out;  // auto: a scan's points
+}
+
+// Every option reaches the mesh.
+TEST_F(MeshCli, EachOptionChangesTheMesh) {
+  const std::string input = sphere();
+  ASSERT_EQ(mesh(input, "base.ply", "--stats " + path("base.json")).exit_code, 0);
+  const nlohmann::json base = stats("base.json");
+  const float h = base["params"]["h"], cell = base["params"]["cell"];
+  EXPECT_FLOAT_EQ(cell, 0.5f * h);
+  const std::size_t triangles = test::read_mesh(path("base.ply")).triangles.size();
+
+  ASSERT_EQ(mesh(input, "fine.ply", "--cell " + number(cell / 2) + " --stats " + path("fine.json")).exit_code, 0);
+  EXPECT_GT(test::read_mesh(path("fine.ply")).triangles.size(), 3 * triangles);
+  EXPECT_FLOAT_EQ(stats("fine.json")["params"]["cell"].get<float>(), cell / 2);
+
+  for (const char* surface : {"apss", "rimls"}) {
+    ASSERT_EQ(mesh(input, "s.ply", std::string("--surface ") + surface + " --stats " + path("s.json")).exit_code, 0);
+    EXPECT_EQ(stats("s.json")["params"]["surface"], surface);
+    EXPECT_TRUE(topology(test::read_mesh(path("s.ply"))).watertight()) << surface;
+  }
+  ASSERT_EQ(mesh(input, "h.ply", "--h " + number(2 * h) + " --stats " + path("h.json")).exit_code, 0);
+  const nlohmann::json wide = stats("h.json");
+  EXPECT_FLOAT_EQ(wide["params"]["h"].get<float>(), 2 * h);
+  EXPECT_EQ(wide["params"]["support"], "global");  // --h fixes one width
+  EXPECT_FLOAT_EQ(wide["params"]["cell"].get<float>(), h);
+  ASSERT_EQ(mesh(input, "rho.ply", "--rho " + number(3 * h) + " --stats " + path("rho.json")).exit_code, 0);
+  EXPECT_FLOAT_EQ(stats("rho.json")["params"]["rho"].get<float>(), 3 * h);
+  ASSERT_EQ(mesh(input, "it.ply", "--iterations 1 --stats " + path("it.json")).exit_code, 0);
+  EXPECT_EQ(stats("it.json")["params"]["max_mls_iterations"], 1);
+  ASSERT_EQ(mesh(input, "g.ply", "--support global --stats " + path("g.json")).exit_code, 0);
+  EXPECT_EQ(stats("g.json")["params"]["support"], "global");
+  EXPECT_EQ(base["params"]["support"], "adaptive");
+}
+
+// The file's normals say which side is out (the mesh turns inside out with them);
+// --normals estimate ignores them.
+TEST_F(MeshCli, TheFilesNormalsOrientTheMesh) {
+  test::SampleOptions o;
+  o.count = 3000;
+  PointCloud inward = test::sample(test::Sphere{}, o);
+  for (const vec3& p : inward.positions) inward.normals.push_back(-p);
+  write_ply(path("inward.ply"), inward);
+  ASSERT_EQ(mesh(path("inward.ply"), "in.ply", "--stats " + path("in.json")).exit_code, 0);
+  EXPECT_EQ(stats("in.json")["params"]["normals"], "file");
+  EXPECT_FALSE(fit(test::read_mesh(path("in.ply"))).outward);
+  ASSERT_EQ(mesh(path("inward.ply"), "est.ply", "--normals estimate --stats " + path("est.json")).exit_code, 0);
+  EXPECT_EQ(stats("est.json")["params"]["normals"], "estimated");
+  EXPECT_TRUE(fit(test::read_mesh(path("est.ply"))).outward);
+}
+
+// Points strewn off the surface are set aside (no blobs); --outliers keep keeps them.
+TEST_F(MeshCli, OutliersAreSetAsideUnlessKept) {
+  test::SampleOptions o;
+  o.count = 3000;
+  PointCloud cloud = test::sample(test::Sphere{}, o);
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<float> u(-1.5f, 1.5f);
+  while (cloud.size() < 3030) {  // 1 % strewn around it
+    const vec3 p(u(rng), u(rng), u(rng));
+    if (glm::length(p) > 1.15f) cloud.positions.push_back(p);
+  }
+  write_ply(path("strays.ply"), cloud);
+  ASSERT_EQ(mesh(path("strays.ply"), "a.ply", "--stats " + path("a.json")).exit_code, 0);
+  EXPECT_GT(stats("a.json")["outliers_set_aside"].get<int>(), 20);
+  EXPECT_EQ(topology(test::read_mesh(path("a.ply"))).components, 1);  // no blob about a stray
+  ASSERT_EQ(mesh(path("strays.ply"), "k.ply", "--outliers keep --stats " + path("k.json")).exit_code, 0);
+  EXPECT_EQ(stats("k.json")["outliers_set_aside"].get<int>(), 0);
+}
+
+// Byte for byte the same file whatever the number of threads.
+TEST_F(MeshCli, TheMeshIsTheSameForAnyThreadCount) {
+  const std::string input = sphere();
+  ASSERT_EQ(mesh(input, "one.ply", "--threads 1").exit_code, 0);
+  ASSERT_EQ(mesh(input, "two.ply", "--threads 2").exit_code, 0);
+  EXPECT_EQ(read(path("one.ply")), read(path("two.ply")));
+}
+
+// An open sheet: clip ends the mesh at the samples, extend runs past them.
+TEST_F(MeshCli, BordersClipOrExtendTheOpenEdge) {
+  test::SampleOptions o;
+  o.count = 2000;
+  write_ply(path("square.ply"), test::sample_plane(1.0f, o));
+  float reach[2] = {0, 0};
+  int k = 0;
+  for (const char* borders : {"clip", "extend"}) {
+    const test::CliResult r = mesh(path("square.ply"), "sq.ply", std::string("--borders ") + borders);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("manifold with boundaries"), std::string::npos) << r.out;
+    for (const vec3& p : test::read_mesh(path("sq.ply")).positions) reach[k] = std::max({reach[k], std::abs(p.x), std::abs(p.y)});
+    ++k;
+  }
+  EXPECT_LT(reach[0], 1.05f);
+  EXPECT_GT(reach[1], 1.05f);
+}
+
+// The dragon's vertices, their normals estimated: the orientation's guess comes out inward
+// (its highest sample lies on a thin horn), and the mesh is turned to face out, as the
+// dragon's own faces do.
+TEST_F(MeshCli, AMeshOfEstimatedNormalsFacesOut) {
+  const std::string dragon = PSS_SOURCE_DIR "/../shared/data/dragon_21790.ply";
+  if (!std::filesystem::exists(dragon)) GTEST_SKIP() << "no " << dragon;
+  const test::CliResult r = mesh(dragon, "d.ply", "--stats " + path("d.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const TriangleMesh m = test::read_mesh(path("d.ply"));
+  EXPECT_GT(enclosed_volume(m), 0);
+  EXPECT_EQ(stats("d.json")["turned_outward"], true);
+  EXPECT_NE(r.out.find("the mesh was turned to face outward"), std::string::npos) << r.out;
+}
+
+// auto: a mesh's vertices (a file with faces) are clipped, a scan's points extended.
+TEST_F(MeshCli, BordersAutoClipsAMeshsVerticesAndExtendsAScan) {
+  test::SampleOptions o;
+  o.count = 2000;
+  const PointCloud square = test::sample_plane(1.0f, o);
+  write_ply(path("scan.ply"), square);
+  std::string off = "OFF\n" + std::to_string(square.size()) + " 1 0\n";
+  for (const vec3& p : square.positions) off += std::to_string(p.x) + " " + std::to_string(p.y) + " 0\n";
+  write("vertices.off", off + "3 0 1 2\n");
+  ASSERT_EQ(mesh(path("scan.ply"), "a.ply", "--stats " + path("a.json")).exit_code, 0);
+  EXPECT_EQ(stats("a.json")["params"]["borders"], "extend");
+  ASSERT_EQ(mesh(path("vertices.off"), "b.ply", "--stats " + path("b.json")).exit_code, 0);
+  EXPECT_EQ(stats("b.json")["params"]["borders"], "clip");
+}
+
+// A cloud far from the world's origin keeps its coordinates: PLY in double, OBJ and OFF in
+// 17 digits.
+TEST_F(MeshCli, AGeoreferencedCloudKeepsItsCoordinates) {
+  test::SampleOptions o;
+  o.count = 3000;
+  const PointCloud s = test::sample(test::Sphere{}, o);
+  std::ofstream xyz(path("far.xyz"));
+  xyz.precision(17);
+  for (const vec3& p : s.positions) xyz << 596700.0 + p.x << " " << 4177000.0 + p.y << " " << 250.0 + p.z << "\n";
+  xyz.close();
+  for (const char* name : {"far.ply", "far.obj"}) {
+    ASSERT_EQ(mesh(path("far.xyz"), name).exit_code, 0);
+    const std::string bytes = read(path(name));
+    if (std::string(name) == "far.ply") EXPECT_NE(bytes.find("property double x"), std::string::npos);
+    const TriangleMesh m = test::read_mesh(path(name));
+    ASSERT_FALSE(m.positions.empty());
+    for (const vec3& p : m.positions) {
+      ASSERT_NEAR(p.x, 596700.0f, 1.1f);
+      ASSERT_NEAR(p.y, 4177000.0f, 1.1f);
+    }
+  }
+}
+
+TEST_F(MeshCli, BadInputGetsOneLineAndNoOutput) {
+  const std::string input = sphere(500);
+  expect_clean_failure("mesh " + input + " -o " + path("m.gif"), "m.gif", path("m.gif"));
+  expect_clean_failure("mesh " + input + " -o " + path("m.ply") + " --cell 0", "--cell", path("m.ply"));
+  expect_clean_failure("mesh " + input + " -o " + path("m.ply") + " --cell nan", "--cell", path("m.ply"));
+  expect_clean_failure("mesh " + input + " -o " + path("m.ply") + " --borders none", "--borders", path("m.ply"));
+  expect_clean_failure("mesh " + input + " -o " + path("m.ply") + " --cell 1e-9", "the cell size", path("m.ply"));
+  write("two.xyz", "0 0 0\n1 1 1\n");
+  expect_clean_failure("mesh " + path("two.xyz") + " -o " + path("m.ply"), "two.xyz", path("m.ply"));
+  write("empty.xyz", "");
+  expect_clean_failure("mesh " + path("empty.xyz") + " -o " + path("m.ply"), "empty.xyz", path("m.ply"));
+  expect_clean_failure("mesh " + path("missing.xyz") + " -o " + path("m.ply"), "missing.xyz", path("m.ply"));
+  // With --stats, neither output when the mesh fails.
+  expect_clean_failure("mesh " + path("two.xyz") + " -o " + path("m.ply") + " --stats " + path("s.json"), "two.xyz",
+                       path("s.json"));
+}
+
+}  // namespace
+}  // namespace pss

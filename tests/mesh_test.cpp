@@ -1,0 +1,334 @@
+// The mesh of a PSS (issue 27): marching tetrahedra on analytic implicits (topology by
+// Euler's formula, vertices on the zero set), the topology checks themselves on meshes made
+// by hand, and the mesh of sampled shapes against their analytic surfaces.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+
+#include "pss/backend/cpu/parallel_for.hpp"
+#include "pss/mesh/marching_tetrahedra.hpp"
+#include "pss/mesh/mesh_cloud.hpp"
+#include "support/cli.hpp"
+#include "support/shapes.hpp"
+
+namespace pss {
+namespace {
+
+// An implicit given by its exact signed distance and gradient; valid where `valid` says.
+ImplicitSurface analytic(std::function<float(vec3)> distance, std::function<vec3(vec3)> normal,
+                         std::function<bool(vec3)> valid = [](vec3) { return true; }) {
+  ImplicitSurface s;
+  s.sample = [=](std::span<const vec3> corners, std::span<CornerSample> out) {
+    for (std::size_t i = 0; i < corners.size(); ++i) {
+      const float d = distance(corners[i]);
+      out[i] = {d, corners[i] - d * normal(corners[i]), valid(corners[i])};
+    }
+  };
+  s.cross = [=](std::span<const EdgeCrossing> edges, std::span<MeshVertex> out) {
+    for (std::size_t i = 0; i < edges.size(); ++i) {  // bisection, to float precision
+      const EdgeCrossing& e = edges[i];
+      float lo = 0, hi = 1;
+      for (int k = 0; k < 40; ++k) {
+        const float t = 0.5f * (lo + hi);
+        ((distance(e.a + t * (e.b - e.a)) < 0) == (e.distance_a < 0) ? lo : hi) = t;
+      }
+      const vec3 p = e.a + 0.5f * (lo + hi) * (e.b - e.a);
+      out[i] = {p, normal(p)};
+    }
+  };
+  return s;
+}
+
+TriangleMesh march(const ImplicitSurface& s, vec3 lo, vec3 hi, float cell, std::span<const vec3> seeds,
+                   MarchCounts& counts) {
+  return march_tetrahedra(lattice_over(lo, hi, 2 * cell, cell, "cell"), seeds, s, 1.0f, counts);
+}
+
+// The triangle's normal by its winding, unit.
+vec3 face_normal(const TriangleMesh& m, const std::array<int, 3>& t) {
+  const vec3 a = m.positions[std::size_t(t[0])];
+  return glm::normalize(glm::cross(m.positions[std::size_t(t[1])] - a, m.positions[std::size_t(t[2])] - a));
+}
+
+TEST(MarchingTetrahedra, ASphereIsOneWatertightOutwardSurface) {
+  const test::Sphere sphere{vec3(0.013f, -0.021f, 0.007f), 1.0f};
+  const ImplicitSurface s = analytic([&](vec3 p) { return sphere.distance(p); }, [&](vec3 p) { return sphere.normal(p); });
+  const vec3 seed[] = {sphere.center + vec3(1, 0, 0)};
+  MarchCounts counts;
+  const TriangleMesh m = march(s, vec3(-1), vec3(1), 0.1f, seed, counts);
+  const MeshTopology t = topology(m);
+  EXPECT_TRUE(t.watertight());
+  EXPECT_EQ(t.euler_characteristic(), 2);
+  EXPECT_EQ(t.components, 1);
+  EXPECT_EQ(t.unreferenced_vertices, 0);
+  // Only the band: the cubes the surface crosses and their neighbours, not the box's 22³.
+  EXPECT_LT(counts.cubes_visited, 3 * counts.cubes_crossed);
+  for (std::size_t i = 0; i < m.positions.size(); ++i) {
+    EXPECT_NEAR(sphere.distance(m.positions[i]), 0.0f, 1e-5f);
+    EXPECT_GT(glm::dot(m.normals[i], sphere.normal(m.positions[i])), 0.9999f);
+  }
+  for (const auto& tri : m.triangles)
+    EXPECT_GT(glm::dot(face_normal(m, tri), sphere.normal(m.positions[std::size_t(tri[0])])), 0.5f);
+}
+
+TEST(MarchingTetrahedra, ATorusHasEulerCharacteristicZero) {
+  const test::Torus torus{1.0f, 0.35f};
+  const ImplicitSurface s = analytic([&](vec3 p) { return torus.distance(p); }, [&](vec3 p) { return torus.normal(p); });
+  const vec3 seed[] = {vec3(1.35f, 0, 0)};  // one seed: the band follows the surface round
+  MarchCounts counts;
+  const TriangleMesh m = march(s, vec3(-1.4f, -1.4f, -0.4f), vec3(1.4f, 1.4f, 0.4f), 0.07f, seed, counts);
+  const MeshTopology t = topology(m);
+  EXPECT_TRUE(t.watertight());
+  EXPECT_EQ(t.euler_characteristic(), 0);
+  EXPECT_EQ(t.components, 1);
+  for (const vec3& p : m.positions) EXPECT_NEAR(torus.distance(p), 0.0f, 1e-5f);
+}
+
+// Where the implicit cannot be trusted the mesh ends: an open, manifold surface.
+TEST(MarchingTetrahedra, TheMeshEndsWhereTheImplicitIsInvalid) {
+  const test::Sphere sphere;
+  const ImplicitSurface s = analytic([&](vec3 p) { return sphere.distance(p); }, [&](vec3 p) { return sphere.normal(p); },
+                                     [](vec3 p) { return p.z > -0.5f; });
+  const vec3 seed[] = {vec3(0, 0, 1)};
+  MarchCounts counts;
+  const TriangleMesh m = march(s, vec3(-1), vec3(1), 0.1f, seed, counts);
+  const MeshTopology t = topology(m);
+  EXPECT_TRUE(t.manifold());
+  EXPECT_GT(t.boundary_edges, 20);
+  EXPECT_EQ(t.euler_characteristic(), 1);  // a disc
+  EXPECT_GT(counts.cubes_refused, 0);
+  for (const vec3& p : m.positions) EXPECT_GT(p.z, -0.5f - 0.1f * std::sqrt(3.0f));
+}
+
+// A sign that flips where the implicit jumps (two spheres whose insides are told apart by
+// a wrong orientation: f jumps from −0.45 to +0.45 on the plane between them) makes no
+// surface there.
+TEST(MarchingTetrahedra, AJumpOfTheImplicitIsNoSurface) {
+  const test::Sphere left{vec3(-1, 0, 0), 0.5f}, right{vec3(1, 0, 0), 0.5f};
+  const auto distance = [&](vec3 p) {
+    return p.x < 0 ? left.distance(p) : -right.distance(p);  // the right one inside out
+  };
+  const auto normal = [&](vec3 p) { return p.x < 0 ? left.normal(p) : -right.normal(p); };
+  const ImplicitSurface s = analytic(distance, normal);
+  const vec3 seeds[] = {vec3(-0.5f, 0, 0), vec3(0.5f, 0, 0), vec3(0.0f, 0, 0)};
+  MarchCounts counts;
+  const TriangleMesh m = march(s, vec3(-1.6f, -0.6f, -0.6f), vec3(1.6f, 0.6f, 0.6f), 0.1f, seeds, counts);
+  const MeshTopology t = topology(m);
+  EXPECT_TRUE(t.watertight());
+  EXPECT_EQ(t.components, 2);
+  EXPECT_EQ(t.euler_characteristic(), 4);
+  for (const vec3& p : m.positions) EXPECT_NEAR(std::min(std::abs(left.distance(p)), std::abs(right.distance(p))), 0, 1e-5f);
+}
+
+// The same mesh, vertex for vertex, whatever the number of threads.
+TEST(MarchingTetrahedra, TheMeshIsTheSameForAnyThreadCount) {
+  const test::Torus torus{1.0f, 0.35f};
+  const ImplicitSurface s = analytic([&](vec3 p) { return torus.distance(p); }, [&](vec3 p) { return torus.normal(p); });
+  const vec3 seed[] = {vec3(1.35f, 0, 0)};
+  MarchCounts counts;
+  set_cpu_threads(1);
+  const TriangleMesh one = march(s, vec3(-1.4f), vec3(1.4f), 0.1f, seed, counts);
+  set_cpu_threads(2);
+  const TriangleMesh two = march(s, vec3(-1.4f), vec3(1.4f), 0.1f, seed, counts);
+  set_cpu_threads(0);
+  EXPECT_EQ(one.triangles, two.triangles);
+  EXPECT_EQ(one.positions, two.positions);
+}
+
+TEST(MarchingTetrahedra, ALatticeTooFineForTheBoxIsRefused) {
+  const std::string error = test::error_of([] { lattice_over(vec3(0), vec3(1), 0, 1e-7, "--cell"); });
+  EXPECT_NE(error.find("--cell 1e-07 is too small"), std::string::npos) << error;
+}
+
+// Meshes made by hand: what each count means.
+TEST(MeshTopology, CountsWhatIsWrongWithAMesh) {
+  TriangleMesh tetrahedron;
+  tetrahedron.positions = {vec3(0, 0, 0), vec3(1, 0, 0), vec3(0, 1, 0), vec3(0, 0, 1)};
+  tetrahedron.triangles = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+  MeshTopology t = topology(tetrahedron);
+  EXPECT_TRUE(t.watertight());
+  EXPECT_EQ(t.edges, 6);
+  EXPECT_EQ(t.euler_characteristic(), 2);
+
+  TriangleMesh flipped = tetrahedron;
+  std::swap(flipped.triangles[0][1], flipped.triangles[0][2]);
+  t = topology(flipped);
+  EXPECT_EQ(t.misoriented_edges, 3);
+  EXPECT_FALSE(t.manifold());
+
+  TriangleMesh fin = tetrahedron;  // a third triangle on the edge 0-1
+  fin.positions.push_back(vec3(0.5f, -1, 0));
+  fin.triangles.push_back({0, 4, 1});
+  t = topology(fin);
+  EXPECT_EQ(t.non_manifold_edges, 1);
+  EXPECT_EQ(t.boundary_edges, 2);
+
+  TriangleMesh bowtie;  // two triangles sharing vertex 0 only
+  bowtie.positions = {vec3(0), vec3(1, 0, 0), vec3(1, 1, 0), vec3(-1, 0, 0), vec3(-1, -1, 0), vec3(5)};
+  bowtie.triangles = {{0, 1, 2}, {0, 3, 4}};
+  t = topology(bowtie);
+  EXPECT_EQ(t.non_manifold_vertices, 1);
+  EXPECT_EQ(t.components, 2);
+  EXPECT_EQ(t.unreferenced_vertices, 1);
+  EXPECT_EQ(t.boundary_edges, 6);
+}
+
+// The volume a closed mesh encloses, signed by its orientation; open parts enclose none; a
+// cavity's surface, facing into it, subtracts.
+TEST(MeshTopology, EnclosedVolumeIsSignedByTheOrientation) {
+  TriangleMesh m;
+  m.positions = {vec3(0, 0, 0), vec3(1, 0, 0), vec3(0, 1, 0), vec3(0, 0, 1)};
+  m.normals.assign(4, vec3(0, 0, 1));
+  m.triangles = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+  EXPECT_NEAR(enclosed_volume(m), 1.0 / 6, 1e-9);
+  turn_inside_out(m);
+  EXPECT_NEAR(enclosed_volume(m), -1.0 / 6, 1e-9);
+  EXPECT_EQ(m.normals[0], vec3(0, 0, -1));
+  turn_inside_out(m);
+  TriangleMesh cavity = m;  // the same, 8 times larger, around it, facing out: 8/6 − 1/6
+  for (vec3& p : cavity.positions) p = 2.0f * p - vec3(0.25f);
+  turn_inside_out(m);
+  for (const auto& t : m.triangles) cavity.triangles.push_back({t[0] + 4, t[1] + 4, t[2] + 4});
+  cavity.positions.insert(cavity.positions.end(), m.positions.begin(), m.positions.end());
+  EXPECT_NEAR(enclosed_volume(cavity), 7.0 / 6, 1e-6);
+  cavity.triangles.pop_back();  // the inner surface open: it encloses nothing
+  EXPECT_NEAR(enclosed_volume(cavity), 8.0 / 6, 1e-6);
+}
+
+// remove_pinches keeps the larger fan at a pinched vertex and drops unused vertices.
+TEST(MeshTopology, RemovePinchesKeepsTheLargestFan) {
+  TriangleMesh m;
+  m.positions = {vec3(0), vec3(1, 0, 0), vec3(1, 1, 0), vec3(0, 1, 0), vec3(-1, 0, 0), vec3(-1, -1, 0), vec3(9)};
+  m.normals.assign(m.positions.size(), vec3(0, 0, 1));
+  m.triangles = {{0, 1, 2}, {0, 2, 3}, {0, 4, 5}};  // a fan of two, and one triangle touching at 0
+  EXPECT_EQ(remove_pinches(m), 1);
+  ASSERT_EQ(m.triangles.size(), 2u);
+  EXPECT_EQ(m.positions.size(), 4u);
+  EXPECT_EQ(m.normals.size(), 4u);
+  const MeshTopology t = topology(m);
+  EXPECT_TRUE(t.manifold());
+  EXPECT_EQ(t.unreferenced_vertices, 0);
+  EXPECT_EQ(m.positions[std::size_t(m.triangles[1][2])], vec3(0, 1, 0));
+}
+
+// The mesh of a sampled shape with the defaults `pss mesh` uses.
+CloudMesh mesh_of(const PointCloud& cloud, SurfaceOperator surface = SurfaceOperator::mls, float cell = 0,
+                  BorderMode borders = BorderMode::clip) {
+  MeshParams params;
+  params.projection = ProjectionParams::from_h(test::suggested_h(cloud));
+  params.projection.support = Support::adaptive;
+  params.projection.surface = surface;
+  params.projection.borders = borders;
+  params.cell = cell;
+  Stats stats;
+  return mesh_cloud(cloud, params, Backend::cpu, stats);
+}
+
+struct Errors {
+  float largest_distance = 0, mean_angle = 0, largest_angle = 0;
+};
+template <class Shape>
+Errors errors(const TriangleMesh& m, const Shape& shape) {
+  Errors e;
+  for (std::size_t i = 0; i < m.positions.size(); ++i) {
+    e.largest_distance = std::max(e.largest_distance, std::abs(shape.distance(m.positions[i])));
+    const float angle = std::acos(std::clamp(glm::dot(m.normals[i], shape.normal(m.positions[i])), -1.0f, 1.0f));
+    e.mean_angle += angle / float(m.positions.size());
+    e.largest_angle = std::max(e.largest_angle, angle);
+  }
+  e.mean_angle *= 180 / 3.14159265f;
+  e.largest_angle *= 180 / 3.14159265f;
+  return e;
+}
+
+// Closed shapes give closed meshes: the sphere's Euler characteristic 2, the torus's 0;
+// every vertex on the PSS, with its outward normal; every operator. MLS's and APSS's PSS
+// lie within 3e-3 of these clean samples' surface; RIMLS's averaged tangent planes lie
+// about h²/(2r) outside a surface of radius r (surface_operators_test.cpp): within h²/r.
+TEST(MeshCloud, ClosedShapesGiveWatertightMeshesOnTheSurface) {
+  test::SampleOptions o;
+  o.count = 6000;
+  const PointCloud sphere = test::sample(test::Sphere{}, o);
+  o.count = 12000;
+  const test::Torus torus{1.0f, 0.35f};
+  const PointCloud ring = test::sample(torus, o);
+  for (const SurfaceOperator surface : {SurfaceOperator::mls, SurfaceOperator::apss, SurfaceOperator::rimls}) {
+    SCOPED_TRACE(surface_name(surface));
+    const CloudMesh a = mesh_of(sphere, surface);
+    MeshTopology t = topology(a.mesh);
+    EXPECT_TRUE(t.watertight());
+    EXPECT_EQ(t.components, 1);
+    EXPECT_EQ(t.euler_characteristic(), 2);
+    const auto tolerance = [&](const PointCloud& cloud, float radius) {
+      const float h = test::suggested_h(cloud);
+      return surface == SurfaceOperator::rimls ? h * h / radius : 3e-3f;
+    };
+    Errors e = errors(a.mesh, test::Sphere{});
+    EXPECT_LT(e.largest_distance, tolerance(sphere, 1.0f));
+    EXPECT_LT(e.mean_angle, 1.0f);
+    EXPECT_LT(e.largest_angle, 8.0f);
+    for (const auto& tri : a.mesh.triangles)
+      ASSERT_GT(glm::dot(face_normal(a.mesh, tri), a.mesh.positions[std::size_t(tri[0])]), 0.0f);
+
+    const CloudMesh b = mesh_of(ring, surface);
+    t = topology(b.mesh);
+    EXPECT_TRUE(t.watertight());
+    EXPECT_EQ(t.components, 1);
+    EXPECT_EQ(t.euler_characteristic(), 0);
+    e = errors(b.mesh, torus);
+    EXPECT_LT(e.largest_distance, tolerance(ring, torus.minor));
+    EXPECT_LT(e.mean_angle, 1.5f);
+  }
+}
+
+// The cell sets the triangles' size: half the cell, about four times the triangles.
+TEST(MeshCloud, TheCellSetsTheResolution) {
+  test::SampleOptions o;
+  o.count = 6000;
+  const PointCloud sphere = test::sample(test::Sphere{}, o);
+  const CloudMesh coarse = mesh_of(sphere, SurfaceOperator::mls, 0.1f), fine = mesh_of(sphere, SurfaceOperator::mls, 0.05f);
+  EXPECT_EQ(coarse.cell, 0.1f);
+  const double ratio = double(fine.mesh.triangles.size()) / double(coarse.mesh.triangles.size());
+  EXPECT_GT(ratio, 3.5);
+  EXPECT_LT(ratio, 4.5);
+  EXPECT_TRUE(topology(fine.mesh).watertight());
+  // The default: half the h of the spacing.
+  EXPECT_FLOAT_EQ(mesh_of(sphere).cell, kDefaultCellPerH * test::suggested_h(sphere));
+}
+
+// An open sheet's mesh ends where its samples end (clip), with one boundary; extend runs on
+// past them as the projection extrapolates.
+TEST(MeshCloud, AnOpenSheetEndsAtItsSamples) {
+  test::SampleOptions o;
+  o.count = 4000;
+  const PointCloud square = test::sample_plane(1.0f, o);
+  const CloudMesh clipped = mesh_of(square), extended = mesh_of(square, SurfaceOperator::mls, 0, BorderMode::extend);
+  for (const CloudMesh* m : {&clipped, &extended}) {
+    const MeshTopology t = topology(m->mesh);
+    EXPECT_TRUE(t.manifold());
+    EXPECT_EQ(t.components, 1);
+    EXPECT_EQ(t.euler_characteristic(), 1);  // a disc
+    for (const vec3& p : m->mesh.positions) ASSERT_NEAR(p.z, 0.0f, 1e-4f);
+  }
+  float reach_clipped = 0, reach_extended = 0;
+  for (const vec3& p : clipped.mesh.positions) reach_clipped = std::max({reach_clipped, std::abs(p.x), std::abs(p.y)});
+  for (const vec3& p : extended.mesh.positions) reach_extended = std::max({reach_extended, std::abs(p.x), std::abs(p.y)});
+  EXPECT_LT(reach_clipped, 1.0f + clipped.cell);
+  EXPECT_GT(reach_extended, 1.0f + 2 * extended.cell);
+}
+
+TEST(MeshCloud, TooFewPointsOrABadCellAreRefused) {
+  PointCloud two;
+  two.positions = {vec3(0), vec3(1)};
+  EXPECT_NE(test::error_of([&] { mesh_of(two); }).find("at least 3 points"), std::string::npos);
+  test::SampleOptions o;
+  o.count = 500;
+  const PointCloud sphere = test::sample(test::Sphere{}, o);
+  for (const float cell : {-1.0f, std::nanf("")})
+    EXPECT_NE(test::error_of([&] { mesh_of(sphere, SurfaceOperator::mls, cell); }).find("cell size must be a positive"),
+              std::string::npos) << cell;
+}
+
+}  // namespace
+}  // namespace pss

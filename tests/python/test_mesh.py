@@ -1,0 +1,79 @@
+# pss.mesh against `pss mesh`: the same vertices, normals and faces, and the same errors.
+import numpy as np
+import pytest
+
+import pss
+from conftest import BUNNY, cli_error, cli_ok
+
+
+def read_mesh_ply(path):
+    """Vertices (x y z as float32 or float64), normals and faces of a binary PLY mesh as pss
+    writes it, read here independently of the library."""
+    data = open(path, "rb").read()
+    end = data.index(b"end_header\n") + len(b"end_header\n")
+    header = data[:end].decode()
+    vertices = int(header.split("element vertex ")[1].split()[0])
+    faces = int(header.split("element face ")[1].split()[0])
+    real = "<f8" if "property double x" in header else "<f4"
+    vt = np.dtype([("p", real, 3), ("n", "<f4", 3)])
+    v = np.frombuffer(data, vt, vertices, end)
+    f = np.frombuffer(data, np.dtype([("count", "u1"), ("i", "<i4", 3)]), faces, end + vertices * vt.itemsize)
+    assert np.all(f["count"] == 3)
+    return v["p"], v["n"], f["i"]
+
+
+def sphere(count=3000, seed=1):
+    rng = np.random.default_rng(seed)
+    d = rng.normal(size=(count, 3))
+    return (d / np.linalg.norm(d, axis=1, keepdims=True)).astype(np.float32)
+
+
+@pytest.mark.parametrize("surface", ["mls", "rimls"])
+def test_mesh_gives_the_cli_s_vertices_normals_and_faces(tmp_path, surface):
+    out = tmp_path / "bunny.ply"
+    # The bunny's file has faces: the CLI's auto clips its vertices; an array is a scan's.
+    cli_ok("mesh", BUNNY, "--surface", surface, "--borders", "extend", "-o", out)
+    points, _, _ = pss.read_points(BUNNY)
+    vertices, normals, faces = pss.mesh(points, surface=surface)
+    assert vertices.dtype == np.float32 and normals.dtype == np.float32 and faces.dtype == np.int32
+    v, n, f = read_mesh_ply(out)
+    assert np.array_equal(vertices, v) and np.array_equal(normals, n) and np.array_equal(faces, f)
+    assert faces.min() == 0 and faces.max() == len(vertices) - 1
+
+
+def test_mesh_of_a_sphere_is_closed_on_the_sphere_and_faces_out():
+    vertices, normals, faces = pss.mesh(sphere())
+    assert np.abs(np.linalg.norm(vertices, axis=1) - 1).max() < 0.01
+    assert np.all(np.einsum("ij,ij->i", normals, vertices) > 0.98)
+    a, b, c = (vertices[faces[:, k]] for k in range(3))
+    assert np.all(np.einsum("ij,ij->i", np.cross(b - a, c - a), a + b + c) > 0)
+    # Closed: every edge in exactly two faces, once each way.
+    edges = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
+    directed = {tuple(e) for e in edges.tolist()}
+    assert len(directed) == len(edges)
+    assert all((b, a) in directed for a, b in directed)
+    assert len(vertices) - len(directed) // 2 + len(faces) == 2  # Euler characteristic
+
+
+def test_cell_borders_and_h_are_the_cli_s(tmp_path):
+    points = sphere()
+    coarse = pss.mesh(points, cell=0.1)[2]
+    fine = pss.mesh(points, cell=0.05)[2]
+    assert 3.5 < len(fine) / len(coarse) < 4.5
+    out = tmp_path / "m.ply"
+    np.savetxt(tmp_path / "s.xyz", points)
+    cli_ok("mesh", tmp_path / "s.xyz", "--h", "0.1", "--cell", "0.06", "--borders", "extend", "-o", out)
+    v, n, f = read_mesh_ply(out)
+    vertices, normals, faces = pss.mesh(np.loadtxt(tmp_path / "s.xyz"), 0.1, cell=0.06, borders="extend")
+    assert np.array_equal(f, faces) and np.allclose(v, vertices, atol=0)
+
+
+def test_bad_arguments_say_what_the_cli_says(tmp_path):
+    with pytest.raises(pss.Error, match="at least 3"):
+        pss.mesh(np.zeros((2, 3)))
+    with pytest.raises(pss.Error, match="cell"):
+        pss.mesh(sphere(), cell=-1)
+    with pytest.raises(pss.Error, match="borders"):
+        pss.mesh(sphere(), borders="none")
+    with pytest.raises(pss.Error, match="too small"):
+        pss.mesh(sphere(), cell=1e-9)

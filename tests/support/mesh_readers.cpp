@@ -1,0 +1,152 @@
+#include "support/mesh_readers.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cctype>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <tuple>
+
+namespace pss::test {
+
+namespace {
+
+std::string bytes_of(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+template <class T>
+T take(const std::string& b, std::size_t& at) {
+  T v;
+  EXPECT_LE(at + sizeof(T), b.size()) << "truncated";
+  if (at + sizeof(T) > b.size()) return T{};
+  std::memcpy(&v, b.data() + at, sizeof(T));
+  at += sizeof(T);
+  return v;
+}
+
+TriangleMesh read_ply(const std::string& b) {
+  TriangleMesh m;
+  const std::size_t end = b.find("end_header\n");
+  EXPECT_NE(end, std::string::npos);
+  std::istringstream header(b.substr(0, end));
+  std::string line;
+  std::size_t vertices = 0, faces = 0;
+  bool doubles = false;
+  while (std::getline(header, line)) {
+    if (line.rfind("element vertex ", 0) == 0) vertices = std::stoul(line.substr(15));
+    if (line.rfind("element face ", 0) == 0) faces = std::stoul(line.substr(13));
+    if (line == "property double x") doubles = true;
+  }
+  EXPECT_NE(b.find("format binary_little_endian 1.0"), std::string::npos);
+  EXPECT_NE(b.find("property float nx\nproperty float ny\nproperty float nz\nelement face"), std::string::npos);
+  EXPECT_NE(b.find("property list uchar int vertex_indices\nend_header"), std::string::npos);
+  std::size_t at = end + 11;
+  for (std::size_t i = 0; i < vertices; ++i) {
+    vec3 p;
+    for (int k = 0; k < 3; ++k) p[k] = doubles ? float(take<double>(b, at)) : take<float>(b, at);
+    vec3 n;
+    for (int k = 0; k < 3; ++k) n[k] = take<float>(b, at);
+    m.positions.push_back(p);
+    m.normals.push_back(n);
+  }
+  for (std::size_t i = 0; i < faces; ++i) {
+    EXPECT_EQ(take<std::uint8_t>(b, at), 3);
+    std::array<int, 3> t;
+    for (int& v : t) v = take<std::int32_t>(b, at);
+    m.triangles.push_back(t);
+  }
+  EXPECT_EQ(at, b.size()) << "bytes after the faces";
+  return m;
+}
+
+TriangleMesh read_obj(const std::string& b) {
+  TriangleMesh m;
+  std::istringstream in(b);
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream words(line);
+    std::string kind;
+    words >> kind;
+    if (kind == "v" || kind == "vn") {
+      vec3 p;
+      words >> p.x >> p.y >> p.z;
+      (kind == "v" ? m.positions : m.normals).push_back(p);
+    } else if (kind == "f") {
+      std::array<int, 3> t;
+      for (int& v : t) {
+        std::string corner;
+        words >> corner;
+        const std::size_t slashes = corner.find("//");
+        EXPECT_NE(slashes, std::string::npos) << corner;
+        v = std::stoi(corner.substr(0, slashes)) - 1;
+        EXPECT_EQ(corner.substr(slashes + 2), std::to_string(v + 1));
+      }
+      m.triangles.push_back(t);
+    }
+  }
+  return m;
+}
+
+TriangleMesh read_off(const std::string& b) {
+  TriangleMesh m;
+  std::istringstream in(b);
+  std::string magic;
+  std::size_t vertices = 0, faces = 0, edges = 0;
+  in >> magic >> vertices >> faces >> edges;
+  EXPECT_EQ(magic, "OFF");
+  m.positions.resize(vertices);
+  for (vec3& p : m.positions) in >> p.x >> p.y >> p.z;
+  m.triangles.resize(faces);
+  for (auto& t : m.triangles) {
+    int count = 0;
+    in >> count >> t[0] >> t[1] >> t[2];
+    EXPECT_EQ(count, 3);
+  }
+  EXPECT_FALSE(in.fail());
+  return m;
+}
+
+TriangleMesh read_stl(const std::string& b) {
+  TriangleMesh m;
+  std::size_t at = 80;
+  const std::uint32_t count = take<std::uint32_t>(b, at);
+  EXPECT_EQ(b.size(), 84 + 50 * std::size_t(count));
+  std::map<std::tuple<float, float, float>, int> welded;
+  for (std::uint32_t i = 0; i < count; ++i) {
+    for (int k = 0; k < 3; ++k) take<float>(b, at);  // the facet normal
+    std::array<int, 3> t;
+    for (int& v : t) {
+      vec3 p;
+      for (int k = 0; k < 3; ++k) p[k] = take<float>(b, at);
+      const auto [it, added] = welded.try_emplace({p.x, p.y, p.z}, int(m.positions.size()));
+      if (added) m.positions.push_back(p);
+      v = it->second;
+    }
+    take<std::uint16_t>(b, at);
+    m.triangles.push_back(t);
+  }
+  return m;
+}
+
+}  // namespace
+
+TriangleMesh read_mesh(const std::filesystem::path& path) {
+  const std::string b = bytes_of(path);
+  std::string ext = path.extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == ".ply") return read_ply(b);
+  if (ext == ".obj") return read_obj(b);
+  if (ext == ".off") return read_off(b);
+  if (ext == ".stl") return read_stl(b);
+  ADD_FAILURE() << "no reader for " << path;
+  return {};
+}
+
+}  // namespace pss::test
