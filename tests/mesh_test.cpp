@@ -7,6 +7,7 @@
 #include <functional>
 
 #include "pss/backend/cpu/parallel_for.hpp"
+#include "pss/io/point_cloud_file.hpp"
 #include "pss/mesh/marching_tetrahedra.hpp"
 #include "pss/mesh/mesh_cloud.hpp"
 #include "support/cli.hpp"
@@ -280,6 +281,63 @@ TEST(MeshCloud, ClosedShapesGiveWatertightMeshesOnTheSurface) {
     EXPECT_LT(e.largest_distance, tolerance(ring, torus.minor));
     EXPECT_LT(e.mean_angle, 1.5f);
   }
+}
+
+// Each vertex is the root of the implicit on its edge, to a thousandth of the cell (its
+// tolerance; float rounding of the projection adds a little): APSS
+// reproduces a sphere sampled with its exact normals exactly (surface_operators_test.cpp),
+// so the vertices lie on the sphere to that.
+TEST(MeshCloud, EveryVertexIsARootOnItsEdge) {
+  test::SampleOptions o;
+  o.count = 6000;
+  PointCloud sphere = test::sample(test::Sphere{}, o);
+  sphere.normals = sphere.positions;
+  const CloudMesh m = mesh_of(sphere, SurfaceOperator::apss);
+  float worst = 0;
+  for (const vec3& p : m.mesh.positions) worst = std::max(worst, std::abs(glm::length(p) - 1));
+  EXPECT_LT(worst, 2e-3f * m.cell);
+}
+
+// A part thinner than the fits' support (two faces 0.06 apart, ρ about 0.1), its exact
+// normals in the file: both faces and the rim, closed, on the surface, facing out, with the
+// operators that keep a thin part's faces apart (the paper's MLS fits one plane across
+// both: surface_operators_test.cpp). Corners between the faces may lie nearer one face's
+// samples than the face their projection reaches.
+TEST(MeshCloud, AThinClosedPartKeepsBothFaces) {
+  const test::Pill pill{1.0f, 0.03f};
+  test::SampleOptions o;
+  o.count = 30000;
+  const PointCloud cloud = test::sample(pill, o);
+  ASSERT_GT(2 * test::suggested_h(cloud), 2 * pill.half);
+  for (const SurfaceOperator surface : {SurfaceOperator::apss, SurfaceOperator::rimls}) {
+    SCOPED_TRACE(surface_name(surface));
+    const CloudMesh m = mesh_of(cloud, surface);
+    const MeshTopology t = topology(m.mesh);
+    EXPECT_TRUE(t.watertight());
+    EXPECT_EQ(t.components, 1);
+    EXPECT_EQ(t.euler_characteristic(), 2);
+    std::size_t far = 0, inward = 0;
+    for (std::size_t i = 0; i < m.mesh.positions.size(); ++i) {
+      const vec3 p = m.mesh.positions[i];
+      far += std::abs(pill.distance(p)) > 0.01f;
+      inward += glm::dot(m.mesh.normals[i], pill.normal(p)) < 0.5f;
+    }
+    EXPECT_LT(far, m.mesh.positions.size() / 100);
+    EXPECT_LT(inward, m.mesh.positions.size() / 100);
+  }
+}
+
+// The bunny scan (its base has holes, its ear tips open): one manifold component, no
+// self-intersection possible (vertices inside their edges), only the data's own holes and a
+// few small ones open; orientation taken where the surface point lies, not where the
+// corner does, keeps its thin ears whole (at the corner: 5 components, χ = -117).
+TEST(MeshCloud, TheBunnyIsOneManifoldComponent) {
+  const PointCloud bunny = read_point_cloud(PSS_SOURCE_DIR "/data/bun_zipper.ply");
+  const CloudMesh m = mesh_of(bunny);
+  const MeshTopology t = topology(m.mesh);
+  EXPECT_TRUE(t.manifold());
+  EXPECT_EQ(t.components, 1);
+  EXPECT_GT(t.euler_characteristic(), -40);  // 2 − (boundary loops) − 2·genus
 }
 
 // The cell sets the triangles' size: half the cell, about four times the triangles.

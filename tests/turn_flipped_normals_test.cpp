@@ -268,26 +268,14 @@ TEST(OrientNormals, TheBunnysEstimatedNormalsFaceAsItsMesh) {
 // A closed, flat pill: two unit discs 0.06 apart, joined by a rounded rim (half a torus
 // tube), its faces within one support of each other: every estimated normal outward.
 TEST(OrientNormals, AThinClosedPartIsOrientedOutward) {
-  constexpr float kPi = 3.14159265f, kRadius = 1.0f, kHalf = 0.03f;
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  std::vector<vec3> points, truth;
-  const float disc = kPi * kRadius * kRadius, rim = 2 * kPi * kRadius * kPi * kHalf;
-  while (points.size() < 30000) {
-    const float pick = u(rng) * (2 * disc + rim), angle = 2 * kPi * u(rng);
-    const vec3 radial(std::cos(angle), std::sin(angle), 0.0f);
-    if (pick < 2 * disc) {  // a face, evenly by area
-      const float side = pick < disc ? 1.0f : -1.0f;
-      points.push_back(kRadius * std::sqrt(u(rng)) * radial + vec3(0, 0, side * kHalf));
-      truth.push_back(vec3(0, 0, side));
-    } else {  // the rim
-      const float phi = kPi * (u(rng) - 0.5f);
-      const vec3 n = std::cos(phi) * radial + vec3(0, 0, std::sin(phi));
-      points.push_back(kRadius * radial + kHalf * n);
-      truth.push_back(n);
-    }
-  }
-  ASSERT_GT(2 * default_h(points), 2 * kHalf) << "the faces must share supports";
+  const test::Pill pill{1.0f, 0.03f};
+  test::SampleOptions o;
+  o.count = 30000;
+  o.seed = 7;
+  const PointCloud cloud = test::sample(pill, o);
+  const std::vector<vec3>& points = cloud.positions;
+  const std::vector<vec3>& truth = cloud.normals;
+  ASSERT_GT(2 * default_h(points), 2 * pill.half) << "the faces must share supports";
   const std::vector<vec3> normals = estimated_normals(points);
   std::size_t against = 0, estimated = 0;
   for (std::size_t i = 0; i < points.size(); ++i) {

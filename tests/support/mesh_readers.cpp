@@ -141,12 +141,19 @@ TriangleMesh read_mesh(const std::filesystem::path& path) {
   const std::string b = bytes_of(path);
   std::string ext = path.extension().string();
   for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  if (ext == ".ply") return read_ply(b);
-  if (ext == ".obj") return read_obj(b);
-  if (ext == ".off") return read_off(b);
-  if (ext == ".stl") return read_stl(b);
-  ADD_FAILURE() << "no reader for " << path;
-  return {};
+  TriangleMesh m;
+  if (ext == ".ply") m = read_ply(b);
+  else if (ext == ".obj") m = read_obj(b);
+  else if (ext == ".off") m = read_off(b);
+  else if (ext == ".stl") m = read_stl(b);
+  else ADD_FAILURE() << "no reader for " << path;
+  for (const auto& t : m.triangles)
+    for (int v : t)
+      if (v < 0 || std::size_t(v) >= m.positions.size()) {
+        ADD_FAILURE() << path << ": a face names vertex " << v << " of " << m.positions.size();
+        return {};
+      }
+  return m;
 }
 
 }  // namespace pss::test

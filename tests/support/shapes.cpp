@@ -67,6 +67,39 @@ PointCloud sample(const Torus& t, const SampleOptions& o) {
   return cloud;
 }
 
+float Pill::distance(vec3 p) const {
+  const float beyond = std::max(0.0f, std::hypot(p.x, p.y) - radius);
+  return std::hypot(beyond, p.z) - half;
+}
+
+vec3 Pill::normal(vec3 p) const {
+  const float rho = std::hypot(p.x, p.y);
+  const vec3 nearest = rho > radius ? vec3(p.x, p.y, 0.0f) * (radius / rho) : vec3(p.x, p.y, 0.0f);
+  return glm::normalize(p - nearest);
+}
+
+PointCloud sample(const Pill& pill, const SampleOptions& o) {
+  std::mt19937 rng(o.seed);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  const float disc = kPi * pill.radius * pill.radius, rim = 2 * kPi * pill.radius * kPi * pill.half;
+  PointCloud cloud;
+  while (cloud.size() < o.count) {
+    const float pick = u(rng) * (2 * disc + rim), angle = 2 * kPi * u(rng);
+    const vec3 radial(std::cos(angle), std::sin(angle), 0.0f);
+    if (pick < 2 * disc) {  // a face, evenly by area
+      const float side = pick < disc ? 1.0f : -1.0f;
+      cloud.positions.push_back(pill.radius * std::sqrt(u(rng)) * radial + vec3(0, 0, side * pill.half));
+      cloud.normals.push_back(vec3(0, 0, side));
+    } else {  // the rim, a half tube (its area element ∝ R + half·cos φ ≈ R)
+      const float phi = kPi * (u(rng) - 0.5f);
+      const vec3 n = std::cos(phi) * radial + vec3(0, 0, std::sin(phi));
+      cloud.positions.push_back(pill.radius * radial + pill.half * n);
+      cloud.normals.push_back(n);
+    }
+  }
+  return cloud;
+}
+
 PointCloud sample_plane(float half_size, const SampleOptions& o) {
   std::mt19937 rng(o.seed);
   std::normal_distribution<float> gauss(0.0f, 1.0f);

@@ -26,6 +26,14 @@ struct Torus {
   vec3 normal(vec3 p) const;
 };
 
+// A thin closed part: the points within `half` of the disc of `radius` at z = 0 about the z
+// axis (two flat faces 2·half apart, joined by a rounded rim).
+struct Pill {
+  float radius = 1.0f, half = 0.03f;
+  float distance(vec3 p) const;
+  vec3 normal(vec3 p) const;
+};
+
 struct Plane {  // z = 0
   float distance(vec3 p) const { return p.z; }
   vec3 normal(vec3) const { return vec3(0, 0, 1); }
@@ -42,6 +50,8 @@ struct SampleOptions {
 PointCloud sample(const Sphere& s, const SampleOptions& o);
 PointCloud sample(const Torus& t, const SampleOptions& o);
 PointCloud sample_plane(float half_size, const SampleOptions& o);  // square [-a, a]² at z = 0
+// Evenly by area, faces and rim, with the exact outward normals (no noise, uniform density).
+PointCloud sample(const Pill& pill, const SampleOptions& o);
 
 // One case of the accuracy tests: a unit sphere or the default torus, uniform or 10:1
 // non-uniform density, with Gaussian noise relative to the radius of curvature.

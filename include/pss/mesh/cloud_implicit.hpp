@@ -33,8 +33,10 @@ PSS_INLINE vec3 nearest_normal(const SupportGridView& grid, vec3 x) {
   return normal;
 }
 
-// The projection's normal turned outside as the samples nearest P(x) face: at the surface
-// point, not at x, which may lie between a thin part's two sides.
+// The projection from x starts at the nearest sample's oriented normal, and its normal is
+// turned to the side of the sample nearest P(x): at the surface point, not at x, which may
+// lie nearer the other side's samples of a thin part than the side it projects to (the
+// bunny's ears: at x, 5 components and twice the boundary edges).
 PSS_INLINE SignedDistance signed_distance(const SupportGridView& grid, vec3 x, const ProjectionParams& params) {
   const vec3 hint = nearest_normal(grid, x);
   if (!(length2(hint) > 0)) return {0.0f, x, vec3(0.0f), false};
@@ -62,9 +64,11 @@ struct SampleCornersKernel {
 // vertices coincide and no triangle degenerates where the surface passes through a corner.
 inline constexpr float kEdgeMargin = 1e-3f;
 
-// out[i] = the root of f on edges[i], by regula falsi with the Illinois rule (each step a
-// projection; the bracket keeps the root on the edge), until |f| <= tolerance or `steps`
-// projections; the normal is the PSS's at the root.
+// out[i] = the root of f on edges[i], by regula falsi (each step a projection; the bracket
+// keeps the root on the edge), until |f| <= tolerance or `steps` projections; the normal is
+// the PSS's at the root. f is nearly linear along an edge, so the secant lands close: 1.95
+// projections per vertex on the bunny, 2.33 on hippo1 (Illinois's rule, which keeps an end
+// from sticking, measured no fewer).
 struct CrossEdgesKernel {
   SupportGridView grid;
   const EdgeCrossing* edges;
@@ -77,7 +81,6 @@ struct CrossEdgesKernel {
     float lo = 0, hi = 1, f_lo = e.distance_a, f_hi = e.distance_b;
     float t = f_lo / (f_lo - f_hi);
     vec3 normal(0.0f);
-    int side = 0;  // which end moved last: the Illinois rule halves the other's value after two
     for (int k = 0; k < steps; ++k) {
       t = min(max(t, kEdgeMargin), 1 - kEdgeMargin);
       const SignedDistance s = signed_distance(grid, e.a + t * (e.b - e.a), params);
@@ -87,13 +90,9 @@ struct CrossEdgesKernel {
       if ((s.distance < 0) == (f_lo < 0)) {
         lo = t;
         f_lo = s.distance;
-        if (side == -1) f_hi *= 0.5f;
-        side = -1;
       } else {
         hi = t;
         f_hi = s.distance;
-        if (side == 1) f_lo *= 0.5f;
-        side = 1;
       }
       t = lo + (hi - lo) * (f_lo / (f_lo - f_hi));
     }
