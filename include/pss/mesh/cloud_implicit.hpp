@@ -60,9 +60,13 @@ struct SampleCornersKernel {
   }
 };
 
-// A vertex strictly inside its edge, no nearer an end than this share of the edge: no two
-// vertices coincide and no triangle degenerates where the surface passes through a corner.
-inline constexpr float kEdgeMargin = 1e-3f;
+// A vertex strictly inside its edge, no nearer an end than this share of the edge, so that
+// no triangle degenerates where the surface passes through or near a corner. At 10⁻³ such
+// slivers meet their neighbours at angles of 10⁻³ that the common checkers' tolerances
+// take for crossings (Open3D: 14 pairs of a sphere's 23,384 triangles, 7 at 3·10⁻³, none at
+// 10⁻²), though in exact arithmetic on the written floats none cross. Where the surface
+// passes that near a corner its vertex lies off it by at most this share of its edge.
+inline constexpr float kEdgeMargin = 1e-2f;
 
 // out[i] = the root of f on edges[i], by regula falsi (each step a projection; the bracket
 // keeps the root on the edge), until |f| <= tolerance or `steps` projections; the normal is
