@@ -158,6 +158,23 @@ TEST_F(MeshCli, TheFilesNormalsOrientTheMesh) {
   EXPECT_TRUE(fit(test::read_mesh(path("est.ply"))).outward);
 }
 
+// File normals that disagree among themselves (two thirds of a sphere's inward, the rest
+// outward): the seams' turn keeps the larger side's, inward, and the mesh is turned out.
+TEST_F(MeshCli, FileNormalsTurnedToTheLargerSideStillGiveAnOutwardMesh) {
+  test::SampleOptions o;
+  o.count = 3000;
+  PointCloud cloud = test::sample(test::Sphere{}, o);
+  for (const vec3& p : cloud.positions) cloud.normals.push_back(p.z > -0.3f ? -p : p);
+  write_ply(path("mixed.ply"), cloud);
+  const test::CliResult r = mesh(path("mixed.ply"), "m.ply", "--stats " + path("m.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_GT(stats("m.json")["normals_turned"].get<int>(), 500);
+  EXPECT_EQ(stats("m.json")["turned_outward"], true);
+  const TriangleMesh m = test::read_mesh(path("m.ply"));
+  EXPECT_TRUE(topology(m).watertight());
+  EXPECT_TRUE(fit(m).outward);
+}
+
 // Points strewn off the surface are set aside (no blobs); --outliers keep keeps them.
 TEST_F(MeshCli, OutliersAreSetAsideUnlessKept) {
   test::SampleOptions o;

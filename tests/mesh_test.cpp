@@ -73,6 +73,12 @@ TEST(MarchingTetrahedra, ASphereIsOneWatertightOutwardSurface) {
   }
   for (const auto& tri : m.triangles)
     EXPECT_GT(glm::dot(face_normal(m, tri), sphere.normal(m.positions[std::size_t(tri[0])])), 0.5f);
+  // It encloses the ball's volume (to the chords' loss), and so it does with a small hole.
+  const double ball = 4.0 / 3.0 * 3.14159265358979;
+  EXPECT_NEAR(enclosed_volume(m), ball, 0.02 * ball);
+  TriangleMesh holed = m;
+  holed.triangles.pop_back();
+  EXPECT_NEAR(enclosed_volume(holed), ball, 0.02 * ball);
 }
 
 TEST(MarchingTetrahedra, ATorusHasEulerCharacteristicZero) {

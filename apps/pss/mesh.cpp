@@ -84,8 +84,8 @@ void run_mesh(const MeshOptions& o) {
               (long long)result.counts.cubes_crossed, (long long)result.outliers.set_aside);
   print_normals_turned(result.normals_turned, cloud.size());
   if (result.turned_outward)
-    std::printf("the estimated normals faced inward (the closed parts enclosed a negative volume): the mesh was "
-                "turned to face outward\n");
+    std::printf("the normals' orientation faced inward (the closed parts enclosed a negative volume): the mesh "
+                "was turned to face outward\n");
 
   if (!o.compute.stats_path.empty()) {
     auto& v = stats.values();

@@ -80,7 +80,10 @@ CloudMesh mesh_cloud(const PointCloud& cloud, const MeshParams& params, Backend 
     out.mesh = march_tetrahedra(lattice, grid.sorted_points(), implicit, kMaxSlope, out.counts);
   }
   out.mesh.origin = cloud.origin;
-  if (out.normals == NormalsUsed::estimated && enclosed_volume(out.mesh) < 0) {
+  // Which side is out is a guess where the normals were estimated, and where the file's
+  // disagreed among themselves (some turned: the side kept is the larger one's).
+  const bool guessed = out.normals == NormalsUsed::estimated || out.normals_turned > 0;
+  if (guessed && enclosed_volume(out.mesh) < 0) {
     turn_inside_out(out.mesh);
     out.turned_outward = true;
   }

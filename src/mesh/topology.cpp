@@ -8,6 +8,14 @@
 
 namespace pss {
 
+namespace {
+
+// A component with at most one boundary edge in this many is nearly closed: a few small
+// holes, whose lids change its volume little.
+constexpr std::int64_t kNearlyClosed = 100;
+
+}  // namespace
+
 namespace mesh_detail {
 
 Incidence incidence(const std::vector<std::array<int, 3>>& triangles) {
@@ -89,22 +97,33 @@ MeshTopology topology(const TriangleMesh& mesh) {
 double enclosed_volume(const TriangleMesh& mesh) {
   mesh_detail::Incidence in = mesh_detail::incidence(mesh.triangles);
   const std::size_t nt = mesh.triangles.size();
-  std::vector<char> open(nt, 0);  // by component root
+  if (nt == 0) return 0;
+  // Edges and boundary edges by component (its root triangle).
+  std::vector<std::int64_t> edges(nt, 0), boundary(nt, 0);
   const auto& sides = in.sides;
   for (std::size_t i = 0; i < sides.size();) {
     std::size_t j = i + 1;
     while (j < sides.size() && sides[j].same_edge(sides[i])) ++j;
-    if (j - i != 2) open[std::size_t(in.components.find(sides[i].triangle))] = 1;
+    const auto root = std::size_t(in.components.find(sides[i].triangle));
+    ++edges[root];
+    boundary[root] += j - i == 1;
     i = j;
   }
-  // Σ det(a − o, b − o, c − o)/6 about one vertex o, in double: the divergence theorem.
+  // Σ det(a − o, b − o, c − o)/6 about one vertex o of each component, in double: the
+  // divergence theorem, exact for a closed surface; a hole's lid, left out, is small where
+  // the holes are.
+  std::vector<glm::dvec3> origin(nt);
+  std::vector<char> has_origin(nt, 0);
   double volume = 0;
-  if (nt == 0) return volume;
-  const glm::dvec3 o(mesh.positions[std::size_t(mesh.triangles[0][0])]);
   for (std::size_t t = 0; t < nt; ++t) {
-    if (open[std::size_t(in.components.find(std::int64_t(t)))]) continue;
+    const auto root = std::size_t(in.components.find(std::int64_t(t)));
+    if (boundary[root] * kNearlyClosed > edges[root]) continue;
     const auto& v = mesh.triangles[t];
-    const glm::dvec3 a = glm::dvec3(mesh.positions[std::size_t(v[0])]) - o,
+    if (!has_origin[root]) {
+      origin[root] = glm::dvec3(mesh.positions[std::size_t(v[0])]);
+      has_origin[root] = 1;
+    }
+    const glm::dvec3 o = origin[root], a = glm::dvec3(mesh.positions[std::size_t(v[0])]) - o,
                      b = glm::dvec3(mesh.positions[std::size_t(v[1])]) - o,
                      c = glm::dvec3(mesh.positions[std::size_t(v[2])]) - o;
     volume += glm::dot(a, glm::cross(b, c)) / 6;

@@ -33,13 +33,14 @@ struct CloudMesh {
   NormalsUsed normals = NormalsUsed::none;  // the samples' oriented normals: the file's or estimated
   std::size_t normals_turned = 0;
   OutlierReport outliers;
-  // Whether the estimated normals' orientation (orient_normals.hpp: a guess at which side
-  // is out) enclosed a negative volume, and the mesh was turned inside out to face out.
+  // Whether the normals' orientation, a guess (estimated: orient_normals.hpp; or the file's
+  // with some turned), enclosed a negative volume, and the mesh was turned to face out.
   bool turned_outward = false;
 };
 
-// Where the samples' normals were estimated, the mesh faces out: its closed components
-// enclose a positive volume (the file's normals are taken as they say).
+// Where the samples' normals were estimated, or the file's contradicted each other (some
+// turned), the mesh faces out: its closed components enclose a positive volume. The file's
+// normals that agree are taken as they say.
 // Throws Error for invalid parameters (as project_cloud), a cell that is not a positive
 // number or too small for the cloud's extent, a cloud of fewer than three points, and a
 // cloud that gives no triangle.
