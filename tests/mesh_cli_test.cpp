@@ -279,6 +279,9 @@ TEST_F(MeshCli, BadInputGetsOneLineAndNoOutput) {
   expect_clean_failure("mesh " + input + " -o " + path("m.ply") + " --cell nan", "--cell", path("m.ply"));
   expect_clean_failure("mesh " + input + " -o " + path("m.ply") + " --borders none", "--borders", path("m.ply"));
   expect_clean_failure("mesh " + input + " -o " + path("m.ply") + " --cell 1e-9", "the cell size", path("m.ply"));
+  // Fine enough for the box's lattice, too fine for the surface's band: refused before work.
+  expect_clean_failure("mesh " + input + " -o " + path("m.ply") + " --cell 2e-5", "is too small for this cloud",
+                       path("m.ply"));
   write("two.xyz", "0 0 0\n1 1 1\n");
   expect_clean_failure("mesh " + path("two.xyz") + " -o " + path("m.ply"), "two.xyz", path("m.ply"));
   write("empty.xyz", "");

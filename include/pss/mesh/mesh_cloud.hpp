@@ -4,6 +4,8 @@
 // normal there. Any surface operator and support of `pss project`.
 #pragma once
 
+#include <cstdint>
+
 #include "pss/backend/backend.hpp"
 #include "pss/core/stats.hpp"
 #include "pss/mesh/marching_tetrahedra.hpp"
@@ -19,6 +21,11 @@ namespace pss {
 // to the 15th neighbour, about 2.2 spacings on a surface), so that the mesh resolves what
 // the PSS resolves, at a few triangles per sample.
 inline constexpr float kDefaultCellPerH = 0.5f;
+
+// The most cubes a mesh's band may be expected to hold, by the samples' widths (three times
+// the estimate's overcount of 2^26 cubes: some 3 GiB of corners and keys, and as many
+// projections); a cell that fine for the cloud is refused before any work.
+inline constexpr std::int64_t kMaxBandCubes = std::int64_t(3) << 26;
 
 struct MeshParams {
   ProjectionParams projection;  // its borders: clip ends the mesh where the samples end
@@ -42,7 +49,7 @@ struct CloudMesh {
 // turned), the mesh faces out: its closed components enclose a positive volume. The file's
 // normals that agree are taken as they say.
 // Throws Error for invalid parameters (as project_cloud), a cell that is not a positive
-// number or too small for the cloud's extent, a cloud of fewer than three points, and a
+// number or too small for the cloud's extent or surface (kMaxBandCubes), a cloud of fewer than three points, and a
 // cloud that gives no triangle.
 CloudMesh mesh_cloud(const PointCloud& cloud, const MeshParams& params, Backend backend, Stats& stats);
 
