@@ -4,6 +4,8 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
+#include "pss/backend/backend.hpp"
+#include "pss/core/stats.hpp"
 #include "pss/points/cloud.hpp"
 #include "pss/points/projection.hpp"
 #include "pss/points/sample_normals.hpp"
@@ -19,6 +21,14 @@ struct ComputeOptions {
   std::string stats_path;
 };
 void add_compute_options(CLI::App& command, ComputeOptions& options);  // with --progress
+// --threads applied, and the backend --backend names.
+Backend start_compute(const ComputeOptions& options);
+// The cloud of `file`, its reading timed (phase "read").
+PointCloud read_cloud(const std::string& file, Stats& stats);
+// What every command's --stats records of a run on a cloud: the command, its input and
+// output, the points, their origin (the written positions include it), backend and threads.
+void record_cloud_run(Stats& stats, const char* command, const std::string& input, const std::string& output,
+                      const PointCloud& cloud, Backend backend);
 // --progress auto|always|never: sets the process's ProgressMode when given.
 void add_progress_option(CLI::App& command);
 
@@ -44,6 +54,20 @@ void add_surface_options(CLI::App& command, SurfaceOptions& options);
 void apply_surface_options(const SurfaceOptions& options, ProjectionParams& params);
 // " (the file's normals)", " (estimated normals)" or "", after "<surface> surface".
 const char* normals_text(NormalsUsed used);
+
+// The flags of a cloud's PSS that `project` and `mesh` share: --h, --rho, --support,
+// --surface, --normals, --outliers and --iterations.
+struct CloudSurfaceFlags {
+  float h = 0, rho = 0;
+  std::string support;  // empty: support_of's default
+  SurfaceOptions surface;
+  int iterations = 4;
+};
+void add_cloud_surface_flags(CLI::App& command, CloudSurfaceFlags& flags);
+// The projection's parameters the flags give, h estimated from the spacing of `cloud` (read
+// from `file`; phase "estimate h") when --h is not given.
+ProjectionParams projection_params(const CloudSurfaceFlags& flags, const PointCloud& cloud, const std::string& file,
+                                   PlaneFitMethod plane, Stats& stats);
 
 // A line on stdout when some of the file's normals were turned as contradicting the points
 // (points/turn_flipped_normals.hpp); nothing when none were.

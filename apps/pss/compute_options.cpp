@@ -6,6 +6,7 @@
 #include "pss/backend/backend.hpp"
 #include "pss/core/error.hpp"
 #include "pss/core/progress.hpp"
+#include "pss/io/point_cloud_file.hpp"
 
 namespace pss::app {
 
@@ -17,6 +18,28 @@ void add_compute_options(CLI::App& command, ComputeOptions& options) {
       ->check(finite_range(1, kMaxCpuThreads));
   command.add_option("--stats", options.stats_path, "write timings per phase and run parameters as JSON");
   add_progress_option(command);
+}
+
+Backend start_compute(const ComputeOptions& options) {
+  set_cpu_threads(options.threads);
+  return select_backend(options.backend);
+}
+
+PointCloud read_cloud(const std::string& file, Stats& stats) {
+  ScopedPhase phase(stats, "read");
+  return read_point_cloud(file);
+}
+
+void record_cloud_run(Stats& stats, const char* command, const std::string& input, const std::string& output,
+                      const PointCloud& cloud, Backend backend) {
+  auto& v = stats.values();
+  v["command"] = command;
+  v["input"] = input;
+  v["output"] = output;
+  v["points"] = cloud.size();
+  v["origin"] = {cloud.origin.x, cloud.origin.y, cloud.origin.z};
+  v["backend"] = backend_name(backend);
+  v["threads"] = cpu_threads();
 }
 
 void add_progress_option(CLI::App& command) {
@@ -101,6 +124,33 @@ void print_normals_turned(std::size_t turned, std::size_t points) {
   if (turned > 0)
     std::printf("turned %zu of the file's normals (of %zu points): they contradicted their neighbours', as where a "
                 "part of the cloud was flipped\n", turned, points);
+}
+
+void add_cloud_surface_flags(CLI::App& command, CloudSurfaceFlags& flags) {
+  command.add_option("--h", flags.h, "Gaussian width h (default: estimated from the spacing, see pss info)")
+      ->check(finite_positive());
+  command.add_option("--rho", flags.rho, "range-query radius (default 2h; with adaptive support, at h)")
+      ->check(finite_positive());
+  add_support_option(command, flags.support);
+  add_surface_options(command, flags.surface);
+  command.add_option("--iterations", flags.iterations, "most MLS alternations of t and n (apss, rimls: fits)")
+      ->check(finite_range(1, 100))
+      ->capture_default_str();
+}
+
+ProjectionParams projection_params(const CloudSurfaceFlags& flags, const PointCloud& cloud, const std::string& file,
+                                   PlaneFitMethod plane, Stats& stats) {
+  float h = flags.h;
+  if (h == 0) {
+    ScopedPhase phase(stats, "estimate h");
+    h = float(estimate_spacing_of(cloud, file).suggested_h);
+  }
+  ProjectionParams params = ProjectionParams::from_h(h, plane);
+  if (flags.rho != 0) params.rho = flags.rho;
+  params.support = support_of(flags.support, flags.h != 0);
+  apply_surface_options(flags.surface, params);
+  params.max_mls_iterations = flags.iterations;
+  return params;
 }
 
 }  // namespace pss::app

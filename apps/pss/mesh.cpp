@@ -13,7 +13,6 @@
 #include "pss/io/point_cloud_file.hpp"
 #include "pss/mesh/mesh_cloud.hpp"
 #include "pss/points/border_choice.hpp"
-#include "pss/points/spacing.hpp"
 
 namespace pss::app {
 
@@ -21,39 +20,23 @@ namespace {
 
 struct MeshOptions {
   std::string input, output;
-  float h = 0, rho = 0, cell = 0;
-  std::string support;  // empty: support_of's default
-  SurfaceOptions surface;
+  float cell = 0;
+  CloudSurfaceFlags surface;
   std::string borders = "auto";
-  int iterations = 4;
   ComputeOptions compute;
 };
 
 void run_mesh(const MeshOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   OutputSet outputs({o.input}, {o.output, o.compute.stats_path});
-  set_cpu_threads(o.compute.threads);
-  const Backend backend = select_backend(o.compute.backend);
+  const Backend backend = start_compute(o.compute);
   Stats stats;
-  PointCloud cloud;
-  {
-    ScopedPhase phase(stats, "read");
-    cloud = read_point_cloud(o.input);
-  }
+  const PointCloud cloud = read_cloud(o.input, stats);
   if (cloud.size() < 3)
     throw file_error(o.input, "has " + std::to_string(cloud.size()) + " points: a mesh needs at least 3");
-  float h = o.h;
-  if (h == 0) {
-    ScopedPhase phase(stats, "estimate h");
-    h = float(estimate_spacing_of(cloud, o.input).suggested_h);
-  }
   MeshParams params;
-  params.projection = ProjectionParams::from_h(h);
-  if (o.rho != 0) params.projection.rho = o.rho;
-  params.projection.support = support_of(o.support, o.h != 0);
-  apply_surface_options(o.surface, params.projection);
+  params.projection = projection_params(o.surface, cloud, o.input, PlaneFitMethod::mls, stats);
   params.projection.borders = borders_for(border_choice_of(o.borders), cloud);
-  params.projection.max_mls_iterations = o.iterations;
   params.cell = o.cell;
 
   CloudMesh result;
@@ -89,17 +72,11 @@ void run_mesh(const MeshOptions& o) {
 
   if (!o.compute.stats_path.empty()) {
     auto& v = stats.values();
-    v["command"] = "mesh";
-    v["input"] = o.input;
-    v["output"] = o.output;
-    v["points"] = cloud.size();
-    v["origin"] = {cloud.origin.x, cloud.origin.y, cloud.origin.z};  // written positions include it
-    v["backend"] = backend_name(backend);
-    v["threads"] = cpu_threads();
+    record_cloud_run(stats, "mesh", o.input, o.output, cloud, backend);
     v["params"] = {{"h", params.projection.h}, {"rho", params.projection.rho}, {"cell", result.cell},
                    {"support", support_name(params.projection.support)},
                    {"surface", surface_name(params.projection.surface)}, {"normals", normals_used_name(result.normals)},
-                   {"outliers", o.surface.outliers}, {"borders", border_name(params.projection.borders)},
+                   {"outliers", o.surface.surface.outliers}, {"borders", border_name(params.projection.borders)},
                    {"h_least", result.widths.least}, {"h_largest", result.widths.largest},
                    {"max_mls_iterations", params.projection.max_mls_iterations}};
     v["mesh"] = {{"vertices", shape.vertices},
@@ -141,11 +118,7 @@ void add_mesh_command(CLI::App& app, Action action) {
                    "triangles), .obj (v, vn, f), .stl (binary, facet normals) or .off")
       ->required()
       ->check(mesh_output());
-  command->add_option("--h", o->h, "Gaussian width h (default: estimated from the spacing, see pss info)")
-      ->check(finite_positive());
-  command->add_option("--rho", o->rho, "range-query radius (default 2h; with adaptive support, at h)")->check(finite_positive());
-  add_support_option(*command, o->support);
-  add_surface_options(*command, o->surface);
+  add_cloud_surface_flags(*command, o->surface);
   command->add_option("--cell", o->cell,
                       "side of the cubes the surface is meshed in: smaller gives more, smaller triangles (default h/2, "
                       "about the samples' spacing)")
@@ -156,9 +129,6 @@ void add_mesh_command(CLI::App& app, Action action) {
                       "them; extend for scans, whose points stand for the surface around them). Either way a scan's "
                       "open edge and its holes wider than about 2 rho stay open")
       ->check(CLI::IsMember({"auto", "clip", "extend"}))
-      ->capture_default_str();
-  command->add_option("--iterations", o->iterations, "most MLS alternations of t and n (apss, rimls: fits)")
-      ->check(finite_range(1, 100))
       ->capture_default_str();
   add_compute_options(*command, o->compute);
   command->callback([o, action] {

@@ -12,7 +12,6 @@
 #include "pss/io/output_file.hpp"
 #include "pss/io/point_cloud_file.hpp"
 #include "pss/points/project_cloud.hpp"
-#include "pss/points/spacing.hpp"
 
 namespace pss::app {
 
@@ -20,36 +19,19 @@ namespace {
 
 struct ProjectOptions {
   std::string input, output;
-  float h = 0, rho = 0;
   std::string method = "mls";
-  std::string support;  // empty: support_of's default
-  SurfaceOptions surface;
-  int iterations = 4;
+  CloudSurfaceFlags surface;
   ComputeOptions compute;
 };
 
 void run_project(const ProjectOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   OutputSet outputs({o.input}, {o.output, o.compute.stats_path});
-  set_cpu_threads(o.compute.threads);
-  const Backend backend = select_backend(o.compute.backend);
+  const Backend backend = start_compute(o.compute);
   Stats stats;
-  PointCloud cloud;
-  {
-    ScopedPhase phase(stats, "read");
-    cloud = read_point_cloud(o.input);
-  }
-  float h = o.h;
-  if (h == 0) {
-    ScopedPhase phase(stats, "estimate h");
-    h = float(estimate_spacing_of(cloud, o.input).suggested_h);
-  }
-  ProjectionParams params =
-      ProjectionParams::from_h(h, o.method == "wls" ? PlaneFitMethod::wls : PlaneFitMethod::mls);
-  if (o.rho != 0) params.rho = o.rho;
-  params.support = support_of(o.support, o.h != 0);
-  apply_surface_options(o.surface, params);
-  params.max_mls_iterations = o.iterations;
+  const PointCloud cloud = read_cloud(o.input, stats);
+  const ProjectionParams params = projection_params(
+      o.surface, cloud, o.input, o.method == "wls" ? PlaneFitMethod::wls : PlaneFitMethod::mls, stats);
 
   const CloudProjection result = project_cloud(cloud, params, backend, stats);
   try {
@@ -82,17 +64,11 @@ void run_project(const ProjectOptions& o) {
 
   if (!o.compute.stats_path.empty()) {
     auto& v = stats.values();
-    v["command"] = "project";
-    v["input"] = o.input;
-    v["output"] = o.output;
-    v["points"] = cloud.size();
-    v["origin"] = {cloud.origin.x, cloud.origin.y, cloud.origin.z};  // written positions include it
-    v["backend"] = backend_name(backend);
-    v["threads"] = cpu_threads();
+    record_cloud_run(stats, "project", o.input, o.output, cloud, backend);
     v["params"] = {{"h", params.h}, {"rho", params.rho}, {"plane_fit", o.method},
                    {"support", support_name(params.support)},
                    {"surface", surface_name(params.surface)}, {"normals", normals_used_name(result.normals)},
-                   {"outliers", o.surface.outliers},
+                   {"outliers", o.surface.surface.outliers},
                    {"h_least", result.widths.least}, {"h_largest", result.widths.largest},
                    {"max_mls_iterations", params.max_mls_iterations}, {"t_tolerance", params.t_tolerance}};
     v["status"] = {{"converged", c.converged}, {"not_converged", c.not_converged},
@@ -123,18 +99,11 @@ void add_project_command(CLI::App& app, Action action) {
                    "colours, scalars or status)")
       ->required()
       ->check(points_output());
-  command->add_option("--h", o->h, "Gaussian width h (default: estimated from the spacing, see pss info)")
-      ->check(finite_positive());
-  command->add_option("--rho", o->rho, "range-query radius (default 2h; with adaptive support, at h)")->check(finite_positive());
-  add_support_option(*command, o->support);
-  add_surface_options(*command, o->surface);
+  add_cloud_surface_flags(*command, o->surface);
   command->add_option("--method", o->method,
                       "plane fit: mls (Eq. 2, default) or wls (Eq. 1); with --surface apss or rimls, mls moves the "
                       "fit to the projected point up to --iterations times, wls fits once at the point")
       ->check(CLI::IsMember({"mls", "wls"}))
-      ->capture_default_str();
-  command->add_option("--iterations", o->iterations, "most MLS alternations of t and n (apss, rimls: fits)")
-      ->check(finite_range(1, 100))
       ->capture_default_str();
   add_compute_options(*command, o->compute);
   command->callback([o, action] {
