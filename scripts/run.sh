@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The main job on the shipped data: installs, builds, then projects and ray traces the
-# bunny's PSS, prints the tooth CT's histogram and suggested iso-values, and extracts and
+# The main job on the shipped data: installs, builds, then projects, ray traces and meshes
+# the bunny's PSS, prints the tooth CT's histogram and suggested iso-values, and extracts and
 # renders the PSS of the bucky, fuel, tooth and engine volumes. Outputs go to out/ (images
 # to look at: out/*.png).
 set -euo pipefail
@@ -13,6 +13,7 @@ set -x
 $pss info data/bun_zipper.ply
 $pss project data/bun_zipper.ply -o out/bunny-projected.ply --stats out/bunny-projected.json
 $pss render data/bun_zipper.ply -o out/bunny.png --iterations 2 --shadows --reflections --stats out/bunny.json
+$pss mesh data/bun_zipper.ply -o out/bunny-mesh.ply --stats out/bunny-mesh.json
 $pss volume data/bucky_32x32x32_uint8.raw --dims 32x32x32 --type uint8 --iso 100 --view 30,20 \
   -o out/bucky.png --stats out/bucky.json
 $pss volume data/fuel_64x64x64_uint8.raw --dims 64x64x64 --type uint8 --iso 30 --view 30,20 -o out/fuel.png
