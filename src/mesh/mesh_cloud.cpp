@@ -1,5 +1,6 @@
 #include "pss/mesh/mesh_cloud.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <span>
@@ -29,7 +30,8 @@ constexpr float kMaxSlope = 1.0f;
 // The band holds about one cube per cell² of surface, and each sample stands for about
 // h_i² of it (h_i is its distance to the 15th neighbour: about 2.2 spacings): Σ (h_i/cell)²
 // overestimates the cubes about 3-fold (the bunny: 144,000 for 42,000). Refused above the
-// cap before any work, so that a cell too fine for the cloud costs neither hours nor memory.
+// cap before any work, so that a cell too fine for the cloud costs neither hours nor memory
+// (at the cap some 3 GiB of corners and keys, and as much again of the triangles' keys).
 void check_band(std::span<const float> widths, float cell) {
   double cubes = 0;
   for (const float h : widths) cubes += double(h) * double(h) / (double(cell) * double(cell));
@@ -41,6 +43,35 @@ void check_band(std::span<const float> widths, float cell) {
                   double(cell), cubes / 3, (long long)kMaxBandCubes / 3);
     throw Error(message);
   }
+}
+
+// Points on a line (or all but coincident) define no surface: MLS would fit a tube of its
+// weights' width around them. Refused where every point lies within 10⁻⁶ of the cloud's
+// extent of the line through its mean along its principal axis.
+void check_not_a_line(std::span<const vec3> points) {
+  glm::dvec3 mean(0.0);
+  for (const vec3& p : points) mean += glm::dvec3(p) / double(points.size());
+  double c[3][3] = {};
+  for (const vec3& p : points) {
+    const glm::dvec3 d = glm::dvec3(p) - mean;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) c[i][j] += d[i] * d[j];
+  }
+  glm::dvec3 axis(1.0, 0.7, 0.3);  // power iteration: the principal axis
+  for (int k = 0; k < 100; ++k) {
+    glm::dvec3 next(0.0);
+    for (int i = 0; i < 3; ++i) next[i] = c[i][0] * axis[0] + c[i][1] * axis[1] + c[i][2] * axis[2];
+    const double length = glm::length(next);
+    if (!(length > 0)) return;  // all coincident: the spacing's estimate says so
+    axis = next / length;
+  }
+  double along = 0, off = 0;
+  for (const vec3& p : points) {
+    const glm::dvec3 d = glm::dvec3(p) - mean;
+    along = std::max(along, std::abs(glm::dot(d, axis)));
+    off = std::max(off, glm::length(d - glm::dot(d, axis) * axis));
+  }
+  if (off <= 1e-6 * along) throw Error("the points lie on a line: they define no surface to mesh");
 }
 
 template <class Kernel>
@@ -62,12 +93,18 @@ CloudMesh mesh_cloud(const PointCloud& cloud, const MeshParams& params, Backend 
   if (!(params.cell >= 0) || !std::isfinite(params.cell))
     throw Error("the cell size must be a positive number (got " + std::to_string(params.cell) + ")");
   out.cell = params.cell > 0 ? params.cell : kDefaultCellPerH * projection.h;
-  const Lattice lattice = lattice_over(box.lo, box.hi, 2.0 * double(out.cell), double(out.cell), "the cell size");
-
+  check_not_a_line(cloud.positions);
   {
     ScopedPhase phase(stats, "support widths", projection.support == Support::global);
     out.widths = support_widths(cloud.positions, projection);
   }
+  // The lattice reaches past the samples as far as the surface may: with extended borders,
+  // the largest support ρ_i past the box (the projection's reach), else two cubes.
+  const double reach = projection.borders == BorderMode::extend
+                           ? double(out.widths.largest) * double(projection.rho / projection.h) + double(out.cell)
+                           : 0.0;
+  const Lattice lattice =
+      lattice_over(box.lo, box.hi, std::max(2.0 * double(out.cell), reach), double(out.cell), "the cell size");
   check_band(out.widths.h, out.cell);
   SupportGrid grid = grid_of_samples(cloud.positions, out.widths.h, projection.rho / projection.h,
                                      projection.outliers, backend, stats, out.outliers);

@@ -31,6 +31,13 @@ T take(const std::string& b, std::size_t& at) {
   return v;
 }
 
+// Positions far from zero (a georeferenced mesh's, in double) are kept about the first one,
+// in TriangleMesh::origin, so that floats keep their detail.
+void about_an_origin(const std::vector<glm::dvec3>& world, TriangleMesh& m) {
+  if (!world.empty() && glm::length(world[0]) > 1e4) m.origin = world[0];
+  for (const glm::dvec3& p : world) m.positions.push_back(vec3(p - m.origin));
+}
+
 TriangleMesh read_ply(const std::string& b) {
   TriangleMesh m;
   const std::size_t end = b.find("end_header\n");
@@ -48,14 +55,16 @@ TriangleMesh read_ply(const std::string& b) {
   EXPECT_NE(b.find("property float nx\nproperty float ny\nproperty float nz\nelement face"), std::string::npos);
   EXPECT_NE(b.find("property list uchar int vertex_indices\nend_header"), std::string::npos);
   std::size_t at = end + 11;
+  std::vector<glm::dvec3> world;
   for (std::size_t i = 0; i < vertices; ++i) {
-    vec3 p;
-    for (int k = 0; k < 3; ++k) p[k] = doubles ? float(take<double>(b, at)) : take<float>(b, at);
+    glm::dvec3 p;
+    for (int k = 0; k < 3; ++k) p[k] = doubles ? take<double>(b, at) : double(take<float>(b, at));
     vec3 n;
     for (int k = 0; k < 3; ++k) n[k] = take<float>(b, at);
-    m.positions.push_back(p);
+    world.push_back(p);
     m.normals.push_back(n);
   }
+  about_an_origin(world, m);
   for (std::size_t i = 0; i < faces; ++i) {
     EXPECT_EQ(take<std::uint8_t>(b, at), 3);
     std::array<int, 3> t;
@@ -68,6 +77,7 @@ TriangleMesh read_ply(const std::string& b) {
 
 TriangleMesh read_obj(const std::string& b) {
   TriangleMesh m;
+  std::vector<glm::dvec3> world;
   std::istringstream in(b);
   std::string line;
   while (std::getline(in, line)) {
@@ -75,9 +85,10 @@ TriangleMesh read_obj(const std::string& b) {
     std::string kind;
     words >> kind;
     if (kind == "v" || kind == "vn") {
-      vec3 p;
+      glm::dvec3 p;
       words >> p.x >> p.y >> p.z;
-      (kind == "v" ? m.positions : m.normals).push_back(p);
+      if (kind == "v") world.push_back(p);
+      else m.normals.push_back(vec3(p));
     } else if (kind == "f") {
       std::array<int, 3> t;
       for (int& v : t) {
@@ -91,6 +102,7 @@ TriangleMesh read_obj(const std::string& b) {
       m.triangles.push_back(t);
     }
   }
+  about_an_origin(world, m);
   return m;
 }
 
@@ -101,8 +113,9 @@ TriangleMesh read_off(const std::string& b) {
   std::size_t vertices = 0, faces = 0, edges = 0;
   in >> magic >> vertices >> faces >> edges;
   EXPECT_EQ(magic, "OFF");
-  m.positions.resize(vertices);
-  for (vec3& p : m.positions) in >> p.x >> p.y >> p.z;
+  std::vector<glm::dvec3> world(vertices);
+  for (glm::dvec3& p : world) in >> p.x >> p.y >> p.z;
+  about_an_origin(world, m);
   m.triangles.resize(faces);
   for (auto& t : m.triangles) {
     int count = 0;

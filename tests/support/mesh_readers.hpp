@@ -10,7 +10,8 @@
 
 namespace pss::test {
 
-// Positions in double precision are rounded to float; normals are empty for OFF and STL.
+// Positions far from zero (above 10⁴) come about the first vertex, in TriangleMesh::origin,
+// so that those written in double keep their detail; normals are empty for OFF and STL.
 TriangleMesh read_mesh(const std::filesystem::path& path);
 
 }  // namespace pss::test

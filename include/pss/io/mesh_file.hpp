@@ -2,8 +2,8 @@
 // binary PLY with vertex normals (what MeshLab, Open3D, CloudCompare and Blender read best),
 // OBJ with vertex normals, binary STL (facet normals, no shared vertices, as STL is), OFF.
 // Written atomically (OutputFile). A mesh away from the world's origin (TriangleMesh::origin)
-// is written with the origin added: in double in PLY, in 17 digits in OBJ and OFF; STL holds
-// floats only.
+// is written with the origin added: in double in PLY, in 17 digits in OBJ and OFF; STL, which
+// holds floats only, is refused for it (file_error).
 #pragma once
 
 #include <filesystem>
