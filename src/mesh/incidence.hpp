@@ -5,24 +5,11 @@
 
 #include <array>
 #include <cstdint>
-#include <numeric>
 #include <vector>
 
-namespace pss::mesh_detail {
+#include "pss/core/connected_components.hpp"
 
-struct UnionFind {
-  std::vector<std::int64_t> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), std::int64_t(0)); }
-  std::int64_t find(std::int64_t i) {
-    while (parent[std::size_t(i)] != i) i = parent[std::size_t(i)] = parent[std::size_t(parent[std::size_t(i)])];
-    return i;
-  }
-  void join(std::int64_t a, std::int64_t b) {  // the least member labels the set
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::size_t(std::max(a, b))] = std::min(a, b);
-  }
-};
+namespace pss::mesh_detail {
 
 // One side of a triangle, the edge between `low` < `high`; `forward` when the triangle
 // runs from low to high.
@@ -35,8 +22,8 @@ struct Side {
 
 struct Incidence {
   std::vector<Side> sides;  // sorted by edge, then triangle: an edge's sides are a run
-  UnionFind components;     // of triangles
-  UnionFind fans;           // of corners 3·triangle + k (vertex k of the triangle)
+  ConnectedComponents<std::int64_t> components;  // of triangles
+  ConnectedComponents<std::int64_t> fans;        // of corners 3·triangle + k (vertex k of the triangle)
 };
 
 // Triangles with a repeated vertex take part in no fan (their corners stay alone).

@@ -20,7 +20,7 @@ namespace mesh_detail {
 
 Incidence incidence(const std::vector<std::array<int, 3>>& triangles) {
   const std::size_t nt = triangles.size();
-  Incidence in{{}, UnionFind(nt), UnionFind(3 * nt)};
+  Incidence in{{}, ConnectedComponents<std::int64_t>(nt), ConnectedComponents<std::int64_t>(3 * nt)};
   in.sides.reserve(3 * nt);
   for (std::size_t i = 0; i < nt; ++i)
     for (int k = 0; k < 3; ++k) {

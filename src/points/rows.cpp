@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "components.hpp"
 #include "pss/backend/cpu/parallel_for.hpp"
+#include "pss/core/connected_components.hpp"
 
 namespace pss::points_detail {
 
@@ -17,7 +17,7 @@ constexpr int kLinks = 4;  // the nearest neighbours a sample is chained to
 // sampled in two dimensions is one part.
 std::vector<unsigned> chains(std::span<const vec3> unit, const KdTree& tree) {
   const std::size_t n = unit.size();
-  Components chained(n);
+  ConnectedComponents chained(n);
   cpu::parallel_for(std::int64_t(n), [&](std::int64_t i) {
     unsigned index[kLinks + 1] = {};
     float d2[kLinks + 1] = {};

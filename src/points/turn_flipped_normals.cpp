@@ -9,8 +9,8 @@
 
 #include <omp.h>
 
-#include "components.hpp"
 #include "pss/backend/cpu/parallel_for.hpp"
+#include "pss/core/connected_components.hpp"
 
 namespace pss {
 
@@ -109,7 +109,7 @@ std::size_t turn_flipped_normals(const SupportGrid& grid, std::span<vec3> normal
       f(pair, e);
     });
   };
-  points_detail::Components joined(n);  // the patches
+  ConnectedComponents joined(n);  // the patches
   cpu::parallel_for(std::int64_t(n), [&](std::int64_t i) {
     for_each_neighbour(int(i), [&](const Pair& p, vec3) {
       if (p.j > p.i && p.in_rho2 <= 0.25f && p.agreement > kAgree && p.offset2 < kSideBySide * kSideBySide)
