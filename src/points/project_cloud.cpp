@@ -60,14 +60,8 @@ vec3 set_aside_hint(const SupportGrid& grid, const FileNormals& file, vec3 posit
   const float length = glm::length(normal);
   if (!(length > 0) || !std::isfinite(length)) return vec3(0.0f);
   normal /= length;
-  float nearest = kInfinity;
-  vec3 beside(0.0f);
-  grid.view().for_each_covering(position, [&](vec3, float d2, int sorted) {
-    if (d2 < nearest) {
-      nearest = d2;
-      beside = file.sorted[std::size_t(sorted)];
-    }
-  });
+  const int nearest = grid.view().nearest_covering(position);
+  const vec3 beside = nearest < 0 ? vec3(0.0f) : file.sorted[std::size_t(nearest)];
   return glm::dot(normal, beside) < 0 ? -normal : normal;
 }
 

@@ -22,15 +22,8 @@ struct SignedDistance {
 // where none does. Near a thin part both sides' samples hold x, with opposed normals, and
 // any average of them cancels: the nearest sample's side is the side x is on.
 PSS_INLINE vec3 nearest_normal(const SupportGridView& grid, vec3 x) {
-  float nearest = kInfinity;
-  vec3 normal(0.0f);
-  grid.for_each_covering(x, [&](vec3, float d2, int i) {
-    if (d2 < nearest) {
-      nearest = d2;
-      normal = grid.normals[i];
-    }
-  });
-  return normal;
+  const int nearest = grid.nearest_covering(x);
+  return nearest < 0 ? vec3(0.0f) : grid.normals[nearest];
 }
 
 // The projection from x starts at the nearest sample's oriented normal, and its normal is

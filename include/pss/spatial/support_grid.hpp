@@ -54,6 +54,20 @@ struct SupportGridView {
       if (covers(i, d2)) f(p, d2, i);
     });
   }
+
+  // The sorted index of the sample nearest c among those whose support holds it; −1 where
+  // none does.
+  PSS_HOST_DEVICE int nearest_covering(vec3 c) const {
+    float nearest = kInfinity;
+    int index = -1;
+    for_each_covering(c, [&](vec3, float d2, int i) {
+      if (d2 < nearest) {
+        nearest = d2;
+        index = i;
+      }
+    });
+    return index;
+  }
 };
 
 class SupportGrid {
