@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include "incidence.hpp"
 #include "pss/backend/cpu/parallel_for.hpp"
@@ -167,8 +168,8 @@ TriangleMesh march_tetrahedra(const Lattice& lattice, std::span<const vec3> seed
                               float max_slope, MarchCounts& counts) {
   counts = {};
   Corners corners;
-  std::vector<std::uint64_t> visited, crossed;
-  std::vector<std::uint64_t> frontier;
+  std::vector<std::uint64_t> visited, frontier;
+  std::vector<std::pair<std::uint64_t, int>> crossed;  // a cube's key, its negative corners (bit c: corner c)
   auto consider = [&](std::vector<std::uint64_t>& into, ivec3 cube) {
     if (lattice.holds_cube(cube)) into.push_back(Lattice::key(cube));
   };
@@ -209,7 +210,7 @@ TriangleMesh march_tetrahedra(const Lattice& lattice, std::span<const vec3> seed
         ++counts.cubes_refused;
         continue;
       }
-      crossed.push_back(key);
+      crossed.push_back({key, negative});
       for (int f = 0; f < 6; ++f) {
         const int signs = (negative >> kFaces[f][0] & 1) + (negative >> kFaces[f][1] & 1) +
                           (negative >> kFaces[f][2] & 1) + (negative >> kFaces[f][3] & 1);
@@ -223,10 +224,8 @@ TriangleMesh march_tetrahedra(const Lattice& lattice, std::span<const vec3> seed
 
   // The triangles, each vertex an edge's key until the edges are solved.
   std::vector<std::array<std::uint64_t, 3>> triangles;
-  for (std::uint64_t key : crossed) {
+  for (const auto& [key, negative] : crossed) {
     const ivec3 cube = Lattice::corner(key);
-    int negative = 0;
-    for (int c = 0; c < 8; ++c) negative |= (corners.at(Lattice::key(cube + offset(c))).distance < 0) << c;
     for (int t = 0; t < 6; ++t) {
       int mask = 0;
       for (int i = 0; i < 4; ++i) mask |= (negative >> kTetrahedra[t][i] & 1) << i;
