@@ -65,24 +65,43 @@ float estimate_h(const py::handle& points) {
   return suggested_h(cloud.positions);
 }
 
+// The keyword arguments of a cloud's PSS that project and mesh share (the CLI's
+// CloudSurfaceFlags), read with the GIL held, and the projection's parameters they give, h
+// from the spacing where None (run without the GIL).
+struct CloudSurfaceArgs {
+  std::optional<float> h, rho;
+  int iterations;
+  Support support;
+  SurfaceOperator surface;
+  OutlierPolicy outliers;
+
+  explicit CloudSurfaceArgs(const py::dict& o)
+      : h(positive_or_none(o, "h")),
+        rho(positive_or_none(o, "rho")),
+        iterations(integer_in(o, "iterations", 1, 100)),
+        support(support_of(o, h.has_value())),
+        surface(surface_of(o)),
+        outliers(outliers_of(o)) {}
+
+  ProjectionParams params(const PointCloud& cloud, PlaneFitMethod plane) const {
+    ProjectionParams p = ProjectionParams::from_h(h ? *h : suggested_h(cloud.positions), plane);
+    if (rho) p.rho = *rho;
+    p.support = support;
+    p.surface = surface;
+    p.outliers = outliers;
+    p.max_mls_iterations = iterations;
+    return p;
+  }
+};
+
 py::tuple project(const py::handle& points, const py::dict& o) {
   const PointCloud cloud = cloud_of(points, option(o, "normals"));
-  const std::string method = choice(o, "method", {"mls", "wls"});
-  const std::optional<float> h = positive_or_none(o, "h"), rho = positive_or_none(o, "rho");
-  const int iterations = integer_in(o, "iterations", 1, 100);
-  const Support support = support_of(o, h.has_value());
-  const SurfaceOperator surface = surface_of(o);
-  const OutlierPolicy outliers = outliers_of(o);
+  const PlaneFitMethod plane = choice(o, "method", {"mls", "wls"}) == "wls" ? PlaneFitMethod::wls : PlaneFitMethod::mls;
+  const CloudSurfaceArgs args(o);
   const Backend backend = backend_of(o);
   CloudProjection result = run_interruptibly([&] {
     Stats stats;
-    ProjectionParams params = ProjectionParams::from_h(
-        h ? *h : suggested_h(cloud.positions), method == "wls" ? PlaneFitMethod::wls : PlaneFitMethod::mls);
-    if (rho) params.rho = *rho;
-    params.support = support;
-    params.surface = surface;
-    params.outliers = outliers;
-    params.max_mls_iterations = iterations;
+    const ProjectionParams params = args.params(cloud, plane);
     CloudProjection projection = project_cloud(cloud, params, backend, stats);
     check_some_projected(projection, params);
     return projection;
@@ -97,25 +116,16 @@ py::tuple project(const py::handle& points, const py::dict& o) {
 
 py::tuple mesh(const py::handle& points, const py::dict& o) {
   const PointCloud cloud = cloud_of(points, option(o, "normals"));
-  const std::optional<float> h = positive_or_none(o, "h"), rho = positive_or_none(o, "rho"),
-                             cell = positive_or_none(o, "cell");
-  const int iterations = integer_in(o, "iterations", 1, 100);
-  const Support support = support_of(o, h.has_value());
-  const SurfaceOperator surface = surface_of(o);
-  const OutlierPolicy outliers = outliers_of(o);
+  const CloudSurfaceArgs args(o);
+  const std::optional<float> cell = positive_or_none(o, "cell");
   const std::optional<BorderMode> borders = border_choice_of(choice(o, "borders", {"auto", "clip", "extend"}));
   const Backend backend = backend_of(o);
   CloudMesh result = run_interruptibly([&] {
     if (cloud.size() < 3) throw Error("points: a mesh needs at least 3 (got " + std::to_string(cloud.size()) + ")");
     Stats stats;
     MeshParams params;
-    params.projection = ProjectionParams::from_h(h ? *h : suggested_h(cloud.positions));
-    if (rho) params.projection.rho = *rho;
-    params.projection.support = support;
-    params.projection.surface = surface;
-    params.projection.outliers = outliers;
+    params.projection = args.params(cloud, PlaneFitMethod::mls);
     params.projection.borders = borders_for(borders, cloud);
-    params.projection.max_mls_iterations = iterations;
     if (cell) params.cell = *cell;
     return mesh_cloud(cloud, params, backend, stats);
   });
