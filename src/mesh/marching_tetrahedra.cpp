@@ -146,6 +146,16 @@ ivec3 Lattice::cube_of(vec3 p) const {
   return ivec3(glm::clamp(x, glm::dvec3(-1.0), limit));
 }
 
+void check_band(double expected_cubes, double cell, const char* data) {
+  if (expected_cubes <= double(kMaxBandCubes)) return;
+  char message[300];
+  std::snprintf(message, sizeof message,
+                "the cell size %g is too small for this %s: about %.3g cubes near its surface, more than the %lld "
+                "a mesh may take; use a larger cell",
+                cell, data, expected_cubes, (long long)kMaxBandCubes);
+  throw Error(message);
+}
+
 Lattice lattice_over(vec3 lo, vec3 hi, double margin, double cell, const char* what) {
   Lattice l;
   l.cell = cell;
@@ -194,7 +204,7 @@ TriangleMesh march_tetrahedra(const Lattice& lattice, std::span<const vec3> seed
 
     std::vector<std::uint64_t> next;
     for (const CornerSample& s : samples)
-      if (s.valid) consider(next, lattice.cube_of(s.surface_point));
+      if (s.valid && s.on_surface) consider(next, lattice.cube_of(s.surface_point));
     for (std::uint64_t key : frontier) {
       const ivec3 cube = Lattice::corner(key);
       CornerSample at[8];

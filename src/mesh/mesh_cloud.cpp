@@ -6,43 +6,23 @@
 #include <span>
 #include <string>
 
-#include "pss/backend/mirror.hpp"
-#include "pss/backend/parallel_for.hpp"
+#include "implicit_surface.hpp"
 #include "pss/core/error.hpp"
 #include "pss/mesh/cloud_implicit.hpp"
 #include "pss/points/project_cloud.hpp"
 #include "pss/spatial/grid_mirror.hpp"
 
-
 namespace pss {
 
 namespace {
 
-// Regula falsi stops within this share of the cube's side of the surface, or after
-// kRootSteps projections (cloud_implicit.hpp: about 2 on average).
-constexpr float kRootTolerance = 1e-3f;
-constexpr int kRootSteps = 8;
-
-// Where the surface passes between two corners, the nearer lies within their distance of it
-// (marching_tetrahedra.hpp: farther, the change of sign is a jump of the implicit).
-constexpr float kMaxSlope = 1.0f;
-
 // The band holds about one cube per cell² of surface, and each sample stands for about
 // h_i² of it (h_i is its distance to the 15th neighbour: about 2.2 spacings): Σ (h_i/cell)²
-// overestimates the cubes about 3-fold (the bunny: 144,000 for 42,000). Refused above the
-// cap before any work, so that a cell too fine for the cloud costs neither hours nor memory
-// (at the cap some 3 GiB of corners and keys, and as much again of the triangles' keys).
-void check_band(std::span<const float> widths, float cell) {
+// overestimates the cubes about 3-fold (the bunny: 144,000 for 42,000).
+double expected_band_cubes(std::span<const float> widths, float cell) {
   double cubes = 0;
   for (const float h : widths) cubes += double(h) * double(h) / (double(cell) * double(cell));
-  if (cubes > double(kMaxBandCubes)) {
-    char message[300];
-    std::snprintf(message, sizeof message,
-                  "the cell size %g is too small for this cloud: about %.3g cubes near its surface, more than "
-                  "the %lld a mesh may take; use a larger cell",
-                  double(cell), cubes / 3, (long long)kMaxBandCubes / 3);
-    throw Error(message);
-  }
+  return cubes / 3;
 }
 
 // Points on a line (or all but coincident) define no surface: MLS would fit a tube of its
@@ -74,12 +54,6 @@ void check_not_a_line(std::span<const vec3> points) {
   if (off <= 1e-6 * along) throw Error("the points lie on a line: they define no surface to mesh");
 }
 
-template <class Kernel>
-void run(Backend backend, const char* phase, std::int64_t n, const Kernel& kernel, Stats& stats) {
-  Progress progress(phase, n);
-  parallel_for(backend, phase, n, kernel, stats, &progress);
-}
-
 }  // namespace
 
 CloudMesh mesh_cloud(const PointCloud& cloud, const MeshParams& params, Backend backend, Stats& stats) {
@@ -105,7 +79,7 @@ CloudMesh mesh_cloud(const PointCloud& cloud, const MeshParams& params, Backend 
                            : 0.0;
   const Lattice lattice =
       lattice_over(box.lo, box.hi, std::max(2.0 * double(out.cell), reach), double(out.cell), "the cell size");
-  check_band(out.widths.h, out.cell);
+  check_band(expected_band_cubes(out.widths.h, out.cell), out.cell, "cloud");
   SupportGrid grid = grid_of_samples(cloud.positions, out.widths.h, projection.rho / projection.h,
                                      projection.outliers, backend, stats, out.outliers);
   out.widths.h = {};
@@ -115,26 +89,11 @@ CloudMesh mesh_cloud(const PointCloud& cloud, const MeshParams& params, Backend 
   grid.set_normals(sample_normals(grid, file, projection, backend, stats, out.normals));
 
   const GridMirror g(backend, grid);
-  ImplicitSurface implicit;
-  implicit.sample = [&](std::span<const vec3> corners, std::span<CornerSample> samples) {
-    const Mirror<vec3> in(backend, corners);
-    Mirror<CornerSample> result(backend, corners.size());
-    run(backend, "mesh corners", std::int64_t(corners.size()),
-        SampleCornersKernel{g.view(), in.data(), result.data(), projection}, stats);
-    const std::vector<CornerSample> taken = result.take();
-    std::copy(taken.begin(), taken.end(), samples.begin());
-  };
-  implicit.cross = [&](std::span<const EdgeCrossing> edges, std::span<MeshVertex> vertices) {
-    const Mirror<EdgeCrossing> in(backend, edges);
-    Mirror<MeshVertex> result(backend, edges.size());
-    run(backend, "mesh vertices", std::int64_t(edges.size()),
-        CrossEdgesKernel{g.view(), in.data(), result.data(), projection, kRootTolerance * out.cell, kRootSteps}, stats);
-    const std::vector<MeshVertex> taken = result.take();
-    std::copy(taken.begin(), taken.end(), vertices.begin());
-  };
+  const ImplicitSurface implicit =
+      mesh_detail::implicit_surface(backend, CloudImplicit{g.view(), projection}, out.cell, stats);
   {
     ScopedPhase phase(stats, "mesh", false);  // its kernels show their progress
-    out.mesh = march_tetrahedra(lattice, grid.sorted_points(), implicit, kMaxSlope, out.counts);
+    out.mesh = march_tetrahedra(lattice, grid.sorted_points(), implicit, mesh_detail::kMaxSlope, out.counts);
   }
   out.mesh.origin = cloud.origin;
   // Which side is out is a guess where the normals were estimated, and where the file's

@@ -1,11 +1,13 @@
 // `pss mesh` on the device (issue 27): the same kernels as the CPU, so the same closed,
-// oriented surfaces on the analytic truth. Skips cleanly without a device (CI).
+// oriented surfaces on the analytic truth, of clouds and of volumes. Skips cleanly without a device (CI).
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "pss/mesh/mesh_cloud.hpp"
+#include "pss/mesh/mesh_volume.hpp"
 #include "support/shapes.hpp"
+#include "support/volumes.hpp"
 
 namespace pss {
 namespace {
@@ -40,6 +42,39 @@ TEST(GpuMesh, EverySurfaceMeshesTheTorusAsTheCpuDoes) {
     EXPECT_LT(gpu_worst, 1.05f * cpu_worst + 1e-4f);
     for (std::size_t i = 0; i < gpu.mesh.positions.size(); ++i)
       ASSERT_GT(glm::dot(gpu.mesh.normals[i], torus.normal(gpu.mesh.positions[i])), 0.95f) << i;
+  }
+}
+
+// A CT-like torus (a logistic step of the distance, noise 2 % of the contrast): the GPU's
+// mesh of its iso-surface is the CPU's, closed, on the torus, facing out.
+TEST(GpuMesh, AVolumesTorusMeshesAsTheCpuDoes) {
+  if (cuda::device_count() == 0) GTEST_SKIP() << "no CUDA device";
+  const test::Field torus = test::torus_distance(vec3(21.7f, 21.4f, 11.6f), 13, 5);
+  test::SampleVolumeOptions o;
+  o.dims = ivec3(44, 44, 24);
+  o.noise = 2;
+  for (const bool corrector : {false, true}) {
+    SCOPED_TRACE(corrector);
+    VolumeSettings s;
+    s.iso = 50;
+    s.method = corrector ? VolumeMethod::predictor_corrector : VolumeMethod::predictor;
+    Stats stats;
+    const PreparedVolume volume =
+        prepare_volume(test::sample_volume(test::smooth_indicator(torus, 100, 0.4f), o), s, stats);
+    const VolumeMesh cpu = mesh_volume(volume, 0, Backend::cpu, stats);
+    const VolumeMesh gpu = mesh_volume(volume, 0, Backend::cuda, stats);
+    const MeshTopology t = topology(gpu.mesh);
+    EXPECT_TRUE(t.watertight());
+    EXPECT_EQ(t.components, 1);
+    EXPECT_EQ(t.euler_characteristic(), 0);
+    EXPECT_NEAR(double(gpu.mesh.triangles.size()), double(cpu.mesh.triangles.size()),
+                0.002 * double(cpu.mesh.triangles.size()));
+    float cpu_worst = 0, gpu_worst = 0;
+    for (const vec3& p : cpu.mesh.positions) cpu_worst = std::max(cpu_worst, torus.distance(p));
+    for (const vec3& p : gpu.mesh.positions) gpu_worst = std::max(gpu_worst, torus.distance(p));
+    EXPECT_LT(gpu_worst, 1.05f * cpu_worst + 1e-3f);
+    for (std::size_t i = 0; i < gpu.mesh.positions.size(); ++i)
+      ASSERT_GT(glm::dot(gpu.mesh.normals[i], torus.normal(gpu.mesh.positions[i])), 0.9f) << i;
   }
 }
 

@@ -41,6 +41,9 @@ struct Aabb {
   PSS_HOST_DEVICE bool empty() const { return lo.x > hi.x; }
   PSS_HOST_DEVICE vec3 extent() const { return hi - lo; }
   PSS_HOST_DEVICE vec3 center() const { return 0.5f * (lo + hi); }
+  PSS_HOST_DEVICE bool contains(vec3 p) const {
+    return p.x >= lo.x && p.y >= lo.y && p.z >= lo.z && p.x <= hi.x && p.y <= hi.y && p.z <= hi.z;
+  }
 };
 
 }  // namespace pss

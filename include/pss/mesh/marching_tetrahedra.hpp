@@ -42,17 +42,28 @@ struct Lattice {
   }
 };
 
+// The most cubes a mesh's band may hold (2^26: some 2 GiB of corners and keys, as much again
+// of the triangles' keys, and as many projections); a cell that fine for the surface is
+// refused by its estimate before any work (check_band).
+inline constexpr std::int64_t kMaxBandCubes = std::int64_t(1) << 26;
+
+// Throws a one-line Error when `expected_cubes`, a mesh's estimate of its band at the cell
+// size `cell`, exceeds kMaxBandCubes; `data` names what is meshed ("cloud", "volume").
+void check_band(double expected_cubes, double cell, const char* data);
+
 // The lattice over the box [lo, hi] grown by `margin` on every side; `what` names the
 // cell size in the error where the box holds too many cells ("--cell").
 Lattice lattice_over(vec3 lo, vec3 hi, double margin, double cell, const char* what);
 
 // What the implicit says at a corner: its signed distance to the surface (positive
 // outside, where the surface's normals point), a point of the surface near it (where the
-// band grows to), and whether either can be trusted (no surface there: no triangles).
+// band grows to) unless it knows only the corner's side, and whether the distance can be
+// trusted (no surface there: no triangles).
 struct CornerSample {
   float distance = 0;
   vec3 surface_point{0.0f};
   bool valid = false;
+  bool on_surface = true;  // surface_point lies on the surface; false: the band does not grow there
 };
 
 // An edge whose ends' signs differ (distance_a < 0 <= distance_b or the reverse), and the

@@ -22,11 +22,6 @@ namespace pss {
 // the PSS resolves, at a few triangles per sample.
 inline constexpr float kDefaultCellPerH = 0.5f;
 
-// The most cubes a mesh's band may be expected to hold, by the samples' widths (three times
-// the estimate's overcount of 2^26 cubes: some 6 GiB of corners, keys and triangles, and
-// as many projections); a cell that fine for the cloud is refused before any work.
-inline constexpr std::int64_t kMaxBandCubes = std::int64_t(3) << 26;
-
 struct MeshParams {
   ProjectionParams projection;  // its borders: clip ends the mesh where the samples end
   float cell = 0;               // the cubes' side; 0: kDefaultCellPerH·h
@@ -49,8 +44,8 @@ struct CloudMesh {
 // turned), the mesh faces out: its closed components enclose a positive volume. The file's
 // normals that agree are taken as they say.
 // Throws Error for invalid parameters (as project_cloud), a cell that is not a positive
-// number or too small for the cloud's extent or surface (kMaxBandCubes), a cloud of fewer than three points or on a line, and a
-// cloud that gives no triangle.
+// number or too small for the cloud's extent or surface (kMaxBandCubes), a cloud of
+// fewer than three points or on a line, and a cloud that gives no triangle.
 CloudMesh mesh_cloud(const PointCloud& cloud, const MeshParams& params, Backend backend, Stats& stats);
 
 }  // namespace pss

@@ -1,0 +1,240 @@
+// The mesh of a volume's PSS (issue 27): iso and gradient surfaces of analytic volumes
+// against their exact surfaces (a CT-like step, a distance ramp), their topology by Euler's
+// formula, orientation towards lower values, every vertex a root of the implicit, a surface
+// cut by the volume's box, the cell, and the refusals.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "pss/backend/backend.hpp"
+#include "pss/core/error.hpp"
+#include "pss/mesh/mesh_volume.hpp"
+#include "pss/mesh/volume_implicit.hpp"
+#include "support/self_intersection.hpp"
+#include "support/volumes.hpp"
+
+namespace pss {
+namespace {
+
+PreparedVolume prepared(const Volume& volume, float iso, bool gradient = false, float h = 2) {
+  VolumeSettings s;
+  s.iso = iso;
+  s.gradient = gradient;
+  s.h = h;
+  Stats stats;
+  return prepare_volume(Volume(volume), s, stats);
+}
+
+VolumeMesh mesh_of(const PreparedVolume& volume, float cell = 0) {
+  Stats stats;
+  return mesh_volume(volume, cell, Backend::cpu, stats);
+}
+
+// A bright ball of radius R in air, its edge a smooth step about a voxel wide (as a CT's
+// partial volume and blur make it): 100 inside, 0 outside, 50 exactly at distance R.
+Volume ct_ball(vec3 center, float radius, float noise = 0, ivec3 dims = ivec3(40), float amplitude = 100) {
+  test::SampleVolumeOptions o;
+  o.dims = dims;
+  o.noise = noise;
+  return test::sample_volume(test::smooth_indicator(test::sphere_distance(center, radius), amplitude, 0.4f), o);
+}
+
+struct BallFit {
+  double mean_distance = 0, max_distance = 0, mean_angle = 0;  // voxels; degrees
+  bool normals_outward = true, triangles_outward = true;
+};
+
+BallFit fit(const TriangleMesh& m, vec3 center, float radius) {
+  BallFit f;
+  for (std::size_t i = 0; i < m.positions.size(); ++i) {
+    const vec3 d = m.positions[i] - center;
+    const double distance = std::abs(double(glm::length(d)) - radius);
+    f.mean_distance += distance / double(m.positions.size());
+    f.max_distance = std::max(f.max_distance, distance);
+    const float cosine = glm::dot(glm::normalize(d), m.normals[i]);
+    f.normals_outward = f.normals_outward && cosine > 0.9f;
+    f.mean_angle += std::acos(std::min(1.0f, cosine)) * 180 / std::numbers::pi / double(m.positions.size());
+  }
+  for (const auto& t : m.triangles) {
+    const vec3 a = m.positions[std::size_t(t[0])], b = m.positions[std::size_t(t[1])], c = m.positions[std::size_t(t[2])];
+    f.triangles_outward = f.triangles_outward && glm::dot(glm::cross(b - a, c - a), (a + b + c) / 3.0f - center) > 0;
+  }
+  return f;
+}
+
+TEST(VolumeMesh, ACtLikeBallIsOneWatertightOutwardSurfaceOnItsEdge) {
+  const vec3 center(19.6f, 20.3f, 19.8f);
+  const float radius = 12;
+  for (const float noise : {0.0f, 3.0f}) {
+    SCOPED_TRACE(noise);
+    const VolumeMesh m = mesh_of(prepared(ct_ball(center, radius, noise), 50));
+    const MeshTopology shape = topology(m.mesh);
+    EXPECT_TRUE(shape.watertight());
+    EXPECT_EQ(shape.components, 1);
+    EXPECT_EQ(shape.euler_characteristic(), 2);
+    EXPECT_EQ(test::crossing_triangle_pairs(m.mesh), 0);
+    const double ball = 4.0 / 3.0 * std::numbers::pi * radius * radius * radius;
+    EXPECT_NEAR(enclosed_volume(m.mesh), ball, 0.02 * ball);
+    const BallFit f = fit(m.mesh, center, radius);
+    EXPECT_LT(f.mean_distance, noise > 0 ? 0.06 : 0.04);
+    EXPECT_LT(f.max_distance, noise > 0 ? 0.25 : 0.12);
+    EXPECT_LT(f.mean_angle, noise > 0 ? 1.5 : 0.5);
+    EXPECT_TRUE(f.normals_outward);
+    EXPECT_TRUE(f.triangles_outward);
+    EXPECT_FLOAT_EQ(m.cell, 1.0f);  // a voxel
+    // A narrow band: about two corners evaluated per cube meshed, not the ball's inside.
+    EXPECT_LT(m.counts.corners, 3 * m.counts.cubes_crossed);
+  }
+}
+
+// Every vertex is a root of the implicit on its edge: f at it is within the root's
+// tolerance (10⁻³ cell), but where the surface passes within kEdgeMargin of a lattice corner
+// and the vertex is kept that far inside its edge.
+TEST(VolumeMesh, EveryVertexIsARootOfTheImplicit) {
+  const PreparedVolume volume = prepared(ct_ball(vec3(20.2f, 19.7f, 20.1f), 11), 50);
+  const VolumeMesh m = mesh_of(volume);
+  const VolumeImplicit implicit{volume.scene()};
+  std::vector<float> residual;
+  for (const vec3& p : m.mesh.positions) {
+    const SignedDistance s = implicit(p);
+    ASSERT_TRUE(s.valid);
+    residual.push_back(std::abs(s.distance));
+  }
+  std::sort(residual.begin(), residual.end());
+  EXPECT_LT(residual[residual.size() / 2], 1e-3f * m.cell);
+  EXPECT_LT(residual[residual.size() * 99 / 100], (kEdgeMargin * std::sqrt(3.0f) + 1e-3f) * m.cell);
+}
+
+TEST(VolumeMesh, ATorusHasEulerCharacteristicZero) {
+  test::SampleVolumeOptions o;
+  o.dims = ivec3(44, 44, 24);
+  o.scale = -40;
+  o.offset = 100;
+  const Volume v = test::sample_volume(test::torus_distance(vec3(21.7f, 21.4f, 11.6f), 13, 5), o);
+  const VolumeMesh m = mesh_of(prepared(v, 100));
+  const MeshTopology shape = topology(m.mesh);
+  EXPECT_TRUE(shape.watertight());
+  EXPECT_EQ(shape.components, 1);
+  EXPECT_EQ(shape.euler_characteristic(), 0);
+  const test::Field torus = test::torus_distance(vec3(21.7f, 21.4f, 11.6f), 13, 5);
+  double worst = 0;
+  for (const vec3& p : m.mesh.positions) worst = std::max(worst, double(torus.distance(p)));
+  EXPECT_LT(worst, 0.1);
+  EXPECT_GT(enclosed_volume(m.mesh), 0);
+}
+
+// Half the ball lies beyond the box's face z = 0: its mesh ends there, open, on the ball.
+TEST(VolumeMesh, ASurfaceCutByTheBoxStaysOpenAtTheBox) {
+  const vec3 center(16.3f, 15.8f, 0.0f);
+  const VolumeMesh m = mesh_of(prepared(ct_ball(center, 10, 0, ivec3(33, 33, 20)), 50));
+  const MeshTopology shape = topology(m.mesh);
+  EXPECT_TRUE(shape.manifold());
+  EXPECT_EQ(shape.components, 1);
+  EXPECT_GT(shape.boundary_edges, 0);
+  EXPECT_EQ(shape.euler_characteristic(), 1);  // a disc
+  for (const vec3& p : m.mesh.positions) {
+    ASSERT_GE(p.z, -0.01f);
+    ASSERT_NEAR(glm::length(p - center), 10.0f, 0.15f);
+  }
+}
+
+// Inside the ball, 3 voxels below its surface, the values dip towards the iso-value without
+// reaching it (to 54 of 100, iso 50; as in a tooth's dentine): the fit draws a sheet along
+// the dip, which is no surface of the data. The corners that project onto it take the
+// data's side, so the ball's surface beside it stays closed and the sheet is not meshed.
+TEST(VolumeMesh, ADipThatNeverReachesTheIsoValueIsNoSurfaceNorAHole) {
+  const vec3 center(19.6f, 20.3f, 19.8f);
+  const float radius = 12;
+  Volume v = ct_ball(center, radius);
+  const VolumeView view = v.view();
+  const float depth = 3, width = 0.8f;  // beyond the data test's reach, 0.75h = 1.5 voxels
+  for (int k = 0; k < v.dims.z; ++k)
+    for (int j = 0; j < v.dims.y; ++j)
+      for (int i = 0; i < v.dims.x; ++i) {
+        const float r = glm::length(view.position(i, j, k) - center) - (radius - depth);
+        v.values[std::size_t(view.index(i, j, k))] -= 46 * std::exp(-r * r / (2 * width * width));
+      }
+  const VolumeMesh m = mesh_of(prepared(v, 50));
+  const MeshTopology shape = topology(m.mesh);
+  EXPECT_TRUE(shape.watertight());
+  EXPECT_EQ(shape.components, 1);
+  EXPECT_EQ(shape.euler_characteristic(), 2);
+  EXPECT_LT(fit(m.mesh, center, radius).max_distance, 0.15);
+  // Corners known only by their side do not grow the band: it stays narrow.
+  EXPECT_LT(m.counts.corners, 3 * m.counts.cubes_crossed) << m.counts.cubes_crossed;
+}
+
+// The gradient surface of the same step is where |∇f| peaks: the sphere of radius R.
+TEST(VolumeMesh, AGradientSurfaceIsTheStepsSteepestSheet) {
+  const vec3 center(19.6f, 20.3f, 19.8f);
+  const VolumeMesh m = mesh_of(prepared(ct_ball(center, 12), 0, true));
+  const MeshTopology shape = topology(m.mesh);
+  EXPECT_TRUE(shape.watertight());
+  EXPECT_EQ(shape.euler_characteristic(), 2);
+  const BallFit f = fit(m.mesh, center, 12);
+  EXPECT_LT(f.mean_distance, 0.1);
+  EXPECT_TRUE(f.normals_outward);
+  EXPECT_TRUE(f.triangles_outward);
+}
+
+// Outward is towards lower values: a dark ball in bright surroundings faces its centre.
+TEST(VolumeMesh, ADarkBallFacesItsBrighterSurroundings) {
+  const vec3 center(19.6f, 20.3f, 19.8f);
+  Volume v = ct_ball(center, 12);
+  for (float& x : v.values) x = 100 - x;
+  const VolumeMesh m = mesh_of(prepared(v, 50));
+  EXPECT_LT(enclosed_volume(m.mesh), 0);
+  for (std::size_t i = 0; i < m.mesh.positions.size(); ++i)
+    ASSERT_LT(glm::dot(m.mesh.normals[i], m.mesh.positions[i] - center), 0);
+}
+
+// The cubes' side is the voxel u = (sx·sy·sz)^(1/3) by default, or the cell given; the
+// triangles' edges scale with it, the surface stays where it is.
+TEST(VolumeMesh, TheCellSetsTheTrianglesSize) {
+  test::SampleVolumeOptions o;
+  o.dims = ivec3(26, 22, 18);
+  o.spacing = vec3(0.8f, 1.0f, 1.25f);
+  const vec3 center(10.1f, 9.8f, 11.2f);
+  const Volume v = test::sample_volume(test::smooth_indicator(test::sphere_distance(center, 6), 100, 0.8f), o);
+  const PreparedVolume volume = prepared(v, 50);
+  const VolumeMesh coarse = mesh_of(volume), fine = mesh_of(volume, 0.5f);
+  EXPECT_NEAR(coarse.cell, 1.0f, 1e-6f);  // (0.8·1·1.25)^(1/3)
+  EXPECT_FLOAT_EQ(fine.cell, 0.5f);
+  const double ratio = double(fine.mesh.triangles.size()) / double(coarse.mesh.triangles.size());
+  EXPECT_GT(ratio, 3.2);
+  EXPECT_LT(ratio, 4.8);
+  for (const VolumeMesh* m : {&coarse, &fine}) {
+    EXPECT_TRUE(topology(m->mesh).watertight());
+    EXPECT_LT(fit(m->mesh, center, 6).mean_distance, 0.1);
+  }
+}
+
+TEST(VolumeMesh, TheMeshIsTheSameForAnyThreadCount) {
+  const PreparedVolume volume = prepared(ct_ball(vec3(19.6f, 20.3f, 19.8f), 12, 3), 50);
+  set_cpu_threads(1);
+  const VolumeMesh one = mesh_of(volume);
+  set_cpu_threads(2);
+  const VolumeMesh two = mesh_of(volume);
+  set_cpu_threads(0);
+  EXPECT_EQ(one.mesh.triangles, two.mesh.triangles);
+  ASSERT_EQ(one.mesh.positions.size(), two.mesh.positions.size());
+  for (std::size_t i = 0; i < one.mesh.positions.size(); ++i) ASSERT_EQ(one.mesh.positions[i], two.mesh.positions[i]);
+}
+
+TEST(VolumeMesh, ACellTooFineOrNotANumberIsRefusedBeforeWork) {
+  const PreparedVolume volume = prepared(ct_ball(vec3(19.6f, 20.3f, 19.8f), 12), 50);
+  EXPECT_THROW(mesh_of(volume, 1e-3f), Error);
+  EXPECT_THROW(mesh_of(volume, std::nanf("")), Error);
+  EXPECT_THROW(mesh_of(volume, INFINITY), Error);
+  EXPECT_THROW(mesh_of(volume, -1), Error);
+  try {
+    mesh_of(volume, 1e-3f);
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("too small for this volume"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace pss
