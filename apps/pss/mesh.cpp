@@ -1,7 +1,8 @@
-// pss mesh FILE -o OUT.ply|.obj|.stl|.off: a triangle mesh of the PSS of a point cloud
-// (issue 27), its vertices on the surface with the surface's normals.
+// pss mesh FILE -o OUT.ply|.obj|.stl|.off: a triangle mesh of the PSS of a point cloud or of a
+// volume (issue 27), its vertices on the surface with the surface's normals.
 #include <chrono>
 #include <cstdio>
+#include <span>
 #include <string>
 
 #include "commands.hpp"
@@ -12,7 +13,9 @@
 #include "pss/io/output_file.hpp"
 #include "pss/io/point_cloud_file.hpp"
 #include "pss/mesh/mesh_cloud.hpp"
+#include "pss/mesh/mesh_volume.hpp"
 #include "pss/points/border_choice.hpp"
+#include "volume_options.hpp"
 
 namespace pss::app {
 
@@ -21,16 +24,76 @@ namespace {
 struct MeshOptions {
   std::string input, output;
   float cell = 0;
-  CloudSurfaceFlags surface;
+  CloudSurfaceFlags surface;  // its --h serves volumes too, in voxels
   std::string borders = "auto";
+  VolumeOptions volume;       // a volume's flags
   ComputeOptions compute;
+  CLI::App* command = nullptr;
 };
 
-void run_mesh(const MeshOptions& o) {
-  const auto start = std::chrono::steady_clock::now();
-  OutputSet outputs({o.input}, {o.output, o.compute.stats_path});
+// The flags that only a cloud's PSS, or only a volume's, takes.
+constexpr const char* kCloudFlags[] = {"--rho", "--support", "--surface", "--normals", "--outliers", "--iterations",
+                                       "--borders"};
+constexpr const char* kVolumeFlags[] = {"--iso",   "--gradient", "--method", "--radius",
+                                        "--alpha", "--smoothing", "--error", "--threshold"};
+
+// A volume has a header (.nrrd, .mhd, .nii, ...) or is raw, described by --dims and --type.
+bool is_volume(const MeshOptions& o) { return has_volume_header(o.input) || raw_volume_format(o.volume.raw); }
+
+// The flags of the other kind of data refused, the volume's checked together; reads nothing.
+void check_mesh_options(const MeshOptions& o) {
+  const bool volume = is_volume(o);
+  for (const char* flag : volume ? std::span<const char* const>(kCloudFlags) : std::span<const char* const>(kVolumeFlags))
+    if (o.command->get_option(flag)->count() > 0)
+      throw Error(std::string(flag) + " applies to " + (volume ? "point clouds" : "volumes") + " only, and " +
+                  o.input + " is " +
+                  (volume ? "a volume" : "read as a point cloud (a volume has a header, or is raw with --dims)"));
+  if (!volume) return;
+  check_volume_options(o.volume);
+  if (o.surface.h != 0 && o.surface.h < kMinVolumeH) {
+    char message[160];
+    std::snprintf(message, sizeof message, "--h: a volume's h is in voxels, at least %g (got %g)", double(kMinVolumeH),
+                  double(o.surface.h));
+    throw Error(message);
+  }
+}
+
+void print_shape(const std::string& input, const std::string& size, double seconds, Backend backend,
+                 const MeshTopology& shape) {
+  std::printf("meshed %s (%s) in %.3f s (%s backend, %d threads): %lld vertices, %lld triangles, %lld "
+              "component%s, %s, %lld boundary edges, Euler characteristic %lld\n",
+              input.c_str(), size.c_str(), seconds, backend_name(backend), cpu_threads(), (long long)shape.vertices,
+              (long long)shape.triangles, (long long)shape.components, shape.components == 1 ? "" : "s",
+              shape.watertight() ? "watertight" : shape.manifold() ? "manifold with boundaries" : "NOT manifold",
+              (long long)shape.boundary_edges, (long long)shape.euler_characteristic());
+}
+
+// What --stats records of every mesh: its shape and its band.
+void record_mesh(Stats& stats, const MeshTopology& shape, const MarchCounts& counts) {
+  auto& v = stats.values();
+  v["mesh"] = {{"vertices", shape.vertices},
+               {"triangles", shape.triangles},
+               {"edges", shape.edges},
+               {"components", shape.components},
+               {"boundary_edges", shape.boundary_edges},
+               {"non_manifold_edges", shape.non_manifold_edges},
+               {"non_manifold_vertices", shape.non_manifold_vertices},
+               {"euler_characteristic", shape.euler_characteristic()},
+               {"watertight", shape.watertight()},
+               {"manifold", shape.manifold()}};
+  v["band"] = {{"corners", counts.corners},
+               {"cubes_visited", counts.cubes_visited},
+               {"cubes_meshed", counts.cubes_crossed},
+               {"cubes_refused", counts.cubes_refused},
+               {"pinched_triangles", counts.pinched_triangles}};
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void run_cloud_mesh(const MeshOptions& o, Stats& stats, std::chrono::steady_clock::time_point start) {
   const Backend backend = start_compute(o.compute);
-  Stats stats;
   const PointCloud cloud = read_cloud(o.input, stats);
   if (cloud.size() < 3)
     throw file_error(o.input, "has " + std::to_string(cloud.size()) + " points: a mesh needs at least 3");
@@ -50,15 +113,10 @@ void run_mesh(const MeshOptions& o) {
     ScopedPhase phase(stats, "write");
     write_mesh(o.output, result.mesh);
   }
-  const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double total = seconds_since(start);
   stats.add_time("total", total);
 
-  std::printf("meshed %s (%zu points) in %.3f s (%s backend, %d threads): %lld vertices, %lld triangles, %lld "
-              "component%s, %s, %lld boundary edges, Euler characteristic %lld\n",
-              o.input.c_str(), cloud.size(), total, backend_name(backend), cpu_threads(), (long long)shape.vertices,
-              (long long)shape.triangles, (long long)shape.components, shape.components == 1 ? "" : "s",
-              shape.watertight() ? "watertight" : shape.manifold() ? "manifold with boundaries" : "NOT manifold",
-              (long long)shape.boundary_edges, (long long)shape.euler_characteristic());
+  print_shape(o.input, std::to_string(cloud.size()) + " points", total, backend, shape);
   std::printf("%s surface%s, h = %g (%s), rho = %g, borders %s, cell %g; %lld corners evaluated, %lld cubes meshed; "
               "%lld outliers set aside\n",
               surface_name(params.projection.surface), normals_text(result.normals), double(params.projection.h),
@@ -79,26 +137,70 @@ void run_mesh(const MeshOptions& o) {
                    {"outliers", o.surface.surface.outliers}, {"borders", border_name(params.projection.borders)},
                    {"h_least", result.widths.least}, {"h_largest", result.widths.largest},
                    {"max_mls_iterations", params.projection.max_mls_iterations}};
-    v["mesh"] = {{"vertices", shape.vertices},
-                 {"triangles", shape.triangles},
-                 {"edges", shape.edges},
-                 {"components", shape.components},
-                 {"boundary_edges", shape.boundary_edges},
-                 {"non_manifold_edges", shape.non_manifold_edges},
-                 {"non_manifold_vertices", shape.non_manifold_vertices},
-                 {"euler_characteristic", shape.euler_characteristic()},
-                 {"watertight", shape.watertight()},
-                 {"manifold", shape.manifold()}};
-    v["band"] = {{"corners", result.counts.corners},
-                 {"cubes_visited", result.counts.cubes_visited},
-                 {"cubes_meshed", result.counts.cubes_crossed},
-                 {"cubes_refused", result.counts.cubes_refused},
-                 {"pinched_triangles", result.counts.pinched_triangles}};
+    record_mesh(stats, shape, result.counts);
     v["outliers_set_aside"] = result.outliers.set_aside;
     v["normals_turned"] = result.normals_turned;
     v["turned_outward"] = result.turned_outward;
-    stats.write(o.compute.stats_path);
   }
+}
+
+void run_volume_mesh(const MeshOptions& o, Stats& stats, std::chrono::steady_clock::time_point start) {
+  const Backend backend = start_compute(o.compute);
+  VolumeOptions options = o.volume;
+  options.input = o.input;
+  if (o.surface.h != 0) options.settings.h = o.surface.h;
+  const PreparedVolume volume = load_volume(options, stats);
+  VolumeMesh result;
+  try {
+    result = mesh_volume(volume, o.cell, backend, stats);
+  } catch (const Error& e) {
+    throw file_error(o.input, e.what());
+  }
+  const MeshTopology shape = topology(result.mesh);
+  {
+    ScopedPhase phase(stats, "write");
+    write_mesh(o.output, result.mesh);
+  }
+  const double total = seconds_since(start);
+  stats.add_time("total", total);
+
+  const VolumeView view = volume.fields.volume.view();
+  print_shape(o.input,
+              "volume " + std::to_string(view.dims.x) + "x" + std::to_string(view.dims.y) + "x" +
+                  std::to_string(view.dims.z),
+              total, backend, shape);
+  const float voxel = view.voxel_size();
+  if (volume.feature.kind == FeatureKind::iso)
+    std::printf("iso-surface %g", double(volume.feature.iso));
+  else
+    std::printf("gradient surface (threshold %g)", double(volume.feature.threshold));
+  std::printf(" by the %s, h = %g voxels, cell %g (%g voxels); %lld corners evaluated, %lld cubes meshed\n",
+              options.method.c_str(), double(volume.params.h / voxel), double(result.cell),
+              double(result.cell / voxel), (long long)result.counts.corners, (long long)result.counts.cubes_crossed);
+
+  if (!o.compute.stats_path.empty()) {
+    auto& v = stats.values();
+    v["command"] = "mesh";
+    v["input"] = o.input;
+    v["output"] = o.output;
+    v["backend"] = backend_name(backend);
+    v["threads"] = cpu_threads();
+    v["volume"] = describe(volume, options);
+    v["cell"] = result.cell;
+    record_mesh(stats, shape, result.counts);
+  }
+}
+
+void run_mesh(const MeshOptions& o) {
+  const auto start = std::chrono::steady_clock::now();
+  check_mesh_options(o);
+  OutputSet outputs({o.input}, {o.output, o.compute.stats_path});
+  Stats stats;
+  if (is_volume(o))
+    run_volume_mesh(o, stats, start);
+  else
+    run_cloud_mesh(o, stats, start);
+  if (!o.compute.stats_path.empty()) stats.write(o.compute.stats_path);
   outputs.commit();
   std::printf("wrote %s\n", o.output.c_str());
   if (!o.compute.stats_path.empty()) std::printf("wrote %s\n", o.compute.stats_path.c_str());
@@ -107,10 +209,14 @@ void run_mesh(const MeshOptions& o) {
 }  // namespace
 
 void add_mesh_command(CLI::App& app, Action action) {
-  auto* command =
-      app.add_subcommand("mesh", "A triangle mesh of the point set surface of a point cloud: .ply, .obj, .stl, .off");
+  auto* command = app.add_subcommand(
+      "mesh", "A triangle mesh of the point set surface of a point cloud or a volume: .ply, .obj, .stl, .off");
   auto o = std::make_shared<MeshOptions>();
-  command->add_option("file", o->input, "point cloud (.ply, .xyz/.txt/.pts, .pwn, .obj, .off, .stl, .pcd, .las)")
+  o->command = command;
+  command
+      ->add_option("file", o->input,
+                   "point cloud (.ply, .xyz/.txt/.pts, .pwn, .obj, .off, .stl, .pcd, .las) or volume (.nrrd/.nhdr, "
+                   ".mhd/.mha, .nii/.nii.gz, or raw with --dims and --type)")
       ->required();
   command
       ->add_option("-o,--output", o->output,
@@ -119,20 +225,28 @@ void add_mesh_command(CLI::App& app, Action action) {
       ->required()
       ->check(mesh_output());
   add_cloud_surface_flags(*command, o->surface);
+  command->get_option("--h")->description(
+      "Gaussian width h: a cloud's in its units (default: estimated from the spacing, see pss info); a volume's "
+      "theta3 width in voxels u = (sx*sy*sz)^(1/3), at least 0.5 (default 2)");
   command->add_option("--cell", o->cell,
-                      "side of the cubes the surface is meshed in: smaller gives more, smaller triangles (default h/2, "
-                      "about the samples' spacing)")
+                      "side of the cubes the surface is meshed in: smaller gives more, smaller triangles (default: "
+                      "a cloud's h/2, about the samples' spacing; a volume's voxel u)")
       ->check(finite_positive());
   command->add_option("--borders", o->borders,
-                      "where the mesh ends: clip (at its samples' hull), extend (as far as the projection reaches, "
-                      "about rho past the last samples), or auto (clip for a mesh's vertices, whose surface ends at "
-                      "them; extend for scans, whose points stand for the surface around them). Either way a scan's "
-                      "open edge and its holes wider than about 2 rho stay open")
+                      "clouds: where the mesh ends: clip (at its samples' hull), extend (as far as the projection "
+                      "reaches, about rho past the last samples), or auto (clip for a mesh's vertices, whose surface "
+                      "ends at them; extend for scans, whose points stand for the surface around them). Either way a "
+                      "scan's open edge and its holes wider than about 2 rho stay open")
       ->check(CLI::IsMember({"auto", "clip", "extend"}))
       ->capture_default_str();
+  add_raw_volume_options(*command, o->volume.raw);
+  add_volume_surface_flags(*command, o->volume, true, false);
   add_compute_options(*command, o->compute);
   command->callback([o, action] {
-    if (action == Action::run) run_mesh(*o);
+    if (action == Action::run)
+      run_mesh(*o);
+    else
+      check_mesh_options(*o);
   });
 }
 

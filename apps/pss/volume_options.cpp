@@ -12,6 +12,10 @@ void add_volume_options(CLI::App& command, VolumeOptions& o, bool method_flag) {
   command.add_option("file", o.input, "volume: .nrrd/.nhdr, .mhd/.mha, .nii/.nii.gz, or raw with --dims and --type")
       ->required();
   add_raw_volume_options(command, o.raw);
+  add_volume_surface_flags(command, o, method_flag, true);
+}
+
+void add_volume_surface_flags(CLI::App& command, VolumeOptions& o, bool method_flag, bool width_flags) {
   auto* iso = command.add_option("--iso", o.settings.iso, "iso-surface f = V (theta1 weights)")
                   ->check(finite_number());
   auto* gradient = command.add_flag("--gradient", o.settings.gradient, "surface of high gradient magnitude (theta2 weights)");
@@ -21,12 +25,14 @@ void add_volume_options(CLI::App& command, VolumeOptions& o, bool method_flag) {
     command.add_option("--method", o.method, "predictor (Eq. 3) or predictor-corrector (Eq. 3 then Eq. 4)")
         ->check(CLI::IsMember({"predictor", "predictor-corrector"}))
         ->capture_default_str();
-  command.add_option("--h", o.settings.h, "theta3 width h in voxels (u = (sx*sy*sz)^(1/3)), at least 0.5")
-      ->check(finite_range(kMinVolumeH, FLT_MAX))
-      ->capture_default_str();
-  command.add_option("--k", o.settings.k, "step b = k*h, 0.5 < k < 1 (paper 5.1)")
-      ->check(finite_range(kMinStepK, kMaxStepK))
-      ->capture_default_str();
+  if (width_flags) {
+    command.add_option("--h", o.settings.h, "theta3 width h in voxels (u = (sx*sy*sz)^(1/3)), at least 0.5")
+        ->check(finite_range(kMinVolumeH, FLT_MAX))
+        ->capture_default_str();
+    command.add_option("--k", o.settings.k, "step b = k*h, 0.5 < k < 1 (paper 5.1)")
+        ->check(finite_range(kMinStepK, kMaxStepK))
+        ->capture_default_str();
+  }
   command.add_option("--radius", o.settings.radius, "neighbourhood radius in units of h: the voxels within it are N(.)")
       ->check(finite_range(kMinRadius, kMaxRadius))
       ->capture_default_str();

@@ -1,5 +1,5 @@
-// The options `pss volume` and `pss extract` share: how to read the volume (raw flags or a
-// format with a header), which surface (--iso V or --gradient), and the method's
+// The options `pss volume`, `pss extract` and `pss mesh` share: how to read the volume (raw
+// flags or a format with a header), which surface (--iso V or --gradient), and the method's
 // parameters, with the documented defaults in voxel units.
 #pragma once
 
@@ -21,7 +21,11 @@ struct VolumeOptions {
   VolumeSettings settings;  // the library's defaults; method set from `method`
 };
 
+// The volume's file, its raw flags, and add_volume_surface_flags with --h and --k.
 void add_volume_options(CLI::App& command, VolumeOptions& options, bool method_flag);
+// --iso, --gradient, --method (with method_flag), --h and --k (with width_flags), --radius,
+// --alpha, --smoothing, --error and --threshold.
+void add_volume_surface_flags(CLI::App& command, VolumeOptions& options, bool method_flag, bool width_flags);
 
 // The checks of flags together that CLI11's validators cannot make (--iso or --gradient,
 // --threshold with --gradient, the raw flags: raw_volume_format); throws a one-line Error.

@@ -243,6 +243,13 @@ def _volume_extract(self, iso=None, *, gradient=False, h=None, k=None, radius=No
     return self._extract(options)
 
 
+def _volume_mesh(self, iso=None, *, gradient=False, method="predictor-corrector", h=None, radius=None, alpha=None,
+                 error=None, smoothing=None, threshold=None, cell=None, backend="auto"):
+    options = _surface_options(iso, gradient, method, h, None, radius, alpha, error, smoothing, threshold, backend)
+    options["cell"] = cell
+    return self._mesh(options)
+
+
 _volume_render.__name__ = "render"
 _volume_render.__doc__ = """Extract and render the volume's point set surface along every
     primary ray (the paper's section 5.1), as `pss volume`. method: 'predictor-corrector'
@@ -254,7 +261,18 @@ _volume_extract.__doc__ = """The volume's point set surface as an oriented point
     (N, 3) float32, normals along the gradient (toward higher values: inward where the
     object is brighter than its surroundings); with full_output=True also the stats dict.
     """ + _SURFACE_DOC
+_volume_mesh.__name__ = "mesh"
+_volume_mesh.__doc__ = """A triangle mesh of the volume's point set surface, as `pss mesh` of a
+    volume: marching tetrahedra over the cubes near the cells the surface crosses, every
+    vertex a root of the distance to the surface's projection on its edge. method:
+    'predictor-corrector' (the default) or 'predictor'; cell: the cubes' side in world units
+    (default the voxel u). Returns (vertices, normals, faces): (V, 3) float32, (V, 3) float32
+    unit normals of the surface, and (T, 3) int32 vertex indices, counter-clockwise seen
+    from outside, outside being towards lower values (the brighter material is inside).
+    Closed where the surface is, open where the volume's box cuts it; manifold always.
+    """ + _SURFACE_DOC
 Volume.render = _volume_render
+Volume.mesh = _volume_mesh
 Volume.extract = _volume_extract
 Volume.__doc__ = """Volume(values, spacing=(1, 1, 1), origin=(0, 0, 0)): a scalar volume on a
     uniform grid. values: a 3-D array indexed [z, y, x] (x fastest, as SimpleITK and VTK give

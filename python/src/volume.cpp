@@ -13,6 +13,7 @@
 #include "options.hpp"
 #include "pss/core/error.hpp"
 #include "pss/io/volume_file.hpp"
+#include "pss/mesh/mesh_volume.hpp"
 #include "pss/volume/extract.hpp"
 #include "pss/volume/prepared.hpp"
 #include "pss/volume/render_volume.hpp"
@@ -134,6 +135,26 @@ py::object extract(PyVolume& v, const py::dict& o) {
   return py::make_tuple(points[0], points[1], stats_dict(stats));
 }
 
+// (vertices, normals, faces) of the volume's PSS, as `pss mesh` of a volume.
+py::tuple mesh(PyVolume& v, const py::dict& o) {
+  const VolumeSettings settings = settings_of(o);
+  const std::optional<float> cell = positive_or_none(o, "cell");
+  const Backend backend = backend_of(o);
+  Stats stats;
+  VolumeMesh result = run_interruptibly([&] {
+    const std::shared_ptr<const PreparedVolume> prepared = prepare(v, settings, stats);
+    try {
+      return mesh_volume(*prepared, cell ? *cell : 0.0f, backend, stats);
+    } catch (const Error& e) {
+      if (v.source.empty()) throw;
+      throw file_error(v.source, e.what());
+    }
+  });
+  const auto t = py::ssize_t(result.mesh.triangles.size());
+  return py::make_tuple(to_numpy(std::move(result.mesh.positions)), to_numpy(std::move(result.mesh.normals)),
+                        to_numpy<std::int32_t>(std::move(result.mesh.triangles), {t, 3}));
+}
+
 // A headed file, or a raw one described by the arguments (as `pss volume`'s raw flags).
 PyVolume read(const std::string& path, const py::dict& o) {
   std::optional<RawVolumeFormat> raw;
@@ -202,7 +223,8 @@ void bind_volume(py::module_& m) {
       .def_property_readonly("source", [](const PyVolume& v) { return v.source; })
       .def("__repr__", &repr)
       .def("_render", &render, py::arg("options"))  // with their signatures in __init__.py
-      .def("_extract", &extract, py::arg("options"));
+      .def("_extract", &extract, py::arg("options"))
+      .def("_mesh", &mesh, py::arg("options"));
   m.def("read_volume", &read, py::arg("path"), py::arg("options"));
 }
 

@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 import pss
-from conftest import BUNNY, cli_error, cli_ok
+from conftest import BUNNY, FUEL, cli_error, cli_ok
 
 
 def read_mesh_ply(path):
@@ -77,3 +77,45 @@ def test_bad_arguments_say_what_the_cli_says(tmp_path):
         pss.mesh(sphere(), borders="none")
     with pytest.raises(pss.Error, match="too small"):
         pss.mesh(sphere(), cell=1e-9)
+
+
+@pytest.mark.parametrize("flags, kwargs", [(("--iso", "60"), {"iso": 60}),
+                                           (("--iso", "60", "--method", "predictor", "--h", "1.5", "--cell", "0.75"),
+                                            {"iso": 60, "method": "predictor", "h": 1.5, "cell": 0.75}),
+                                           (("--gradient",), {"gradient": True})])
+def test_volume_mesh_gives_the_cli_s_vertices_normals_and_faces(tmp_path, flags, kwargs):
+    out = tmp_path / "fuel.ply"
+    cli_ok("mesh", FUEL, "--dims", "64x64x64", *flags, "-o", out)
+    vertices, normals, faces = pss.read_volume(FUEL, dims=(64, 64, 64)).mesh(**kwargs)
+    assert vertices.dtype == np.float32 and normals.dtype == np.float32 and faces.dtype == np.int32
+    assert len(faces) > 300
+    v, n, f = read_mesh_ply(out)
+    assert np.array_equal(vertices, v) and np.array_equal(normals, n) and np.array_equal(faces, f)
+
+
+def test_a_volume_s_mesh_is_its_sphere_in_world_units_facing_lower_values():
+    # f = |x - c| on an anisotropic grid, indexed [z, y, x]: the iso-surface f = 9 is the
+    # sphere of radius 9 about c; outward is towards lower values, here the centre.
+    spacing, origin, centre = np.array([0.8, 1.0, 1.25]), np.array([-3.0, 2.0, 5.0]), np.array([12.0, 14.0, 18.0])
+    z, y, x = np.meshgrid(*(o + s * np.arange(n) for o, s, n in zip(origin[::-1], spacing[::-1], (26, 30, 36))),
+                          indexing="ij")
+    values = np.sqrt((x - centre[0]) ** 2 + (y - centre[1]) ** 2 + (z - centre[2]) ** 2)
+    volume = pss.Volume(values, spacing=tuple(spacing), origin=tuple(origin))
+    vertices, normals, faces = volume.mesh(iso=9)
+    radii = np.linalg.norm(vertices - centre, axis=1)
+    assert np.max(np.abs(radii - 9)) < 0.05
+    assert np.all(np.sum(normals * (vertices - centre), axis=1) < 0)
+    coarse = volume.mesh(iso=9, cell=2.0)[2]
+    assert 2.5 * len(coarse) < len(faces) < 6 * len(coarse)  # the default cell: u = 1
+
+
+def test_volume_mesh_errors_are_the_cli_s(tmp_path):
+    fuel = pss.read_volume(FUEL, dims=(64, 64, 64))
+    expected = cli_error("mesh", FUEL, "--dims", "64x64x64", "--iso", "60", "--cell", "1e-3", "-o", tmp_path / "m.ply")
+    with pytest.raises(pss.Error) as caught:
+        fuel.mesh(iso=60, cell=1e-3)
+    assert str(caught.value) == expected
+    with pytest.raises(pss.Error, match="choose the surface"):
+        fuel.mesh()
+    with pytest.raises(pss.Error, match="cell"):
+        fuel.mesh(iso=60, cell=-1)

@@ -17,3 +17,4 @@ def test_the_readme_s_python_example_runs():
                           env=environment)
     assert done.returncode == 0, done.stderr
     assert re.search(r"h = 0\.00284: 3\d{4} of 35947 points converged", done.stdout), done.stdout
+    assert re.search(r"tooth: \d{6} triangles, closed", done.stdout), done.stdout
