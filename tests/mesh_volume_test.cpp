@@ -13,6 +13,7 @@
 #include "pss/mesh/mesh_volume.hpp"
 #include "pss/mesh/volume_implicit.hpp"
 #include "support/cli.hpp"
+#include "support/render_truth.hpp"
 #include "support/self_intersection.hpp"
 #include "support/volumes.hpp"
 
@@ -124,6 +125,28 @@ TEST(VolumeMesh, ATorusHasEulerCharacteristicZero) {
   for (const vec3& p : m.mesh.positions) worst = std::max(worst, double(torus.distance(p)));
   EXPECT_LT(worst, 0.1);
   EXPECT_GT(enclosed_volume(m.mesh), 0);
+}
+
+// A CT of a box with a bore (a logistic step of its signed distance, 0.04 to a voxel of
+// 0.05): one watertight surface of genus one, on the faces away from the creases.
+TEST(VolumeMesh, ABoxWithABoreIsOneClosedSurfaceOfGenusOne) {
+  const test::BoredBox box;
+  test::SampleVolumeOptions o;
+  o.dims = ivec3(53);
+  o.spacing = vec3(0.05f);
+  o.origin = vec3(-1.31f, -1.29f, -1.3f);
+  const test::Field field{[&](vec3 p) { return 100 / (1 + std::exp(box.distance(p) / 0.02f)); },
+                          [&](vec3 p) { return -box.normal(p); }, 50};
+  const VolumeMesh m = mesh_of(prepared(test::sample_volume(field, o), 50));
+  const MeshTopology shape = topology(m.mesh);
+  EXPECT_TRUE(shape.watertight());
+  EXPECT_EQ(shape.components, 1);
+  EXPECT_EQ(shape.euler_characteristic(), 0);
+  EXPECT_GT(enclosed_volume(m.mesh), 0);
+  float worst = 0;
+  for (const vec3& p : m.mesh.positions)
+    if (box.to_crease(p) > 0.2f) worst = std::max(worst, std::abs(box.distance(p)));
+  EXPECT_LT(worst, 0.1f * 0.05f);  // a tenth of a voxel
 }
 
 // Half the ball lies beyond the box's face z = 0: its mesh ends there, open, on the ball.
