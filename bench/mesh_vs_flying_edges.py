@@ -21,6 +21,8 @@ the mean distance from pss's vertices to Flying Edges' surface. Prints markdown,
 import argparse, gzip, json, os, subprocess, sys, tempfile
 import numpy as np
 
+from mesh_ply import read_mesh_ply
+
 N = 64
 BALL = {"centre": np.array([31.7, 32.2, 31.4]), "R": 20.0}
 TORUS = {"centre": np.array([32.3, 31.6, 31.8]), "R": 18.0, "r": 7.0}
@@ -81,18 +83,6 @@ def shape(vertices, triangles):
             "edge_manifold": bool(np.all(uses <= 2)), "boundary_edges": int(np.sum(uses == 1)),
             "components": int(len({find(i) for i in used.tolist()})),
             "euler_characteristic": int(len(used) - len(uses) + len(triangles))}
-
-
-def read_mesh_ply(path):
-    data = open(path, "rb").read()
-    end = data.index(b"end_header\n") + 11
-    header = data[:end].decode()
-    nv = int(header.split("element vertex ")[1].split()[0])
-    nf = int(header.split("element face ")[1].split()[0])
-    vt = np.dtype([("p", "<f4", 3), ("n", "<f4", 3)])
-    v = np.frombuffer(data, vt, nv, end)
-    f = np.frombuffer(data, np.dtype([("c", "u1"), ("i", "<i4", 3)]), nf, end + nv * vt.itemsize)
-    return v["p"].astype(float), v["n"].astype(float), f["i"].astype(np.int64)
 
 
 # A process of its own: VTK's Flying Edges at the iso-value, the filter timed alone.

@@ -22,6 +22,8 @@ For reference, the same measures of `pss project`'s points. Prints a markdown ta
 import argparse, json, os, resource, subprocess, sys, tempfile, time
 import numpy as np
 
+from mesh_ply import read_mesh_ply
+
 R, r = 1.0, 0.35
 
 
@@ -63,18 +65,6 @@ def write_ply(path, p):
         f.write(b"ply\nformat binary_little_endian 1.0\nelement vertex %d\n" % len(p))
         f.write(b"property float x\nproperty float y\nproperty float z\nend_header\n")
         f.write(p.astype("<f4").tobytes())
-
-
-def read_mesh_ply(path):
-    data = open(path, "rb").read()
-    end = data.index(b"end_header\n") + 11
-    header = data[:end].decode()
-    nv = int(header.split("element vertex ")[1].split()[0])
-    nf = int(header.split("element face ")[1].split()[0])
-    vt = np.dtype([("p", "<f8" if "double x" in header else "<f4", 3), ("n", "<f4", 3)])
-    v = np.frombuffer(data, vt, nv, end)
-    f = np.frombuffer(data, np.dtype([("c", "u1"), ("i", "<i4", 3)]), nf, end + nv * vt.itemsize)
-    return v["p"].astype(float), v["n"].astype(float), f["i"]
 
 
 def open3d_checks(vertices, triangles, self_intersection):

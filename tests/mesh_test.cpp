@@ -12,6 +12,7 @@
 #include "pss/mesh/mesh_cloud.hpp"
 #include "pss/mesh/cloud_implicit.hpp"
 #include "support/cli.hpp"
+#include "support/mesh_checks.hpp"
 #include "support/render_truth.hpp"
 #include "support/self_intersection.hpp"
 #include "support/shapes.hpp"
@@ -304,10 +305,7 @@ TEST(MeshCloud, ABoxWithABoreIsOneClosedSurfaceOfGenusOne) {
   for (const SurfaceOperator surface : {SurfaceOperator::mls, SurfaceOperator::rimls}) {
     SCOPED_TRACE(surface_name(surface));
     const CloudMesh m = mesh_of(cloud, surface);
-    const MeshTopology t = topology(m.mesh);
-    EXPECT_TRUE(t.watertight());
-    EXPECT_EQ(t.components, 1);
-    EXPECT_EQ(t.euler_characteristic(), 0);
+    test::expect_one_closed_surface(m.mesh, 0);
     EXPECT_GT(enclosed_volume(m.mesh), 0);
     float worst = 0;
     for (const vec3& p : m.mesh.positions)
@@ -360,10 +358,7 @@ TEST(MeshCloud, AThinClosedPartKeepsBothFaces) {
   for (const SurfaceOperator surface : {SurfaceOperator::apss, SurfaceOperator::rimls}) {
     SCOPED_TRACE(surface_name(surface));
     const CloudMesh m = mesh_of(cloud, surface);
-    const MeshTopology t = topology(m.mesh);
-    EXPECT_TRUE(t.watertight());
-    EXPECT_EQ(t.components, 1);
-    EXPECT_EQ(t.euler_characteristic(), 2);
+    test::expect_one_closed_surface(m.mesh, 2);
     std::size_t far = 0, inward = 0;
     for (std::size_t i = 0; i < m.mesh.positions.size(); ++i) {
       const vec3 p = m.mesh.positions[i];

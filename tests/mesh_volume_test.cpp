@@ -13,6 +13,7 @@
 #include "pss/mesh/mesh_volume.hpp"
 #include "pss/mesh/volume_implicit.hpp"
 #include "support/cli.hpp"
+#include "support/mesh_checks.hpp"
 #include "support/render_truth.hpp"
 #include "support/self_intersection.hpp"
 #include "support/volumes.hpp"
@@ -72,10 +73,7 @@ TEST(VolumeMesh, ACtLikeBallIsOneWatertightOutwardSurfaceOnItsEdge) {
   for (const float noise : {0.0f, 3.0f}) {
     SCOPED_TRACE(noise);
     const VolumeMesh m = mesh_of(prepared(ct_ball(center, radius, noise), 50));
-    const MeshTopology shape = topology(m.mesh);
-    EXPECT_TRUE(shape.watertight());
-    EXPECT_EQ(shape.components, 1);
-    EXPECT_EQ(shape.euler_characteristic(), 2);
+    test::expect_one_closed_surface(m.mesh, 2);
     EXPECT_EQ(test::crossing_triangle_pairs(m.mesh), 0);
     const double ball = 4.0 / 3.0 * std::numbers::pi * radius * radius * radius;
     EXPECT_NEAR(enclosed_volume(m.mesh), ball, 0.02 * ball);
@@ -116,10 +114,7 @@ TEST(VolumeMesh, ATorusHasEulerCharacteristicZero) {
   o.offset = 100;
   const Volume v = test::sample_volume(test::torus_distance(vec3(21.7f, 21.4f, 11.6f), 13, 5), o);
   const VolumeMesh m = mesh_of(prepared(v, 100));
-  const MeshTopology shape = topology(m.mesh);
-  EXPECT_TRUE(shape.watertight());
-  EXPECT_EQ(shape.components, 1);
-  EXPECT_EQ(shape.euler_characteristic(), 0);
+  test::expect_one_closed_surface(m.mesh, 0);
   const test::Field torus = test::torus_distance(vec3(21.7f, 21.4f, 11.6f), 13, 5);
   double worst = 0;
   for (const vec3& p : m.mesh.positions) worst = std::max(worst, double(torus.distance(p)));
@@ -138,10 +133,7 @@ TEST(VolumeMesh, ABoxWithABoreIsOneClosedSurfaceOfGenusOne) {
   const test::Field field{[&](vec3 p) { return 100 / (1 + std::exp(box.distance(p) / 0.02f)); },
                           [&](vec3 p) { return -box.normal(p); }, 50};
   const VolumeMesh m = mesh_of(prepared(test::sample_volume(field, o), 50));
-  const MeshTopology shape = topology(m.mesh);
-  EXPECT_TRUE(shape.watertight());
-  EXPECT_EQ(shape.components, 1);
-  EXPECT_EQ(shape.euler_characteristic(), 0);
+  test::expect_one_closed_surface(m.mesh, 0);
   EXPECT_GT(enclosed_volume(m.mesh), 0);
   float worst = 0;
   for (const vec3& p : m.mesh.positions)
@@ -181,10 +173,7 @@ TEST(VolumeMesh, ADipThatNeverReachesTheIsoValueIsNoSurfaceNorAHole) {
         v.values[std::size_t(view.index(i, j, k))] -= 46 * std::exp(-r * r / (2 * width * width));
       }
   const VolumeMesh m = mesh_of(prepared(v, 50));
-  const MeshTopology shape = topology(m.mesh);
-  EXPECT_TRUE(shape.watertight());
-  EXPECT_EQ(shape.components, 1);
-  EXPECT_EQ(shape.euler_characteristic(), 2);
+  test::expect_one_closed_surface(m.mesh, 2);
   EXPECT_LT(fit(m.mesh, center, radius).max_distance, 0.15);
   // Corners known only by their side do not grow the band: it stays narrow.
   EXPECT_LT(m.counts.corners, 3 * m.counts.cubes_crossed) << m.counts.cubes_crossed;

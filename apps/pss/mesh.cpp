@@ -58,14 +58,34 @@ void check_mesh_options(const MeshOptions& o) {
   }
 }
 
-void print_shape(const std::string& input, const std::string& size, double seconds, Backend backend,
-                 const MeshTopology& shape) {
+// The mesh's work with its errors naming the input, as the data's.
+template <class Make>
+auto naming_input(const std::string& input, Make&& make) {
+  try {
+    return make();
+  } catch (const Error& e) {
+    throw file_error(input, e.what());
+  }
+}
+
+// Writes the mesh, adds the run's total time, and prints what the mesh is (of `size`: the
+// points or voxels it was made from).
+MeshTopology write_and_summarise(const MeshOptions& o, const TriangleMesh& mesh, const std::string& size,
+                                 Backend backend, Stats& stats, std::chrono::steady_clock::time_point start) {
+  const MeshTopology shape = topology(mesh);
+  {
+    ScopedPhase phase(stats, "write");
+    write_mesh(o.output, mesh);
+  }
+  const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats.add_time("total", total);
   std::printf("meshed %s (%s) in %.3f s (%s backend, %d threads): %lld vertices, %lld triangles, %lld "
               "component%s, %s, %lld boundary edges, Euler characteristic %lld\n",
-              input.c_str(), size.c_str(), seconds, backend_name(backend), cpu_threads(), (long long)shape.vertices,
+              o.input.c_str(), size.c_str(), total, backend_name(backend), cpu_threads(), (long long)shape.vertices,
               (long long)shape.triangles, (long long)shape.components, shape.components == 1 ? "" : "s",
               shape.watertight() ? "watertight" : shape.manifold() ? "manifold with boundaries" : "NOT manifold",
               (long long)shape.boundary_edges, (long long)shape.euler_characteristic());
+  return shape;
 }
 
 // What --stats records of every mesh: its shape and its band.
@@ -88,10 +108,6 @@ void record_mesh(Stats& stats, const MeshTopology& shape, const MarchCounts& cou
                {"pinched_triangles", counts.pinched_triangles}};
 }
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 void run_cloud_mesh(const MeshOptions& o, Stats& stats, std::chrono::steady_clock::time_point start) {
   const Backend backend = start_compute(o.compute);
   const PointCloud cloud = read_cloud(o.input, stats);
@@ -102,21 +118,9 @@ void run_cloud_mesh(const MeshOptions& o, Stats& stats, std::chrono::steady_cloc
   params.projection.borders = borders_for(border_choice_of(o.borders), cloud);
   params.cell = o.cell;
 
-  CloudMesh result;
-  try {
-    result = mesh_cloud(cloud, params, backend, stats);
-  } catch (const Error& e) {
-    throw file_error(o.input, e.what());
-  }
-  const MeshTopology shape = topology(result.mesh);
-  {
-    ScopedPhase phase(stats, "write");
-    write_mesh(o.output, result.mesh);
-  }
-  const double total = seconds_since(start);
-  stats.add_time("total", total);
-
-  print_shape(o.input, std::to_string(cloud.size()) + " points", total, backend, shape);
+  const CloudMesh result = naming_input(o.input, [&] { return mesh_cloud(cloud, params, backend, stats); });
+  const MeshTopology shape =
+      write_and_summarise(o, result.mesh, std::to_string(cloud.size()) + " points", backend, stats, start);
   std::printf("%s surface%s, h = %g (%s), rho = %g, borders %s, cell %g; %lld corners evaluated, %lld cubes meshed; "
               "%lld outliers set aside\n",
               surface_name(params.projection.surface), normals_text(result.normals), double(params.projection.h),
@@ -150,25 +154,12 @@ void run_volume_mesh(const MeshOptions& o, Stats& stats, std::chrono::steady_clo
   options.input = o.input;
   if (o.surface.h != 0) options.settings.h = o.surface.h;
   const PreparedVolume volume = load_volume(options, stats);
-  VolumeMesh result;
-  try {
-    result = mesh_volume(volume, o.cell, backend, stats);
-  } catch (const Error& e) {
-    throw file_error(o.input, e.what());
-  }
-  const MeshTopology shape = topology(result.mesh);
-  {
-    ScopedPhase phase(stats, "write");
-    write_mesh(o.output, result.mesh);
-  }
-  const double total = seconds_since(start);
-  stats.add_time("total", total);
-
+  const VolumeMesh result = naming_input(o.input, [&] { return mesh_volume(volume, o.cell, backend, stats); });
   const VolumeView view = volume.fields.volume.view();
-  print_shape(o.input,
-              "volume " + std::to_string(view.dims.x) + "x" + std::to_string(view.dims.y) + "x" +
-                  std::to_string(view.dims.z),
-              total, backend, shape);
+  const MeshTopology shape = write_and_summarise(
+      o, result.mesh,
+      "volume " + std::to_string(view.dims.x) + "x" + std::to_string(view.dims.y) + "x" + std::to_string(view.dims.z),
+      backend, stats, start);
   const float voxel = view.voxel_size();
   if (volume.feature.kind == FeatureKind::iso)
     std::printf("iso-surface %g", double(volume.feature.iso));
