@@ -215,7 +215,11 @@ void add_mesh_command(CLI::App& app, Action action) {
                    "triangles), .obj (v, vn, f), .stl (binary, facet normals) or .off")
       ->required()
       ->check(mesh_output());
-  add_cloud_surface_flags(*command, o->surface);
+  auto* clouds = command->add_option_group("Point clouds' PSS");
+  auto* volumes = command->add_option_group("Volumes' PSS (--iso or --gradient)");
+  add_cloud_surface_flags(*command, o->surface);  // --h serves both: the others move to their group
+  for (const char* flag : kCloudFlags)
+    if (std::string(flag) != "--borders") clouds->add_option(command->get_option(flag));
   command->get_option("--h")->description(
       "Gaussian width h: a cloud's in its units (default: estimated from the spacing, see pss info); a volume's "
       "theta3 width in voxels u = (sx*sy*sz)^(1/3), at least 0.5 (default 2)");
@@ -223,15 +227,15 @@ void add_mesh_command(CLI::App& app, Action action) {
                       "side of the cubes the surface is meshed in: smaller gives more, smaller triangles (default: "
                       "a cloud's h/2, about the samples' spacing; a volume's voxel u)")
       ->check(finite_positive());
-  command->add_option("--borders", o->borders,
-                      "clouds: where the mesh ends: clip (at its samples' hull), extend (as far as the projection "
+  clouds->add_option("--borders", o->borders,
+                      "where the mesh ends: clip (at its samples' hull), extend (as far as the projection "
                       "reaches, about rho past the last samples), or auto (clip for a mesh's vertices, whose surface "
                       "ends at them; extend for scans, whose points stand for the surface around them). Either way a "
                       "scan's open edge and its holes wider than about 2 rho stay open")
       ->check(CLI::IsMember({"auto", "clip", "extend"}))
       ->capture_default_str();
-  add_raw_volume_options(*command, o->volume.raw);
-  add_volume_surface_flags(*command, o->volume, true, false);
+  add_raw_volume_options(*volumes, o->volume.raw);
+  add_volume_surface_flags(*volumes, o->volume, true, false);
   add_compute_options(*command, o->compute);
   command->callback([o, action] {
     if (action == Action::run)
