@@ -95,7 +95,7 @@ TEST(VolumeMesh, ACtLikeBallIsOneWatertightOutwardSurfaceOnItsEdge) {
 TEST(VolumeMesh, EveryVertexIsARootOfTheImplicit) {
   const PreparedVolume volume = prepared(ct_ball(vec3(20.2f, 19.7f, 20.1f), 11), 50);
   const VolumeMesh m = mesh_of(volume);
-  const VolumeImplicit implicit{volume.scene()};
+  const VolumeImplicit implicit{volume.scene(), m.cell};
   std::vector<float> residual;
   for (const vec3& p : m.mesh.positions) {
     const SignedDistance s = implicit(p);
@@ -177,6 +177,39 @@ TEST(VolumeMesh, ADipThatNeverReachesTheIsoValueIsNoSurfaceNorAHole) {
   EXPECT_LT(fit(m.mesh, center, radius).max_distance, 0.15);
   // Corners known only by their side do not grow the band: it stays narrow.
   EXPECT_LT(m.counts.corners, 3 * m.counts.cubes_crossed) << m.counts.cubes_crossed;
+}
+
+// A sharp step quantised to 8 bits saturates: inside, every voxel is 255 and the gradient 0,
+// where no projection starts. At an iso-value near the top the surface still closes: such
+// corners take the data's side.
+TEST(VolumeMesh, ASaturatedInsideStillClosesTheSurface) {
+  const vec3 center(19.6f, 20.3f, 19.8f);
+  Volume v = ct_ball(center, 12, 0, ivec3(40), 300);
+  for (float& x : v.values) x = std::round(std::min(x, 255.0f));
+  const VolumeMesh m = mesh_of(prepared(v, 244));
+  test::expect_one_closed_surface(m.mesh, 2);
+}
+
+// Voids a voxel wide a voxel inside the ball's surface (as in the bucky's shell; 36 of the
+// voxels there set to 0): the PSS smooths them away where the data have small bubbles.
+// Corners whose projection the data do not back take the data's side, and the sign change
+// they make with their neighbours is meshed, not refused as a jump: the surface stays closed.
+TEST(VolumeMesh, VoidsAVoxelWideLeaveNoHole) {
+  const vec3 center(19.6f, 20.3f, 19.8f);
+  Volume v = ct_ball(center, 12);
+  const VolumeView view = v.view();
+  int voids = 0;
+  for (int k = 0; k < v.dims.z; ++k)
+    for (int j = 0; j < v.dims.y; ++j)
+      for (int i = 0; i < v.dims.x; ++i)
+        if (std::abs(glm::length(view.position(i, j, k) - center) - 11) < 0.5f && (7 * i + 13 * j + 5 * k) % 37 == 0) {
+          v.values[std::size_t(view.index(i, j, k))] = 0;
+          ++voids;
+        }
+  ASSERT_GT(voids, 30);
+  const VolumeMesh m = mesh_of(prepared(v, 50));
+  EXPECT_TRUE(topology(m.mesh).watertight());
+  EXPECT_EQ(m.counts.cubes_refused, 0);
 }
 
 // The gradient surface of the same step is where |∇f| peaks: the sphere of radius R.

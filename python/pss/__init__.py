@@ -270,7 +270,7 @@ _volume_mesh.__doc__ = """A triangle mesh of the volume's point set surface, as 
     unit normals of the surface, and (T, 3) int32 vertex indices, counter-clockwise seen
     from outside, outside being towards lower values (the brighter material is inside).
     Closed where the surface is, open where the volume's box cuts it; manifold always.
-    """ + _SURFACE_DOC
+    """ + _SURFACE_DOC.replace(" k: the marching step\n    b = k h (default {:g}),".format(_pss.volume_defaults["k"]), "")
 Volume.render = _volume_render
 Volume.mesh = _volume_mesh
 Volume.extract = _volume_extract

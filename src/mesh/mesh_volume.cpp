@@ -45,7 +45,7 @@ VolumeMesh mesh_volume(const PreparedVolume& volume, float cell, Backend backend
 
   const SceneMirror scene(backend, volume);
   const ImplicitSurface implicit =
-      mesh_detail::implicit_surface(backend, VolumeImplicit{scene.scene()}, out.cell, stats);
+      mesh_detail::implicit_surface(backend, VolumeImplicit{scene.scene(), out.cell}, out.cell, stats);
   {
     ScopedPhase phase(stats, "mesh", false);  // its kernels show their progress
     out.mesh = march_tetrahedra(lattice, seeds, implicit, mesh_detail::kMaxSlope, out.counts);
@@ -53,7 +53,8 @@ VolumeMesh mesh_volume(const PreparedVolume& volume, float cell, Backend backend
   if (out.mesh.triangles.empty())
     throw Error(volume.cells.crossed_count == 0
                     ? std::string("the volume has no surface to mesh: no cell of it holds the feature")
-                    : std::string("the surface gave no triangle: the cell is likely too large for it"));
+                    : std::string("the surface gave no triangle: the data reach the iso-value without crossing "
+                                  "it, or the cell is too large for the surface"));
   return out;
 }
 

@@ -42,10 +42,11 @@ struct Lattice {
   }
 };
 
-// The most cubes a mesh's band may hold (2^26: some 2 GiB of corners and keys, as much again
-// of the triangles' keys, and as many projections); a cell that fine for the surface is
-// refused by its estimate before any work (check_band).
-inline constexpr std::int64_t kMaxBandCubes = std::int64_t(1) << 26;
+// The most cubes a mesh's band may hold: 2^23, some 12 GiB at the peak (about 1.5 KB a cube
+// with its corners, keys, vertices and triangles, measured on the engine CT) and as many
+// projections; a cell that fine for the surface is refused by its estimate before any work
+// (check_band).
+inline constexpr std::int64_t kMaxBandCubes = std::int64_t(1) << 23;
 
 // Throws a one-line Error when `expected_cubes`, a mesh's estimate of its band at the cell
 // size `cell`, exceeds kMaxBandCubes; `data` names what is meshed ("cloud", "volume").

@@ -13,32 +13,35 @@
 namespace pss {
 
 // Where the projection converges onto a point where the data have a surface
-// (surface_cells.hpp), f is as above. Where it does not, there is no surface of the data
-// near x: the fit may draw a sheet along a dip of the values that never reaches v (inside a
-// tooth's dentine, say), which rendering rejects point by point; a mesh needs every
-// corner's side, or the real surface beside such a sheet breaks open where its cubes'
-// corners project onto the sheet. Of an iso-surface the data say which side x is on: there
-// f is the first-order distance (v − f(x))/|∇f(x)|, clamped to the neighbourhood's radius,
-// and the band does not grow from x. Beyond the box, or of a gradient surface, such a
-// corner is not valid.
+// (surface_cells.hpp), f is as above. Where it does not, there is no surface of the PSS that
+// the data back near x: the fit may draw a sheet along a dip of the values that never
+// reaches v (inside a tooth's dentine, say), or smooth away a void a voxel wide that the
+// data have; rendering rejects such points one by one, but a mesh needs every corner's
+// side, or the surface breaks open where its cubes' corners project onto such a sheet. Of
+// an iso-surface the data say which side x is on: there f is the first-order distance
+// (v − f(x))/|∇f(x)| (the cube's side where f is flat), at most the cube's side
+// (`side_reach`), so that the change of sign it makes with a neighbour is meshed, never
+// taken for a jump (marching_tetrahedra.hpp): the data cross v between them. The band does
+// not grow from x. Beyond the box, or of a gradient surface, such a corner is not valid.
 struct VolumeImplicit {
   VolumeScene scene;
+  float side_reach;  // the cube's side
   PSS_HOST_DEVICE SignedDistance operator()(vec3 x) const {
-    const VolumeParams& p = scene.params;
     const FieldView& fields = scene.fields;
     VoxelScratch nb;
-    const VolumeProjection proj = project_volume_point(fields, p, x, nb);
+    const VolumeProjection proj = project_volume_point(fields, scene.params, x, nb);
     const vec3 n = -proj.normal;
     if (proj.status == VolumeProjectionStatus::ok && is_finite(proj.point) &&
-        is_data_surface(fields, scene.cells, scene.feature, proj.point, proj.normal, p.surface_reach()))
+        is_data_surface(fields, scene.cells, scene.feature, proj.point, proj.normal, scene.params.surface_reach()))
       return {glm::dot(x - proj.point, n), proj.point, n, true};
-    const Aabb box = fields.volume.bounds();
-    const vec3 g = fields.gradient_at(x);
-    if (scene.feature.kind != FeatureKind::iso || !box.contains(x) || !(length2(g) > 0))
+    const float difference = scene.feature.iso - sample(fields.volume, x);
+    if (scene.feature.kind != FeatureKind::iso || !fields.volume.bounds().contains(x))
       return {0.0f, x, vec3(0.0f), false};
+    const vec3 g = fields.gradient_at(x);
     const float length = glm::length(g);
-    const float distance = (scene.feature.iso - sample(fields.volume, x)) / length;
-    return {clamp(distance, -p.radius, p.radius), x, -g / length, true, false};
+    if (!(length > 0))  // flat (saturated) data: no gradient, no projection, but a side
+      return {difference > 0 ? side_reach : difference < 0 ? -side_reach : 0.0f, x, vec3(0.0f), true, false};
+    return {clamp(difference / length, -side_reach, side_reach), x, -g / length, true, false};
   }
 };
 
