@@ -45,7 +45,8 @@ class MeshVolumeCli : public test::CliTest {
 // The largest distance of a vertex to the sphere of radius `scale`·R about `scale`·centre.
 float worst_distance(const TriangleMesh& m, float scale = 1) {
   float worst = 0;
-  for (const vec3& p : m.positions) worst = std::max(worst, std::abs(glm::length(p - scale * kCenter) - scale * kRadius));
+  for (const vec3& p : m.positions)
+    worst = std::max(worst, std::abs(glm::length(p - scale * kCenter) - scale * kRadius));
   return worst;
 }
 

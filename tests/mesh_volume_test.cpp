@@ -61,7 +61,8 @@ BallFit fit(const TriangleMesh& m, vec3 center, float radius) {
     f.mean_angle += std::acos(std::min(1.0f, cosine)) * 180 / std::numbers::pi / double(m.positions.size());
   }
   for (const auto& t : m.triangles) {
-    const vec3 a = m.positions[std::size_t(t[0])], b = m.positions[std::size_t(t[1])], c = m.positions[std::size_t(t[2])];
+    const vec3 a = m.positions[std::size_t(t[0])], b = m.positions[std::size_t(t[1])];
+    const vec3 c = m.positions[std::size_t(t[2])];
     f.triangles_outward = f.triangles_outward && glm::dot(glm::cross(b - a, c - a), (a + b + c) / 3.0f - center) > 0;
   }
   return f;

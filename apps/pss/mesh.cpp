@@ -43,7 +43,9 @@ bool is_volume(const MeshOptions& o) { return has_volume_header(o.input) || raw_
 // The flags of the other kind of data refused, the volume's checked together; reads nothing.
 void check_mesh_options(const MeshOptions& o) {
   const bool volume = is_volume(o);
-  for (const char* flag : volume ? std::span<const char* const>(kCloudFlags) : std::span<const char* const>(kVolumeFlags))
+  using Flags = std::span<const char* const>;
+  const Flags others = volume ? Flags(kCloudFlags) : Flags(kVolumeFlags);
+  for (const char* flag : others)
     if (o.command->get_option(flag)->count() > 0)
       throw Error(std::string(flag) + " applies to " + (volume ? "point clouds" : "volumes") + " only, and " +
                   o.input + " is " +
