@@ -25,8 +25,11 @@ void add_compute_options(CLI::App& command, ComputeOptions& options);  // with -
 Backend start_compute(const ComputeOptions& options);
 // The cloud of `file`, its reading timed (phase "read").
 PointCloud read_cloud(const std::string& file, Stats& stats);
-// What every command's --stats records of a run on a cloud: the command, its input and
-// output, the points, their origin (the written positions include it), backend and threads.
+// What every command's --stats records of a run: the command, its input and output, backend
+// and threads; of a run on a cloud also the points and their origin (the written positions
+// include it).
+void record_run(Stats& stats, const char* command, const std::string& input, const std::string& output,
+                Backend backend);
 void record_cloud_run(Stats& stats, const char* command, const std::string& input, const std::string& output,
                       const PointCloud& cloud, Backend backend);
 // --progress auto|always|never: sets the process's ProgressMode when given.

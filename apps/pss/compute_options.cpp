@@ -30,16 +30,22 @@ PointCloud read_cloud(const std::string& file, Stats& stats) {
   return read_point_cloud(file);
 }
 
-void record_cloud_run(Stats& stats, const char* command, const std::string& input, const std::string& output,
-                      const PointCloud& cloud, Backend backend) {
+void record_run(Stats& stats, const char* command, const std::string& input, const std::string& output,
+                Backend backend) {
   auto& v = stats.values();
   v["command"] = command;
   v["input"] = input;
   v["output"] = output;
-  v["points"] = cloud.size();
-  v["origin"] = {cloud.origin.x, cloud.origin.y, cloud.origin.z};
   v["backend"] = backend_name(backend);
   v["threads"] = cpu_threads();
+}
+
+void record_cloud_run(Stats& stats, const char* command, const std::string& input, const std::string& output,
+                      const PointCloud& cloud, Backend backend) {
+  record_run(stats, command, input, output, backend);
+  auto& v = stats.values();
+  v["points"] = cloud.size();
+  v["origin"] = {cloud.origin.x, cloud.origin.y, cloud.origin.z};
 }
 
 void add_progress_option(CLI::App& command) {

@@ -40,12 +40,8 @@ void run_extract(const ExtractOptions& o) {
               stats.time("projection"), backend_name(backend), cpu_threads(), (long long)counts.candidates,
               (long long)counts.accepted, volume.params.step);
   if (!o.compute.stats_path.empty()) {
+    record_run(stats, "extract", o.volume.input, o.output, backend);
     auto& j = stats.values();
-    j["command"] = "extract";
-    j["input"] = o.volume.input;
-    j["output"] = o.output;
-    j["backend"] = backend_name(backend);
-    j["threads"] = cpu_threads();
     j["candidates"] = counts.candidates;
     j["accepted"] = counts.accepted;
     j["points"] = counts.kept;

@@ -172,12 +172,8 @@ void run_volume_mesh(const MeshOptions& o, Stats& stats, std::chrono::steady_clo
               double(result.cell / voxel), (long long)result.counts.corners, (long long)result.counts.cubes_crossed);
 
   if (!o.compute.stats_path.empty()) {
+    record_run(stats, "mesh", o.input, o.output, backend);
     auto& v = stats.values();
-    v["command"] = "mesh";
-    v["input"] = o.input;
-    v["output"] = o.output;
-    v["backend"] = backend_name(backend);
-    v["threads"] = cpu_threads();
     v["volume"] = describe(volume, options);
     v["cell"] = result.cell;
     record_mesh(stats, shape, result.counts);

@@ -196,12 +196,8 @@ void record_render_stats(Stats& stats, const RenderOptions& options, const Rende
                          const std::string& input) {
   record_frame(stats, frame);
   const double frame_s = frame_seconds(stats);
+  record_run(stats, command, input, options.output, backend);
   auto& v = stats.values();
-  v["command"] = command;
-  v["input"] = input;
-  v["output"] = options.output;
-  v["backend"] = backend_name(backend);
-  v["threads"] = cpu_threads();
   v["frame_seconds"] = frame_s;
   v["fps"] = 1.0 / frame_s;
   // record_frame wrote the camera itself and the image size; these are the flags behind it.

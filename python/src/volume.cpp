@@ -82,20 +82,27 @@ VolumeSettings settings_of(const py::dict& o) {
   return s;
 }
 
-// Gradients, weights, surface cells and bricks of a copy of the values (prepare_volume
-// owns what it computes from), or the last ones when the settings are the same; the data's
-// problems name the volume's file, as the CLI's do.
-std::shared_ptr<const PreparedVolume> prepare(PyVolume& v, const VolumeSettings& settings, Stats& stats) {
-  const std::lock_guard<std::mutex> hold(*v.lock);
-  if (v.prepared && v.prepared_for == settings) return v.prepared;
-  v.prepared.reset();  // its memory back before the next is made
-  std::shared_ptr<const PreparedVolume> prepared;
+// f()'s result, its errors about the data naming the volume's file, as the CLI's do.
+template <class F>
+auto naming_source(const PyVolume& v, F&& f) {
   try {
-    prepared = std::make_shared<const PreparedVolume>(prepare_volume(Volume(v.volume), settings, stats));
+    return f();
   } catch (const Error& e) {
     if (v.source.empty()) throw;
     throw file_error(v.source, e.what());
   }
+}
+
+// Gradients, weights, surface cells and bricks of a copy of the values (prepare_volume
+// owns what it computes from), or the last ones when the settings are the same; the data's
+// problems name the volume's file.
+std::shared_ptr<const PreparedVolume> prepare(PyVolume& v, const VolumeSettings& settings, Stats& stats) {
+  const std::lock_guard<std::mutex> hold(*v.lock);
+  if (v.prepared && v.prepared_for == settings) return v.prepared;
+  v.prepared.reset();  // its memory back before the next is made
+  const auto prepared = naming_source(v, [&] {
+    return std::make_shared<const PreparedVolume>(prepare_volume(Volume(v.volume), settings, stats));
+  });
   const std::atomic<bool>* cancel = cancel_flag();
   if (cancel && cancel->load()) return prepared;  // cut short by Ctrl-C: not kept
   v.prepared = prepared;
@@ -143,12 +150,7 @@ py::tuple mesh(PyVolume& v, const py::dict& o) {
   Stats stats;
   VolumeMesh result = run_interruptibly([&] {
     const std::shared_ptr<const PreparedVolume> prepared = prepare(v, settings, stats);
-    try {
-      return mesh_volume(*prepared, cell ? *cell : 0.0f, backend, stats);
-    } catch (const Error& e) {
-      if (v.source.empty()) throw;
-      throw file_error(v.source, e.what());
-    }
+    return naming_source(v, [&] { return mesh_volume(*prepared, cell ? *cell : 0.0f, backend, stats); });
   });
   const auto t = py::ssize_t(result.mesh.triangles.size());
   return py::make_tuple(to_numpy(std::move(result.mesh.positions)), to_numpy(std::move(result.mesh.normals)),

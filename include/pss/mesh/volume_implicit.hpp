@@ -34,9 +34,9 @@ struct VolumeImplicit {
     if (proj.status == VolumeProjectionStatus::ok && is_finite(proj.point) &&
         is_data_surface(fields, scene.cells, scene.feature, proj.point, proj.normal, scene.params.surface_reach()))
       return {glm::dot(x - proj.point, n), proj.point, n, true};
-    const float difference = scene.feature.iso - sample(fields.volume, x);
     if (scene.feature.kind != FeatureKind::iso || !fields.volume.bounds().contains(x))
       return {0.0f, x, vec3(0.0f), false};
+    const float difference = scene.feature.iso - sample(fields.volume, x);
     const vec3 g = fields.gradient_at(x);
     const float length = glm::length(g);
     if (!(length > 0))  // flat (saturated) data: no gradient, no projection, but a side
