@@ -11,6 +11,7 @@
 #include "pss/mesh/marching_tetrahedra.hpp"
 #include "pss/mesh/mesh_cloud.hpp"
 #include "pss/mesh/cloud_implicit.hpp"
+#include "support/analytic_implicit.hpp"
 #include "support/cli.hpp"
 #include "support/mesh_checks.hpp"
 #include "support/render_truth.hpp"
@@ -20,35 +21,8 @@
 namespace pss {
 namespace {
 
-// An implicit given by its exact signed distance and gradient; valid where `valid` says.
-ImplicitSurface analytic(std::function<float(vec3)> distance, std::function<vec3(vec3)> normal,
-                         std::function<bool(vec3)> valid = [](vec3) { return true; }) {
-  ImplicitSurface s;
-  s.sample = [=](std::span<const vec3> corners, std::span<CornerSample> out) {
-    for (std::size_t i = 0; i < corners.size(); ++i) {
-      const float d = distance(corners[i]);
-      out[i] = {d, corners[i] - d * normal(corners[i]), valid(corners[i])};
-    }
-  };
-  s.cross = [=](std::span<const EdgeCrossing> edges, std::span<MeshVertex> out) {
-    for (std::size_t i = 0; i < edges.size(); ++i) {  // bisection, to float precision
-      const EdgeCrossing& e = edges[i];
-      float lo = 0, hi = 1;
-      for (int k = 0; k < 40; ++k) {
-        const float t = 0.5f * (lo + hi);
-        ((distance(e.a + t * (e.b - e.a)) < 0) == (e.distance_a < 0) ? lo : hi) = t;
-      }
-      const vec3 p = e.a + 0.5f * (lo + hi) * (e.b - e.a);
-      out[i] = {p, normal(p)};
-    }
-  };
-  return s;
-}
-
-TriangleMesh march(const ImplicitSurface& s, vec3 lo, vec3 hi, float cell, std::span<const vec3> seeds,
-                   MarchCounts& counts) {
-  return march_tetrahedra(lattice_over(lo, hi, 2 * cell, cell, "cell"), seeds, s, 1.0f, counts);
-}
+using test::analytic;
+using test::march;
 
 // The triangle's normal by its winding, unit.
 vec3 face_normal(const TriangleMesh& m, const std::array<int, 3>& t) {

@@ -24,6 +24,7 @@ namespace {
 struct MeshOptions {
   std::string input, output;
   float cell = 0;
+  float crease_angle = kDefaultCreaseAngle;
   CloudSurfaceFlags surface;  // its --h serves volumes too, in voxels
   std::string borders = "auto";
   VolumeOptions volume;       // a volume's flags
@@ -32,8 +33,8 @@ struct MeshOptions {
 };
 
 // The flags that only a cloud's PSS, or only a volume's, takes.
-constexpr const char* kCloudFlags[] = {"--rho", "--support", "--surface", "--normals", "--outliers", "--iterations",
-                                       "--borders"};
+constexpr const char* kCloudFlags[] = {"--rho",      "--support",    "--surface", "--normals",
+                                       "--outliers", "--iterations", "--borders", "--crease-angle"};
 constexpr const char* kVolumeFlags[] = {"--iso",   "--gradient", "--method", "--radius",
                                         "--alpha", "--smoothing", "--error", "--threshold"};
 
@@ -107,6 +108,8 @@ void record_mesh(Stats& stats, const MeshTopology& shape, const MarchCounts& cou
                {"cubes_visited", counts.cubes_visited},
                {"cubes_meshed", counts.cubes_crossed},
                {"cubes_refused", counts.cubes_refused},
+               {"crease_vertices", counts.crease_vertices},
+               {"crease_flips", counts.crease_flips},
                {"pinched_triangles", counts.pinched_triangles}};
 }
 
@@ -119,16 +122,18 @@ void run_cloud_mesh(const MeshOptions& o, Stats& stats, std::chrono::steady_cloc
   params.projection = projection_params(o.surface, cloud, o.input, PlaneFitMethod::mls, stats);
   params.projection.borders = borders_for(border_choice_of(o.borders), cloud);
   params.cell = o.cell;
+  params.crease_angle = o.crease_angle;
 
   const CloudMesh result = naming_input(o.input, [&] { return mesh_cloud(cloud, params, backend, stats); });
   const MeshTopology shape =
       write_and_summarise(o, result.mesh, std::to_string(cloud.size()) + " points", backend, stats, start);
-  std::printf("%s surface%s, h = %g (%s), rho = %g, borders %s, cell %g; %lld corners evaluated, %lld cubes meshed; "
-              "%lld outliers set aside\n",
+  std::printf("%s surface%s, h = %g (%s), rho = %g, borders %s, cell %g; %lld corners evaluated, %lld cubes meshed, "
+              "%lld vertices on creases; %lld outliers set aside\n",
               surface_name(params.projection.surface), normals_text(result.normals), double(params.projection.h),
               support_text(params.projection.support, result.widths).c_str(), double(params.projection.rho),
               border_name(params.projection.borders), double(result.cell), (long long)result.counts.corners,
-              (long long)result.counts.cubes_crossed, (long long)result.outliers.set_aside);
+              (long long)result.counts.cubes_crossed, (long long)result.counts.crease_vertices,
+              (long long)result.outliers.set_aside);
   print_normals_turned(result.normals_turned, cloud.size());
   if (result.turned_outward)
     std::printf("the normals' orientation faced inward (the closed parts enclosed a negative volume): the mesh "
@@ -138,6 +143,7 @@ void run_cloud_mesh(const MeshOptions& o, Stats& stats, std::chrono::steady_cloc
     auto& v = stats.values();
     record_cloud_run(stats, "mesh", o.input, o.output, cloud, backend);
     v["params"] = {{"h", params.projection.h}, {"rho", params.projection.rho}, {"cell", result.cell},
+                   {"crease_angle", params.crease_angle},
                    {"support", support_name(params.projection.support)},
                    {"surface", surface_name(params.projection.surface)}, {"normals", normals_used_name(result.normals)},
                    {"outliers", o.surface.surface.outliers}, {"borders", border_name(params.projection.borders)},
@@ -216,8 +222,8 @@ void add_mesh_command(CLI::App& app, Action action) {
   auto* clouds = command->add_option_group("Point clouds' PSS");
   auto* volumes = command->add_option_group("Volumes' PSS (--iso or --gradient)");
   add_cloud_surface_flags(*command, o->surface);  // --h serves both: the others move to their group
-  for (const char* flag : kCloudFlags)
-    if (std::string(flag) != "--borders") clouds->add_option(command->get_option(flag));
+  for (const char* flag : kCloudFlags)  // those of project's; the mesh's own are added to the group below
+    if (CLI::Option* option = command->get_option_no_throw(flag)) clouds->add_option(option);
   command->get_option("--h")->description(
       "Gaussian width h: a cloud's in its units (default: estimated from the spacing, see pss info); a volume's "
       "theta3 width in voxels u = (sx*sy*sz)^(1/3), at least 0.5 (default 2)");
@@ -231,6 +237,13 @@ void add_mesh_command(CLI::App& app, Action action) {
                       "ends at them; extend for scans, whose points stand for the surface around them). Either way a "
                       "scan's open edge and its holes wider than about 2 rho stay open")
       ->check(CLI::IsMember({"auto", "clip", "extend"}))
+      ->capture_default_str();
+  clouds
+      ->add_option("--crease-angle", o->crease_angle,
+                   "degrees: where the surface's normals within a cube differ by more than this and the surface "
+                   "has a sharp crease there (rimls keeps them; the other surfaces round them), a vertex is put on "
+                   "the crease instead of cutting it off; 180: never")
+      ->check(finite_range(0, 180, true))
       ->capture_default_str();
   add_raw_volume_options(*volumes, o->volume.raw);
   add_volume_surface_flags(*volumes, o->volume, true, false);

@@ -135,7 +135,7 @@ def project(points, h=None, *, normals=None, surface="mls", outliers="set-aside"
 
 
 def mesh(points, h=None, *, normals=None, surface="mls", outliers="set-aside", rho=None, support=None, cell=None,
-         borders="auto", iterations=4, backend="auto"):
+         borders="auto", iterations=4, crease_angle=30, backend="auto"):
     """A triangle mesh of the point set surface, as `pss mesh`: marching tetrahedra over the
     cubes near the points, every vertex on the surface with its normal.
 
@@ -144,7 +144,9 @@ def mesh(points, h=None, *, normals=None, surface="mls", outliers="set-aside", r
     (default h/2, about the points' spacing; smaller gives more, smaller triangles).
     borders: 'clip' (the mesh ends at the points' hull), 'extend' (on as far as the projection
     reaches, about rho past the last points) or 'auto' (extend: an array of points is a scan's,
-    as the CLI's auto for files without faces).
+    as the CLI's auto for files without faces). crease_angle: degrees; where the normals within
+    a cube differ by more than this and the surface has a sharp crease there (rimls keeps a
+    box's edges), a vertex is put on the crease instead of cutting it off; 180: never.
 
     Returns (vertices, normals, faces): (V, 3) float32 (float64 for points far from zero,
     see above), (V, 3) float32 unit normals of the surface, and (T, 3) int32 vertex indices,
@@ -152,7 +154,7 @@ def mesh(points, h=None, *, normals=None, surface="mls", outliers="set-aside", r
     """
     return _pss.mesh(points, {"normals": normals, "surface": surface, "outliers": outliers, "h": h, "rho": rho,
                               "support": support, "cell": cell, "borders": borders, "iterations": iterations,
-                              "backend": backend})
+                              "crease_angle": crease_angle, "backend": backend})
 
 
 def render(points, h=None, *, normals=None, colors=None, surface="mls", outliers="set-aside", rho=None, support=None,

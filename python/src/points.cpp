@@ -118,6 +118,7 @@ py::tuple mesh(const py::handle& points, const py::dict& o) {
   const PointCloud cloud = cloud_of(points, option(o, "normals"));
   const CloudSurfaceArgs args(o);
   const std::optional<float> cell = positive_or_none(o, "cell");
+  const auto crease_angle = float(number_in(o, "crease_angle", 0, 180, true));
   const std::optional<BorderMode> borders = border_choice_of(choice(o, "borders", {"auto", "clip", "extend"}));
   const Backend backend = backend_of(o);
   CloudMesh result = run_interruptibly([&] {
@@ -127,6 +128,7 @@ py::tuple mesh(const py::handle& points, const py::dict& o) {
     params.projection = args.params(cloud, PlaneFitMethod::mls);
     params.projection.borders = borders_for(borders, cloud);
     if (cell) params.cell = *cell;
+    params.crease_angle = crease_angle;
     return mesh_cloud(cloud, params, backend, stats);
   });
   const auto v = py::ssize_t(result.mesh.positions.size()), t = py::ssize_t(result.mesh.triangles.size());

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <utility>
 
+#include "creases.hpp"
 #include "incidence.hpp"
 #include "pss/backend/cpu/parallel_for.hpp"
 #include "pss/core/error.hpp"
@@ -175,7 +176,7 @@ Lattice lattice_over(vec3 lo, vec3 hi, double margin, double cell, const char* w
 }
 
 TriangleMesh march_tetrahedra(const Lattice& lattice, std::span<const vec3> seeds, const ImplicitSurface& implicit,
-                              float max_slope, MarchCounts& counts) {
+                              float max_slope, float crease_angle, MarchCounts& counts) {
   counts = {};
   Corners corners;
   std::vector<std::uint64_t> visited, frontier;
@@ -234,8 +235,23 @@ TriangleMesh march_tetrahedra(const Lattice& lattice, std::span<const vec3> seed
 
   // The triangles, each vertex an edge's key until the edges are solved.
   std::vector<std::array<std::uint64_t, 3>> triangles;
+  mesh_detail::CubeTriangles cubes;
+  cubes.lowest.reserve(crossed.size());
+  cubes.first.reserve(crossed.size() + 1);
+  cubes.across.reserve(crossed.size());
   for (const auto& [key, negative] : crossed) {
     const ivec3 cube = Lattice::corner(key);
+    cubes.lowest.push_back(lattice.position(cube));
+    cubes.first.push_back(triangles.size());
+    std::array<int, 6> across;
+    for (int f = 0; f < 6; ++f) {
+      const ivec3 next = cube + kAcross[f];
+      const auto at = std::lower_bound(crossed.begin(), crossed.end(), std::pair{Lattice::key(next), -1});
+      across[std::size_t(f)] = lattice.holds_cube(next) && at != crossed.end() && at->first == Lattice::key(next)
+                                   ? int(at - crossed.begin())
+                                   : -1;
+    }
+    cubes.across.push_back(across);
     for (int t = 0; t < 6; ++t) {
       int mask = 0;
       for (int i = 0; i < 4; ++i) mask |= (negative >> kTetrahedra[t][i] & 1) << i;
@@ -245,6 +261,7 @@ TriangleMesh march_tetrahedra(const Lattice& lattice, std::span<const vec3> seed
                              edge_key(cube, c.triangle[k][2])});
     }
   }
+  cubes.first.push_back(triangles.size());
   std::vector<std::uint64_t> edges;
   edges.reserve(triangles.size() * 3);
   for (const auto& t : triangles) edges.insert(edges.end(), t.begin(), t.end());
@@ -274,6 +291,10 @@ TriangleMesh march_tetrahedra(const Lattice& lattice, std::span<const vec3> seed
       mesh.triangles[std::size_t(i)][k] =
           int(std::lower_bound(edges.begin(), edges.end(), triangles[std::size_t(i)][k]) - edges.begin());
   });
+  const mesh_detail::CreaseCounts creases =
+      mesh_detail::snap_creases(mesh, cubes, float(lattice.cell), implicit, crease_angle);
+  counts.crease_vertices = creases.vertices;
+  counts.crease_flips = creases.flips;
   counts.pinched_triangles = remove_pinches(mesh);
   return mesh;
 }

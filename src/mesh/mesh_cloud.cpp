@@ -59,6 +59,8 @@ void check_not_a_line(std::span<const vec3> points) {
 CloudMesh mesh_cloud(const PointCloud& cloud, const MeshParams& params, Backend backend, Stats& stats) {
   const ProjectionParams& projection = params.projection;
   validate(projection);
+  if (!(params.crease_angle > 0 && params.crease_angle <= 180))
+    throw Error("the crease angle must lie in (0, 180] degrees (got " + std::to_string(params.crease_angle) + ")");
   if (cloud.size() < 3)
     throw Error("a mesh needs at least 3 points (the cloud has " + std::to_string(cloud.size()) + ")");
   const Aabb box = cloud.bounds();
@@ -93,7 +95,8 @@ CloudMesh mesh_cloud(const PointCloud& cloud, const MeshParams& params, Backend 
       mesh_detail::implicit_surface(backend, CloudImplicit{g.view(), projection}, out.cell, stats);
   {
     ScopedPhase phase(stats, "mesh", false);  // its kernels show their progress
-    out.mesh = march_tetrahedra(lattice, grid.sorted_points(), implicit, mesh_detail::kMaxSlope, out.counts);
+    out.mesh = march_tetrahedra(lattice, grid.sorted_points(), implicit, mesh_detail::kMaxSlope,
+                                params.crease_angle, out.counts);
   }
   out.mesh.origin = cloud.origin;
   // Which side is out is a guess where the normals were estimated, and where the file's

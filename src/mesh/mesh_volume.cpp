@@ -12,6 +12,10 @@ namespace pss {
 
 namespace {
 
+// A volume's PSS fits the smoothed field over h ≥ 0.5 voxels (θ1, §4), so its creases are
+// rounded at the scale of the cubes: none is snapped (mesh_cloud.hpp: kDefaultCreaseAngle).
+constexpr float kNoCreases = 180;
+
 // The band starts at the centres of the cells the surface crosses (surface_cells.hpp), one
 // in every piece of it however small, and grows from there.
 std::vector<vec3> crossed_cell_centres(const PreparedVolume& volume) {
@@ -48,7 +52,7 @@ VolumeMesh mesh_volume(const PreparedVolume& volume, float cell, Backend backend
       mesh_detail::implicit_surface(backend, VolumeImplicit{scene.scene(), out.cell}, out.cell, stats);
   {
     ScopedPhase phase(stats, "mesh", false);  // its kernels show their progress
-    out.mesh = march_tetrahedra(lattice, seeds, implicit, mesh_detail::kMaxSlope, out.counts);
+    out.mesh = march_tetrahedra(lattice, seeds, implicit, mesh_detail::kMaxSlope, kNoCreases, out.counts);
   }
   if (out.mesh.triangles.empty())
     throw Error(volume.cells.crossed_count == 0

@@ -68,6 +68,43 @@ def test_cell_borders_and_h_are_the_cli_s(tmp_path):
     assert np.array_equal(f, faces) and np.allclose(v, vertices, atol=0)
 
 
+def turned_box_samples(count=20000, seed=3):
+    """Points on the faces of a box (1 x 0.8 x 0.6) turned against the axes, with their normals."""
+    rng = np.random.default_rng(seed)
+    half = np.array([0.5, 0.4, 0.3])
+    points, normals = [], []
+    for axis in range(3):
+        for side in (-1, 1):
+            p = rng.uniform(-1, 1, (count // 6, 3)) * half
+            p[:, axis] = side * half[axis]
+            n = np.zeros_like(p)
+            n[:, axis] = side
+            points.append(p)
+            normals.append(n)
+    c, s = np.cos(0.5), np.sin(0.5)
+    turn = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]]) @ np.array([[1, 0, 0], [0, c, -s], [0, s, c]])
+    return np.vstack(points) @ turn.T, np.vstack(normals) @ turn.T
+
+
+def test_crease_angle_is_the_cli_s(tmp_path):
+    points, normals = turned_box_samples()
+    np.savetxt(tmp_path / "box.pwn", np.hstack([points, normals]), fmt="%.7g")
+    for flags, kwargs in (((), {}), (("--crease-angle", "180"), {"crease_angle": 180})):
+        out = tmp_path / "m.ply"
+        cli_ok("mesh", tmp_path / "box.pwn", "--surface", "rimls", *flags, "-o", out)
+        v, n, f = read_mesh_ply(out)
+        vertices, _, faces = pss.mesh(np.loadtxt(tmp_path / "box.pwn")[:, :3], surface="rimls",
+                                      normals=np.loadtxt(tmp_path / "box.pwn")[:, 3:], borders="extend", **kwargs)
+        assert np.array_equal(f, faces) and np.array_equal(v, vertices)
+    creased = pss.mesh(points, surface="rimls", normals=normals)
+    chamfered = pss.mesh(points, surface="rimls", normals=normals, crease_angle=180)
+    assert len(creased[0]) > len(chamfered[0])  # a vertex on the crease in each of its cubes
+    with pytest.raises(pss.Error, match="crease_angle"):
+        pss.mesh(points, crease_angle=0)
+    with pytest.raises(pss.Error, match="crease_angle"):
+        pss.mesh(points, crease_angle=float("nan"))
+
+
 def test_bad_arguments_say_what_the_cli_says(tmp_path):
     with pytest.raises(pss.Error, match="at least 3"):
         pss.mesh(np.zeros((2, 3)))

@@ -8,7 +8,7 @@
 
 #include <cstdint>
 
-#include "pss/mesh/marching_tetrahedra.hpp"
+#include "pss/mesh/implicit.hpp"
 
 namespace pss {
 

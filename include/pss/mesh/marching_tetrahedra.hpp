@@ -16,6 +16,7 @@
 #include <glm/ext/vector_double3.hpp>
 
 #include "pss/core/progress.hpp"
+#include "pss/mesh/implicit.hpp"
 #include "pss/mesh/triangle_mesh.hpp"
 
 namespace pss {
@@ -56,39 +57,13 @@ void check_band(double expected_cubes, double cell, const char* data);
 // cell size in the error where the box holds too many cells ("--cell").
 Lattice lattice_over(vec3 lo, vec3 hi, double margin, double cell, const char* what);
 
-// What the implicit says at a corner: its signed distance to the surface (positive
-// outside, where the surface's normals point), a point of the surface near it (where the
-// band grows to) unless it knows only the corner's side, and whether the distance can be
-// trusted (no surface there: no triangles).
-struct CornerSample {
-  float distance = 0;
-  vec3 surface_point{0.0f};
-  bool valid = false;
-  bool on_surface = true;  // surface_point lies on the surface; false: the band does not grow there
-};
-
-// An edge whose ends' signs differ (distance_a < 0 <= distance_b or the reverse), and the
-// vertex found on it: its position on the edge, strictly between the ends, and the
-// surface's unit normal there.
-struct EdgeCrossing {
-  vec3 a, b;
-  float distance_a, distance_b;
-};
-struct MeshVertex {
-  vec3 position, normal;
-};
-
-// The implicit, evaluated in batches (on whichever backend the caller runs).
-struct ImplicitSurface {
-  std::function<void(std::span<const vec3> corners, std::span<CornerSample> out)> sample;
-  std::function<void(std::span<const EdgeCrossing> edges, std::span<MeshVertex> out)> cross;
-};
-
 struct MarchCounts {
   std::int64_t corners = 0;          // corners evaluated
   std::int64_t cubes_visited = 0;
   std::int64_t cubes_crossed = 0;    // with triangles
   std::int64_t cubes_refused = 0;    // signs differ, but a corner invalid or a jump between two
+  std::int64_t crease_vertices = 0;    // on sharp creases (src/mesh/creases.hpp)
+  std::int64_t crease_flips = 0;       // edges turned to join two of them
   std::int64_t pinched_triangles = 0;  // removed to keep every vertex one fan (remove_pinches)
 };
 
@@ -100,9 +75,11 @@ struct MarchCounts {
 // implicit, not the surface); the band grows into the face neighbours across faces whose
 // corners' signs differ and into the cubes of the corners' surface points. The result is
 // edge-manifold, vertex-manifold, consistently oriented (outward: towards positive
-// distance) and deterministic: the same for any thread count and batch order.
+// distance) and deterministic: the same for any thread count and batch order. Where the
+// normals within a cube differ by more than `crease_angle` degrees (180: nowhere) and the
+// surface has a crease there, the cube's vertex on it replaces the chamfer (creases.hpp).
 TriangleMesh march_tetrahedra(const Lattice& lattice, std::span<const vec3> seeds, const ImplicitSurface& implicit,
-                              float max_slope, MarchCounts& counts);
+                              float max_slope, float crease_angle, MarchCounts& counts);
 
 // Removes the triangles of every fan but the largest at each vertex where a mesh's
 // triangles meet in more than one fan (touching at a vertex only), until none does; then

@@ -22,9 +22,16 @@ namespace pss {
 // the PSS resolves, at a few triangles per sample.
 inline constexpr float kDefaultCellPerH = 0.5f;
 
+// Normals within a cube differing by more than this many degrees may mark a sharp crease
+// (marching_tetrahedra.hpp): a box's edges (90°) and a blade's trailing edge. A smooth
+// surface turns this far within a cube only where its radius of curvature is below about
+// 3 cubes, and there its tangent planes meet off the surface (src/mesh/creases.hpp).
+inline constexpr float kDefaultCreaseAngle = 30.0f;
+
 struct MeshParams {
   ProjectionParams projection;  // its borders: clip ends the mesh where the samples end
   float cell = 0;               // the cubes' side; 0: kDefaultCellPerH·h
+  float crease_angle = kDefaultCreaseAngle;  // degrees, in (0, 180]; 180: no creases
 };
 
 struct CloudMesh {
