@@ -126,19 +126,10 @@ std::vector<int> patch_vertices(const TriangleMesh& mesh, const CubeTriangles& c
   return patch;
 }
 
-// Cube c's fan. The tangent planes are those of its vertices and of its face neighbours':
-// a crease that cuts off a corner of the cube may leave none of its own on the far side.
+// Cube c's fan, from the tangent planes at its vertices.
 Fan fan_of(const TriangleMesh& mesh, const CubeTriangles& cubes, std::size_t c, float cell, double most_cos) {
   Fan fan;
-  const std::vector<int> own = patch_vertices(mesh, cubes, c);
-  std::vector<int> planes_at = own;
-  for (const int next : cubes.across[c])
-    if (next >= 0) {
-      const std::vector<int> more = patch_vertices(mesh, cubes, std::size_t(next));
-      planes_at.insert(planes_at.end(), more.begin(), more.end());
-    }
-  std::sort(planes_at.begin(), planes_at.end());
-  planes_at.erase(std::unique(planes_at.begin(), planes_at.end()), planes_at.end());
+  const std::vector<int> planes_at = patch_vertices(mesh, cubes, c);
   double least_cos = 1;
   for (std::size_t i = 0; i < planes_at.size(); ++i)
     for (std::size_t j = i + 1; j < planes_at.size(); ++j)
@@ -148,11 +139,11 @@ Fan fan_of(const TriangleMesh& mesh, const CubeTriangles& cubes, std::size_t c, 
   fan.loop = boundary_loop(mesh.triangles.data() + cubes.first[c], cubes.first[c + 1] - cubes.first[c]);
   if (fan.loop.empty()) return fan;
 
-  // The point nearest the tangent planes, from the cube's vertices' mean along the
-  // directions the planes fix.
+  // The point nearest the tangent planes, from the vertices' mean along the directions the
+  // planes fix.
   glm::dvec3 mean(0.0), normal(0.0);
-  for (const int v : own) {
-    mean += glm::dvec3(mesh.positions[std::size_t(v)]) / double(own.size());
+  for (const int v : planes_at) {
+    mean += glm::dvec3(mesh.positions[std::size_t(v)]) / double(planes_at.size());
     normal += glm::dvec3(mesh.normals[std::size_t(v)]);
   }
   glm::dmat3 planes(0.0);

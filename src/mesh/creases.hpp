@@ -8,7 +8,6 @@
 // the crease runs along them.
 #pragma once
 
-#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -18,13 +17,11 @@
 
 namespace pss::mesh_detail {
 
-// The marched cubes' triangles: cube i's are mesh.triangles[first[i], first[i + 1]), its
-// lowest corner is lowest[i], and across[i][f] is the cube across its face f (−1: none
-// marched there).
+// The marched cubes' triangles: cube i's are mesh.triangles[first[i], first[i + 1]) and its
+// lowest corner is lowest[i].
 struct CubeTriangles {
   std::vector<vec3> lowest;
   std::vector<std::size_t> first;  // one more than the cubes
-  std::vector<std::array<int, 6>> across;
 };
 
 struct CreaseCounts {

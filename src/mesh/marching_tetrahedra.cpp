@@ -238,20 +238,10 @@ TriangleMesh march_tetrahedra(const Lattice& lattice, std::span<const vec3> seed
   mesh_detail::CubeTriangles cubes;
   cubes.lowest.reserve(crossed.size());
   cubes.first.reserve(crossed.size() + 1);
-  cubes.across.reserve(crossed.size());
   for (const auto& [key, negative] : crossed) {
     const ivec3 cube = Lattice::corner(key);
     cubes.lowest.push_back(lattice.position(cube));
     cubes.first.push_back(triangles.size());
-    std::array<int, 6> across;
-    for (int f = 0; f < 6; ++f) {
-      const ivec3 next = cube + kAcross[f];
-      const auto at = std::lower_bound(crossed.begin(), crossed.end(), std::pair{Lattice::key(next), -1});
-      across[std::size_t(f)] = lattice.holds_cube(next) && at != crossed.end() && at->first == Lattice::key(next)
-                                   ? int(at - crossed.begin())
-                                   : -1;
-    }
-    cubes.across.push_back(across);
     for (int t = 0; t < 6; ++t) {
       int mask = 0;
       for (int i = 0; i < 4; ++i) mask |= (negative >> kTetrahedra[t][i] & 1) << i;
