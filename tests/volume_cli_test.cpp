@@ -81,5 +81,22 @@ TEST_F(VolumeCliTest, ThresholdIsForGradientSurfacesOnly) {
   EXPECT_NE(r.err.find("--threshold"), std::string::npos) << r.err;
 }
 
+// A file with a header describes its own voxels: raw flags given with it are refused as
+// such by every command that reads volumes, not as a raw volume missing --dims.
+TEST_F(VolumeCliTest, RawFlagsWithAHeadedFileAreRefusedAsSuch) {
+  const std::string engine = std::string(PSS_SOURCE_DIR) + "/data/engine_256x256x128_uint8.nrrd";
+  const std::string out = (dir_ / "o").string();
+  for (const std::string& command :
+       {"volume " + engine + " --iso 100 --type uint16 -o " + out + ".png",
+        "extract " + engine + " --iso 100 --spacing 1,1,2 -o " + out + ".ply",
+        "mesh " + engine + " --iso 100 --type uint16 -o " + out + ".ply", "info " + engine + " --skip 4"}) {
+    const test::CliResult r = test::run_pss(command);
+    EXPECT_NE(r.exit_code, 0) << command;
+    EXPECT_NE(r.err.find(engine + ": the file's header describes the volume; drop --dims"), std::string::npos)
+        << command << "\n" << r.err;
+    EXPECT_FALSE(fs::exists(out + ".png") || fs::exists(out + ".ply")) << command;
+  }
+}
+
 }  // namespace
 }  // namespace pss

@@ -143,7 +143,7 @@ void add_info_command(CLI::App& app, Action action) {
   add_raw_volume_options(*command, *raw);
   add_progress_option(*command);
   command->callback([path, raw, action] {
-    const std::optional<RawVolumeFormat> format = raw_volume_format(*raw);
+    const std::optional<RawVolumeFormat> format = raw_volume_format(*raw, *path);
     if (action == Action::check) return;
     if (format || has_volume_header(*path))
       print_volume(*path, format);

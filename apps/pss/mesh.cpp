@@ -39,7 +39,15 @@ constexpr const char* kVolumeFlags[] = {"--iso",   "--gradient", "--method", "--
                                         "--alpha", "--smoothing", "--error", "--threshold"};
 
 // A volume has a header (.nrrd, .mhd, .nii, ...) or is raw, described by --dims and --type.
-bool is_volume(const MeshOptions& o) { return has_volume_header(o.input) || raw_volume_format(o.volume.raw); }
+bool is_volume(const MeshOptions& o) { return has_volume_header(o.input) || raw_volume_format(o.volume.raw, o.input); }
+
+// `pss volume`'s options of this mesh's volume: its input, and --h as the volume's width.
+VolumeOptions volume_options(const MeshOptions& o) {
+  VolumeOptions options = o.volume;
+  options.input = o.input;
+  if (o.surface.h != 0) options.settings.h = o.surface.h;
+  return options;
+}
 
 // The flags of the other kind of data refused, the volume's checked together; reads nothing.
 void check_mesh_options(const MeshOptions& o) {
@@ -52,7 +60,7 @@ void check_mesh_options(const MeshOptions& o) {
                   o.input + " is " +
                   (volume ? "a volume" : "read as a point cloud (a volume has a header, or is raw with --dims)"));
   if (!volume) return;
-  check_volume_options(o.volume);
+  check_volume_options(volume_options(o));
   if (o.surface.h != 0 && o.surface.h < kMinVolumeH) {
     char message[160];
     std::snprintf(message, sizeof message, "--h: a volume's h is in voxels, at least %g (got %g)", double(kMinVolumeH),
@@ -158,9 +166,7 @@ void run_cloud_mesh(const MeshOptions& o, Stats& stats, std::chrono::steady_cloc
 
 void run_volume_mesh(const MeshOptions& o, Stats& stats, std::chrono::steady_clock::time_point start) {
   const Backend backend = start_compute(o.compute);
-  VolumeOptions options = o.volume;
-  options.input = o.input;
-  if (o.surface.h != 0) options.settings.h = o.surface.h;
+  const VolumeOptions options = volume_options(o);
   const PreparedVolume volume = load_volume(options, stats);
   const VolumeMesh result = naming_input(o.input, [&] { return mesh_volume(volume, o.cell, backend, stats); });
   const VolumeView view = volume.fields.volume.view();

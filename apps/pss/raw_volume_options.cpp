@@ -18,8 +18,10 @@ void add_raw_volume_options(CLI::App& command, RawVolumeOptions& o) {
       ->check(parsed_by(parse_skip, "--skip", "BYTES"));
 }
 
-std::optional<RawVolumeFormat> raw_volume_format(const RawVolumeOptions& o) {
+std::optional<RawVolumeFormat> raw_volume_format(const RawVolumeOptions& o, const std::string& input) {
   if (o.dims.empty() && o.type.empty() && o.spacing.empty() && o.endian.empty() && o.skip.empty()) return std::nullopt;
+  if (has_volume_header(input))
+    throw Error(input + ": the file's header describes the volume; drop --dims/--type/--spacing/--endian/--skip");
   if (o.dims.empty()) throw Error("a raw volume needs --dims XxYxZ");
   RawVolumeFormat f;
   f.dims = parse_dims(o.dims);

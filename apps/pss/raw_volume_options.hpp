@@ -17,8 +17,8 @@ struct RawVolumeOptions {
 
 void add_raw_volume_options(CLI::App& command, RawVolumeOptions& options);
 
-// The raw format when any raw flag was given (and then --dims is required), else nullopt
-// (the file must then be a format with a header).
-std::optional<RawVolumeFormat> raw_volume_format(const RawVolumeOptions& options);
+// The raw format of `input` when any raw flag was given (and then --dims is required, and
+// `input` must have no header), else nullopt (the file must then be a format with a header).
+std::optional<RawVolumeFormat> raw_volume_format(const RawVolumeOptions& options, const std::string& input);
 
 }  // namespace pss::app

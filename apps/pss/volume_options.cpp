@@ -60,7 +60,7 @@ void add_volume_surface_flags(CLI::App& command, VolumeOptions& o, bool method_f
 std::optional<RawVolumeFormat> check_volume_options(const VolumeOptions& o) {
   if (o.iso_option->count() == 0 && !o.settings.gradient) throw Error("choose the surface: --iso V or --gradient");
   if (o.settings.threshold > 0 && !o.settings.gradient) throw Error("--threshold applies to --gradient surfaces only");
-  return raw_volume_format(o.raw);
+  return raw_volume_format(o.raw, o.input);
 }
 
 PreparedVolume load_volume(const VolumeOptions& o, Stats& stats) {

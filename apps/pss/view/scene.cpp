@@ -79,7 +79,7 @@ class CloudScene : public Scene {
 class VolumeScene : public Scene {
  public:
   VolumeScene(const VolumeOptions& o, ViewSettings& settings) {
-    volume_ = read_volume(o.input, raw_volume_format(o.raw));
+    volume_ = read_volume(o.input, raw_volume_format(o.raw, o.input));
     const ValueStats values = value_stats(volume_.values);
     info_.is_volume = true;
     info_.description = std::to_string(volume_.dims.x) + "x" + std::to_string(volume_.dims.y) + "x" +
@@ -133,7 +133,7 @@ class VolumeScene : public Scene {
 }  // namespace
 
 std::unique_ptr<Scene> open_scene(const VolumeOptions& o, ViewSettings& settings) {
-  const bool volume = has_volume_header(o.input) || raw_volume_format(o.raw).has_value();
+  const bool volume = has_volume_header(o.input) || raw_volume_format(o.raw, o.input).has_value();
   if (!volume) return std::make_unique<CloudScene>(o.input, settings);
   try {
     return std::make_unique<VolumeScene>(o, settings);
