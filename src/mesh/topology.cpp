@@ -21,15 +21,29 @@ namespace mesh_detail {
 Incidence incidence(const std::vector<std::array<int, 3>>& triangles) {
   const std::size_t nt = triangles.size();
   Incidence in{{}, ConnectedComponents<std::int64_t>(nt), ConnectedComponents<std::int64_t>(3 * nt)};
-  in.sides.reserve(3 * nt);
+  // The sides sorted on (low, high, triangle) in about linear time: counted into one bucket
+  // per lower vertex, then each bucket, a vertex's few edges, sorted on its own.
+  int vertices = 0;
+  for (const auto& t : triangles) vertices = std::max({vertices, t[0] + 1, t[1] + 1, t[2] + 1});
+  std::vector<std::int64_t> start(std::size_t(vertices) + 1, 0);
+  auto side = [&](std::size_t i, int k) {
+    const int a = triangles[i][std::size_t(k)], b = triangles[i][std::size_t((k + 1) % 3)];
+    return Side{std::min(a, b), std::max(a, b), a < b, std::int64_t(i)};
+  };
+  for (std::size_t i = 0; i < nt; ++i)
+    for (int k = 0; k < 3; ++k) ++start[std::size_t(side(i, k).low) + 1];
+  for (std::size_t v = 0; v < std::size_t(vertices); ++v) start[v + 1] += start[v];
+  in.sides.resize(3 * nt);
+  std::vector<std::int64_t> next(start.begin(), start.end() - 1);
   for (std::size_t i = 0; i < nt; ++i)
     for (int k = 0; k < 3; ++k) {
-      const int a = triangles[i][std::size_t(k)], b = triangles[i][std::size_t((k + 1) % 3)];
-      in.sides.push_back({std::min(a, b), std::max(a, b), a < b, std::int64_t(i)});
+      const Side s = side(i, k);
+      in.sides[std::size_t(next[std::size_t(s.low)]++)] = s;
     }
-  std::sort(in.sides.begin(), in.sides.end(), [](const Side& x, const Side& y) {
-    return x.low != y.low ? x.low < y.low : x.high != y.high ? x.high < y.high : x.triangle < y.triangle;
-  });
+  for (std::size_t v = 0; v < std::size_t(vertices); ++v)
+    std::sort(in.sides.begin() + start[v], in.sides.begin() + start[v + 1], [](const Side& x, const Side& y) {
+      return x.high != y.high ? x.high < y.high : x.triangle < y.triangle;
+    });
   auto corner = [&](std::int64_t triangle, int vertex) -> std::int64_t {
     const auto& v = triangles[std::size_t(triangle)];
     return 3 * triangle + (v[0] == vertex ? 0 : v[1] == vertex ? 1 : 2);
