@@ -10,9 +10,10 @@ namespace pss {
 
 namespace {
 
-// A component with at most one boundary edge in this many is nearly closed: a few small
-// holes, whose lids change its volume little.
-constexpr std::int64_t kNearlyClosed = 100;
+// A component whose holes' lids have at most this share of its area is nearly closed: the
+// lids close it. A wider opening is a sheet's or a scan of one side's (a hemisphere's lid
+// is half its area), which encloses nothing.
+constexpr double kLidShare = 0.25;
 
 }  // namespace
 
@@ -110,38 +111,69 @@ MeshTopology topology(const TriangleMesh& mesh) {
 
 double enclosed_volume(const TriangleMesh& mesh) {
   mesh_detail::Incidence in = mesh_detail::incidence(mesh.triangles);
-  const std::size_t nt = mesh.triangles.size();
+  const std::size_t nt = mesh.triangles.size(), nv = mesh.positions.size();
   if (nt == 0) return 0;
-  // Edges and boundary edges by component (its root triangle).
-  std::vector<std::int64_t> edges(nt, 0), boundary(nt, 0);
+  auto position = [&](int v) { return glm::dvec3(mesh.positions[std::size_t(v)]); };
+  // The rim: each edge with one side, as its triangle runs, and the component it bounds
+  // (its root triangle); its holes: the rim's pieces joined at their vertices.
+  struct RimEdge {
+    int from, to;
+    std::size_t component;
+  };
+  std::vector<RimEdge> rim;
+  ConnectedComponents<std::int64_t> holes(nv);
   const auto& sides = in.sides;
   for (std::size_t i = 0; i < sides.size();) {
     std::size_t j = i + 1;
     while (j < sides.size() && sides[j].same_edge(sides[i])) ++j;
-    const auto root = std::size_t(in.components.find(sides[i].triangle));
-    ++edges[root];
-    boundary[root] += j - i == 1;
+    const mesh_detail::Side& s = sides[i];
+    if (j - i == 1 && s.low != s.high) {
+      rim.push_back({s.forward ? s.low : s.high, s.forward ? s.high : s.low,
+                     std::size_t(in.components.find(s.triangle))});
+      holes.join(s.low, s.high);
+    }
     i = j;
   }
-  // Σ det(a − o, b − o, c − o)/6 about one vertex o of each component, in double: the
-  // divergence theorem, exact for a closed surface; a hole's lid, left out, is small where
-  // the holes are.
+  // Each hole's centre (the mean of its edges' ends) and its vector area ½ Σ a × b (its
+  // lid's area where flat); each component's own area and its holes'.
+  std::vector<glm::dvec3> centre(nv, glm::dvec3(0.0)), hole_area(nv, glm::dvec3(0.0));
+  std::vector<double> ends(nv, 0), area(nt, 0), lids(nt, 0);
+  for (const RimEdge& e : rim) {
+    const auto hole = std::size_t(holes.find(e.from));
+    centre[hole] += position(e.from) + position(e.to);
+    ends[hole] += 2;
+    hole_area[hole] += glm::cross(position(e.from), position(e.to)) / 2.0;
+  }
+  for (const RimEdge& e : rim) {
+    const auto hole = std::size_t(holes.find(e.from));
+    if (ends[hole] == 0) continue;  // counted
+    centre[hole] /= ends[hole];
+    lids[e.component] += glm::length(hole_area[hole]);
+    ends[hole] = 0;
+  }
+  for (std::size_t t = 0; t < nt; ++t) {
+    const auto& v = mesh.triangles[t];
+    area[std::size_t(in.components.find(std::int64_t(t)))] +=
+        glm::length(glm::cross(position(v[1]) - position(v[0]), position(v[2]) - position(v[0]))) / 2;
+  }
+  // Σ det(a − o, b − o, c − o)/6 over the triangles and the holes' lids (fans from their
+  // centres, run against the rim) of each nearly closed component, about one of its vertices
+  // o, in double: the divergence theorem, exact for a closed surface.
+  auto cone = [](glm::dvec3 a, glm::dvec3 b, glm::dvec3 c, glm::dvec3 o) {
+    return glm::dot(a - o, glm::cross(b - o, c - o)) / 6;
+  };
+  auto closed = [&](std::size_t component) { return lids[component] <= kLidShare * area[component]; };
   std::vector<glm::dvec3> origin(nt);
-  std::vector<char> has_origin(nt, 0);
+  for (std::size_t t = nt; t-- > 0;) origin[std::size_t(in.components.find(std::int64_t(t)))] = position(mesh.triangles[t][0]);
   double volume = 0;
   for (std::size_t t = 0; t < nt; ++t) {
-    const auto root = std::size_t(in.components.find(std::int64_t(t)));
-    if (boundary[root] * kNearlyClosed > edges[root]) continue;
+    const auto component = std::size_t(in.components.find(std::int64_t(t)));
     const auto& v = mesh.triangles[t];
-    if (!has_origin[root]) {
-      origin[root] = glm::dvec3(mesh.positions[std::size_t(v[0])]);
-      has_origin[root] = 1;
-    }
-    const glm::dvec3 o = origin[root], a = glm::dvec3(mesh.positions[std::size_t(v[0])]) - o,
-                     b = glm::dvec3(mesh.positions[std::size_t(v[1])]) - o,
-                     c = glm::dvec3(mesh.positions[std::size_t(v[2])]) - o;
-    volume += glm::dot(a, glm::cross(b, c)) / 6;
+    if (closed(component)) volume += cone(position(v[0]), position(v[1]), position(v[2]), origin[component]);
   }
+  for (const RimEdge& e : rim)
+    if (closed(e.component))
+      volume += cone(position(e.to), position(e.from), centre[std::size_t(holes.find(e.from))], origin[e.component]);
   return volume;
 }
 

@@ -41,8 +41,9 @@ MeshTopology topology(const TriangleMesh& mesh);
 // The volume the mesh's closed components enclose, signed: positive where their triangles
 // face outward (counter-clockwise seen from outside), negative where inward. A cavity's
 // closed surface, facing into the cavity, counts negative, as it should. Components nearly
-// closed (at most one edge in 100 on a boundary: small holes) count as if their holes had
-// lids; others, a sheet or a scan of one side, enclose nothing and count 0.
+// closed (their holes' lids, fans from each hole's centre, at most a quarter of their area)
+// count closed by those lids; others, a sheet or a scan of one side, enclose nothing and
+// count 0.
 double enclosed_volume(const TriangleMesh& mesh);
 
 // Every triangle's winding reversed and every normal negated.
