@@ -67,6 +67,7 @@ RenderedFrame render_frames(const RenderOptions& options, Stats& stats, Render&&
   std::nth_element(order.begin(), order.begin() + order.size() / 2, order.end(),
                    [&](std::size_t a, std::size_t b) { return seconds[a] < seconds[b]; });
   for (const auto& [phase, s] : runs[order[order.size() / 2]].times()) stats.add_time(phase, s);
+  for (const auto& [phase, bytes] : runs[order[order.size() / 2]].peaks()) stats.add_peak(phase, bytes);
   stats.values()["frames"] = options.frames;
   stats.values()["every_frame_seconds"] = seconds;
   return frame;

@@ -29,8 +29,10 @@ void parallel_for(Backend backend, const char* phase, std::int64_t n, const Kern
   if (backend == Backend::cuda) {
 #if PSS_HAVE_CUDA
     if (!progress) Progress::phase_begun(phase);
+    const int peak_watch = begin_peak_watch();
     const double seconds = n > 0 ? cuda::launch(phase, n, kernel, progress) : 0.0;
     stats.add_time(phase, seconds);
+    stats.add_peak(phase, end_peak_watch(peak_watch));
     if (!progress) Progress::phase_ended(phase, seconds);
 #else
     cuda_not_built(phase);

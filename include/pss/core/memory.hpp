@@ -1,0 +1,19 @@
+// Resident memory as the kernel counts it (Linux /proc): the peak of each phase of a run,
+// which --stats records (issue 28). The kernel keeps one high-water mark per process; a
+// phase resets it when it begins, having folded what it held into the phases still open
+// around it, so nested phases each get their own peak.
+#pragma once
+
+#include <cstdint>
+
+namespace pss {
+
+// Opens a phase's watch: its peak counts from now.
+int begin_peak_watch();
+// Closes it: the peak resident bytes since begin_peak_watch(id); -1 where this system
+// neither tells the resident size nor lets the mark be reset.
+std::int64_t end_peak_watch(int id);
+// The peak resident bytes of the whole process so far; -1 where unknown.
+std::int64_t process_peak_bytes();
+
+}  // namespace pss

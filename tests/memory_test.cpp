@@ -1,0 +1,77 @@
+// The peak resident memory of each phase that --stats records (issue 28): a phase's own peak,
+// not the process's so far; an outer phase's holds its inner phases'; the whole run's is
+// "total"; and every phase a command times has one.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "pss/core/stats.hpp"
+#include "support/cli.hpp"
+
+namespace pss {
+namespace {
+
+constexpr std::int64_t kBlock = std::int64_t(128) << 20;
+
+// Touches every page of kBlock bytes, so that they are resident, and frees them.
+void touch_a_block() {
+  std::vector<char> block(static_cast<std::size_t>(kBlock));
+  for (std::size_t i = 0; i < block.size(); i += 4096) block[i] = char(i >> 12);
+  volatile char sink = block[block.size() / 2];
+  (void)sink;
+}
+
+TEST(PeakMemory, EachPhaseHasItsOwnPeakAndAnOuterPhaseHoldsItsInners) {
+  Stats stats;
+  {
+    ScopedPhase outer(stats, "outer", false);
+    {
+      ScopedPhase big(stats, "big", false);
+      touch_a_block();
+    }
+    ScopedPhase small(stats, "small", false);
+  }
+  const nlohmann::json peak = stats.to_json()["peak_bytes"];
+  if (!peak.contains("big")) GTEST_SKIP() << "this system neither tells nor resets the resident peak";
+  const std::int64_t big = peak["big"], small = peak["small"], outer = peak["outer"], total = peak["total"];
+  EXPECT_GE(big, kBlock);
+  EXPECT_LT(small, big - kBlock / 2);  // its own peak: the block was freed before it began
+  EXPECT_GE(outer, big);
+  EXPECT_GE(total, outer);
+  // A phase run again keeps its larger peak.
+  stats.add_peak("small", big);
+  stats.add_peak("small", 1);
+  EXPECT_EQ(stats.to_json()["peak_bytes"]["small"], big);
+}
+
+class PeakMemoryCli : public test::CliTest {};
+
+// `project` and `mesh` record a peak for every phase they time, none above the whole run's.
+TEST_F(PeakMemoryCli, EveryTimedPhaseHasAPeakWithinTheRunsPeak) {
+  const std::string bunny = std::string(PSS_SOURCE_DIR) + "/data/bun_zipper.ply";
+  for (const std::string command : {"project", "mesh"}) {
+    const std::string stats_path = path(command + ".json");
+    const test::CliResult r = test::run_pss(command + " " + bunny + " -o " + path(command + ".ply") +
+                                            " --progress never --stats " + stats_path);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    std::ifstream in(stats_path);
+    const nlohmann::json j = nlohmann::json::parse(in);
+    const nlohmann::json& peak = j["peak_bytes"];
+    if (!peak.contains("read")) GTEST_SKIP() << "this system neither tells nor resets the resident peak";
+    const std::int64_t total = peak["total"];
+    EXPECT_GT(total, 35947 * 12) << command;  // at least the points' positions
+    for (const auto& [phase, seconds] : j["seconds"].items()) {
+      ASSERT_TRUE(peak.contains(phase)) << command << ": " << phase;
+      EXPECT_GT(peak[phase].get<std::int64_t>(), 0) << command << ": " << phase;
+      EXPECT_LE(peak[phase].get<std::int64_t>(), total) << command << ": " << phase;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace pss
