@@ -18,6 +18,15 @@ namespace {
 
 constexpr std::int64_t kBlock = std::int64_t(128) << 20;
 
+// Whether this system tells the peak resident size and lets it be reset (Linux 4.0): asked
+// here, not of the code under test, so that a peak it fails to record fails the test.
+bool peaks_are_told() {
+  std::ofstream reset("/proc/self/clear_refs");
+  reset << "5";
+  reset.flush();
+  return reset.good() && std::ifstream("/proc/self/status").good();
+}
+
 // Touches every page of kBlock bytes, so that they are resident, and frees them.
 void touch_a_block() {
   std::vector<char> block(static_cast<std::size_t>(kBlock));
@@ -27,6 +36,7 @@ void touch_a_block() {
 }
 
 TEST(PeakMemory, EachPhaseHasItsOwnPeakAndAnOuterPhaseHoldsItsInners) {
+  if (!peaks_are_told()) GTEST_SKIP() << "this system neither tells nor resets the resident peak";
   Stats stats;
   {
     ScopedPhase outer(stats, "outer", false);
@@ -37,7 +47,7 @@ TEST(PeakMemory, EachPhaseHasItsOwnPeakAndAnOuterPhaseHoldsItsInners) {
     ScopedPhase small(stats, "small", false);
   }
   const nlohmann::json peak = stats.to_json()["peak_bytes"];
-  if (!peak.contains("big")) GTEST_SKIP() << "this system neither tells nor resets the resident peak";
+  for (const char* phase : {"big", "small", "outer", "total"}) ASSERT_TRUE(peak.contains(phase)) << phase;
   const std::int64_t big = peak["big"], small = peak["small"], outer = peak["outer"], total = peak["total"];
   EXPECT_GE(big, kBlock);
   EXPECT_LT(small, big - kBlock / 2);  // its own peak: the block was freed before it began
@@ -53,6 +63,7 @@ class PeakMemoryCli : public test::CliTest {};
 
 // `project` and `mesh` record a peak for every phase they time, none above the whole run's.
 TEST_F(PeakMemoryCli, EveryTimedPhaseHasAPeakWithinTheRunsPeak) {
+  if (!peaks_are_told()) GTEST_SKIP() << "this system neither tells nor resets the resident peak";
   const std::string bunny = std::string(PSS_SOURCE_DIR) + "/data/bun_zipper.ply";
   for (const std::string command : {"project", "mesh"}) {
     const std::string stats_path = path(command + ".json");
@@ -62,7 +73,7 @@ TEST_F(PeakMemoryCli, EveryTimedPhaseHasAPeakWithinTheRunsPeak) {
     std::ifstream in(stats_path);
     const nlohmann::json j = nlohmann::json::parse(in);
     const nlohmann::json& peak = j["peak_bytes"];
-    if (!peak.contains("read")) GTEST_SKIP() << "this system neither tells nor resets the resident peak";
+    ASSERT_TRUE(peak.contains("total")) << command;
     const std::int64_t total = peak["total"];
     EXPECT_GT(total, 35947 * 12) << command;  // at least the points' positions
     for (const auto& [phase, seconds] : j["seconds"].items()) {
