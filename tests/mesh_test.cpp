@@ -30,12 +30,19 @@ vec3 face_normal(const TriangleMesh& m, const std::array<int, 3>& t) {
   return glm::normalize(glm::cross(m.positions[std::size_t(t[1])] - a, m.positions[std::size_t(t[2])] - a));
 }
 
+// A unit sphere off the lattice's symmetry, marched in cubes of 0.1.
+const test::Sphere kSphere{vec3(0.013f, -0.021f, 0.007f), 1.0f};
+TriangleMesh marched_sphere(MarchCounts& counts) {
+  const ImplicitSurface s =
+      analytic([&](vec3 p) { return kSphere.distance(p); }, [&](vec3 p) { return kSphere.normal(p); });
+  const vec3 seed[] = {kSphere.center + vec3(1, 0, 0)};
+  return march(s, vec3(-1), vec3(1), 0.1f, seed, counts);
+}
+
 TEST(MarchingTetrahedra, ASphereIsOneWatertightOutwardSurface) {
-  const test::Sphere sphere{vec3(0.013f, -0.021f, 0.007f), 1.0f};
-  const ImplicitSurface s = analytic([&](vec3 p) { return sphere.distance(p); }, [&](vec3 p) { return sphere.normal(p); });
-  const vec3 seed[] = {sphere.center + vec3(1, 0, 0)};
+  const test::Sphere& sphere = kSphere;
   MarchCounts counts;
-  const TriangleMesh m = march(s, vec3(-1), vec3(1), 0.1f, seed, counts);
+  const TriangleMesh m = marched_sphere(counts);
   const MeshTopology t = topology(m);
   EXPECT_TRUE(t.watertight());
   EXPECT_EQ(t.euler_characteristic(), 2);
@@ -81,11 +88,9 @@ TEST(CloudImplicit, TheOutsideIsTheNearestSampleAlongTheNormalElseTheNearest) {
 // the dragon's scan (a 1/58 of its edges on holes): the sign of its volume says which way
 // it faces. Wider openings enclose nothing.
 TEST(EnclosedVolume, HolesCountClosedByTheirLidsOpeningsCountNothing) {
-  const test::Sphere sphere{vec3(0.013f, -0.021f, 0.007f), 1.0f};
-  const ImplicitSurface s = analytic([&](vec3 p) { return sphere.distance(p); }, [&](vec3 p) { return sphere.normal(p); });
-  const vec3 seed[] = {sphere.center + vec3(1, 0, 0)};
+  const test::Sphere& sphere = kSphere;
   MarchCounts counts;
-  const TriangleMesh m = march(s, vec3(-1), vec3(1), 0.1f, seed, counts);
+  const TriangleMesh m = marched_sphere(counts);
   const double ball = 4.0 / 3.0 * 3.14159265358979;
   // Without its triangles above a height: caps of 10 % and 20 % of its area, and half.
   auto cut = [&](float above) {
