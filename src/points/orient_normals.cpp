@@ -28,6 +28,9 @@ void orient_normals_consistently(std::span<const vec3> points, std::span<vec3> n
     bool operator>(const Edge& o) const { return cost > o.cost || (cost == o.cost && node > o.node); }
   };
   std::vector<char> done(points.size(), 0);
+  // The cheapest edge queued to each point: one no cheaper is never the first to reach it,
+  // and is not queued (Prim's queue held every edge: 5 GB at 10^7 points).
+  std::vector<float> cheapest(points.size(), kInfinity);
   std::priority_queue<Edge, std::vector<Edge>, std::greater<>> frontier;
   // One thread: advancing once per 4096 points oriented keeps the atomic out of the inner loop.
   Progress progress("orient normals", std::int64_t(points.size()));
@@ -51,7 +54,10 @@ void orient_normals_consistently(std::span<const vec3> points, std::span<vec3> n
         // Along the surface, not across it: a neighbour stacked above or below (the other
         // face of a thin part, whose normal is as parallel) is reached last.
         const float across = d2 > 0 ? std::abs(glm::dot(q - points[i], normals[i])) / std::sqrt(d2) : 0.0f;
-        frontier.push({1.0f - std::abs(glm::dot(normals[i], normals[j])) + across, j, i});
+        const float cost = 1.0f - std::abs(glm::dot(normals[i], normals[j])) + across;
+        if (!(cost < cheapest[std::size_t(j)])) return;
+        cheapest[std::size_t(j)] = cost;
+        frontier.push({cost, j, i});
       });
     }
   }
