@@ -157,23 +157,22 @@ double enclosed_volume(const TriangleMesh& mesh) {
         glm::length(glm::cross(position(v[1]) - position(v[0]), position(v[2]) - position(v[0]))) / 2;
   }
   // Σ det(a − o, b − o, c − o)/6 over the triangles and the holes' lids (fans from their
-  // centres, run against the rim) of each nearly closed component, about one of its vertices
-  // o, in double: the divergence theorem, exact for a closed surface.
-  auto cone = [](glm::dvec3 a, glm::dvec3 b, glm::dvec3 c, glm::dvec3 o) {
+  // centres, run against the rim) of each nearly closed component, about a vertex o of its
+  // root (least) triangle, in double: the divergence theorem, exact for a closed surface.
+  auto cone = [&](glm::dvec3 a, glm::dvec3 b, glm::dvec3 c, std::size_t component) {
+    const glm::dvec3 o = position(mesh.triangles[component][0]);
     return glm::dot(a - o, glm::cross(b - o, c - o)) / 6;
   };
   auto closed = [&](std::size_t component) { return lids[component] <= kLidShare * area[component]; };
-  std::vector<glm::dvec3> origin(nt);
-  for (std::size_t t = nt; t-- > 0;) origin[std::size_t(in.components.find(std::int64_t(t)))] = position(mesh.triangles[t][0]);
   double volume = 0;
   for (std::size_t t = 0; t < nt; ++t) {
     const auto component = std::size_t(in.components.find(std::int64_t(t)));
     const auto& v = mesh.triangles[t];
-    if (closed(component)) volume += cone(position(v[0]), position(v[1]), position(v[2]), origin[component]);
+    if (closed(component)) volume += cone(position(v[0]), position(v[1]), position(v[2]), component);
   }
   for (const RimEdge& e : rim)
     if (closed(e.component))
-      volume += cone(position(e.to), position(e.from), centre[std::size_t(holes.find(e.from))], origin[e.component]);
+      volume += cone(position(e.to), position(e.from), centre[std::size_t(holes.find(e.from))], e.component);
   return volume;
 }
 
