@@ -47,9 +47,10 @@ PSS_INLINE vec3 normal_along(const SupportGridView& grid, vec3 x, vec3 n) {
 
 // x's signed distance to P(x) on the surface with the oriented normal n there: along the
 // normal, among n and those of the samples whose support holds P(x) and that do not face
-// away from n, along which x lies farthest from P(x). Where P(x) is on a crease, n may be either face's,
-// and x, off the other face, lies along n nowhere near as far as it is from the surface,
-// or even on the wrong side (a box's edges: f < 0 up to 0.02 outside, and bubbles there).
+// away from n, along which x lies farthest from P(x). Where P(x) is on a crease, n may be
+// either face's, and x, off the other face, lies along n nowhere near as far as it is from
+// the surface, or even on the wrong side (a box's edges: f < 0 up to 0.02 outside, and
+// bubbles there).
 PSS_INLINE float distance_across(const SupportGridView& grid, vec3 x, vec3 surface_point, vec3 n) {
   const vec3 d = x - surface_point;
   float distance = glm::dot(d, n);
