@@ -6,21 +6,27 @@
 
 namespace pss {
 
-void Stats::add_time(const std::string& phase, double seconds) {
-  auto it = std::find_if(times_.begin(), times_.end(), [&](const auto& t) { return t.first == phase; });
-  if (it == times_.end())
-    times_.emplace_back(phase, seconds);
+namespace {
+
+// The value of `phase` in `entries`, in the order first recorded: `value` when it has none,
+// else `combine(old, value)`.
+template <class T, class Combine>
+void record(std::vector<std::pair<std::string, T>>& entries, const std::string& phase, T value, Combine combine) {
+  auto it = std::find_if(entries.begin(), entries.end(), [&](const auto& e) { return e.first == phase; });
+  if (it == entries.end())
+    entries.emplace_back(phase, value);
   else
-    it->second += seconds;
+    it->second = combine(it->second, value);
+}
+
+}  // namespace
+
+void Stats::add_time(const std::string& phase, double seconds) {
+  record(times_, phase, seconds, [](double a, double b) { return a + b; });
 }
 
 void Stats::add_peak(const std::string& phase, std::int64_t bytes) {
-  if (bytes < 0) return;
-  auto it = std::find_if(peaks_.begin(), peaks_.end(), [&](const auto& p) { return p.first == phase; });
-  if (it == peaks_.end())
-    peaks_.emplace_back(phase, bytes);
-  else
-    it->second = std::max(it->second, bytes);
+  if (bytes >= 0) record(peaks_, phase, bytes, [](std::int64_t a, std::int64_t b) { return std::max(a, b); });
 }
 
 double Stats::time(const std::string& phase) const {

@@ -39,9 +39,8 @@ class Stats {
 };
 
 // Adds the time from construction to destruction (or stop()) to a phase, and its peak
-// resident memory over that time (memory.hpp), and shows the
-// phase's progress (Progress::phase_begun); a phase whose steps a Progress counts passes
-// announce = false.
+// resident memory over that time (memory.hpp), and shows the phase's progress
+// (Progress::phase_begun); a phase whose steps a Progress counts passes announce = false.
 class ScopedPhase {
  public:
   ScopedPhase(Stats& stats, std::string phase, bool announce = true)
