@@ -18,7 +18,7 @@ constexpr int kLinks = 4;  // the nearest neighbours a sample is chained to
 std::vector<unsigned> chains(std::span<const vec3> unit, const KdTree& tree) {
   const std::size_t n = unit.size();
   ConnectedComponents chained(n);
-  cpu::parallel_for(std::int64_t(n), [&](std::int64_t i) {
+  parallel_for_in_tree_order(tree, [&](std::int64_t i) {
     unsigned index[kLinks + 1] = {};
     float d2[kLinks + 1] = {};
     const std::size_t found = tree.knnSearch(&unit[std::size_t(i)].x, kLinks + 1, index, d2);
@@ -49,7 +49,7 @@ std::vector<float> row_gaps(std::span<const vec3> unit, const KdTree& tree, std:
   if (!most(on_row)) return {};
 
   std::vector<float> gap(n, 0.0f);
-  cpu::parallel_for(std::int64_t(n), [&](std::int64_t s) {
+  parallel_for_in_tree_order(tree, [&](std::int64_t s) {
     const auto i = std::size_t(s);
     if (!on_row[i]) return;
     constexpr std::size_t kFarthest = 512;

@@ -57,7 +57,7 @@ NeighbourhoodSpacing neighbourhood_spacing(std::span<const vec3> unit, double sc
   Progress progress("support widths", 2 * n);
   // 2k + 1 below: each query finds its own point at distance 0; the 2k-th nearest tells a
   // row from a surface (rows.hpp).
-  cpu::parallel_for(n, [&](std::int64_t i) {
+  points_detail::parallel_for_in_tree_order(tree, [&](std::int64_t i) {
     unsigned index[2 * kSupportNeighbour + 1];
     float d2[2 * kSupportNeighbour + 1];
     const std::size_t found = tree.knnSearch(&unit[std::size_t(i)].x, std::size_t(2 * k + 1), index, d2);
@@ -73,7 +73,7 @@ NeighbourhoodSpacing neighbourhood_spacing(std::span<const vec3> unit, double sc
     out.rows_median = float(double(median_of(own)) * scale);
     for (std::size_t i = 0; i < own.size(); ++i) own[i] = std::max(own[i], gaps[i]);
   }
-  cpu::parallel_for(n, [&](std::int64_t i) {
+  points_detail::parallel_for_in_tree_order(tree, [&](std::int64_t i) {
     unsigned index[kSupportNeighbour + 1];
     float d2[kSupportNeighbour + 1];
     const std::size_t found = tree.knnSearch(&unit[std::size_t(i)].x, std::size_t(k + 1), index, d2);
@@ -135,12 +135,12 @@ SupportWidths support_widths(std::span<const vec3> points, const ProjectionParam
   // A sample widens where it lies on a sparse surface (support.hpp): sparse, with no denser
   // sample among its neighbours, flat, and kSparseNeighbours of its neighbours alike.
   std::vector<char> sparse(points.size(), 0), wide(points.size(), 0);
-  cpu::parallel_for(std::int64_t(points.size()), [&](std::int64_t i) {
+  points_detail::parallel_for_in_tree_order(tree, [&](std::int64_t i) {
     const auto j = std::size_t(i);
     sparse[j] = kSupportWidening * d[j] > median_d && spacing.least[j] >= kSparseEvenness &&
                 !fills_a_volume(unit, tree, j);
   });
-  cpu::parallel_for(std::int64_t(points.size()), [&](std::int64_t i) {
+  points_detail::parallel_for_in_tree_order(tree, [&](std::int64_t i) {
     if (!sparse[std::size_t(i)]) return;
     unsigned index[kSupportNeighbour + 1];
     float d2[kSupportNeighbour + 1];
