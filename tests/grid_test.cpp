@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <numeric>
 #include <random>
 
 #include "pss/spatial/uniform_grid.hpp"
@@ -34,6 +35,32 @@ TEST(UniformGrid, RangeQueriesEqualBruteForce) {
       ASSERT_EQ(found, brute) << "trial " << trial << " query " << q;
     }
   }
+}
+
+TEST(CountingSort, SortsByKeyStablyWithOneOffsetPerKey) {
+  std::mt19937 rng(3);
+  for (const std::size_t keys : {std::size_t(1), std::size_t(7), std::size_t(5000)}) {  // more keys than items too
+    std::uniform_int_distribution<int> pick(0, int(keys) - 1);
+    std::vector<int> key(1000);
+    for (int& k : key) k = pick(rng);
+    std::vector<int> cell_start, order;
+    counting_sort(key, keys, cell_start, order);
+    std::vector<int> expected(key.size());
+    std::iota(expected.begin(), expected.end(), 0);
+    std::stable_sort(expected.begin(), expected.end(), [&](int a, int b) { return key[a] < key[b]; });
+    EXPECT_EQ(order, expected);
+    ASSERT_EQ(cell_start.size(), keys + 1);
+    for (std::size_t k = 0; k < keys; ++k) {
+      const auto count = std::count(key.begin(), key.end(), int(k));
+      EXPECT_EQ(cell_start[k + 1] - cell_start[k], count) << k;
+      for (int slot = cell_start[k]; slot < cell_start[k + 1]; ++slot) EXPECT_EQ(key[order[slot]], int(k));
+    }
+    EXPECT_EQ(cell_start[0], 0);
+  }
+  std::vector<int> cell_start, order;
+  counting_sort(std::vector<int>{}, 3, cell_start, order);
+  EXPECT_EQ(cell_start, std::vector<int>(4, 0));
+  EXPECT_TRUE(order.empty());
 }
 
 TEST(UniformGrid, CapsTheNumberOfCells) {

@@ -1,7 +1,9 @@
 #include "pss/spatial/support_grid.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 
 #include "pss/core/error.hpp"
 
@@ -18,38 +20,49 @@ SupportGrid::SupportGrid(std::span<const vec3> points, std::span<const float> h,
   // Level l holds widths in [2^l, 2^(l+1))·least; the last level takes every wider one.
   constexpr int L = SupportGridView::kMaxLevels;
   auto level_of = [&](float w) { return std::clamp(int(std::floor(std::log2(double(w) / double(least)))), 0, L - 1); };
-  std::vector<std::vector<int>> members(L);
-  for (std::size_t i = 0; i < points.size(); ++i) members[std::size_t(level_of(h[i]))].push_back(int(i));
-
+  std::vector<unsigned char> level(points.size());
+  std::array<Aabb, L> box;
+  std::array<float, L> widest{};
+  std::array<long long, L> members{};
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const int l = level_of(h[i]);
+    level[i] = (unsigned char)l;
+    box[l].grow(points[i]);
+    widest[l] = std::max(widest[l], h[i]);
+    ++members[l];
+  }
+  // Each level a uniform grid; one counting sort over every level's cells, one after another,
+  // sorts the samples by level, then by cell, then by input order.
   kappa_ = kappa;
-  sorted_.reserve(points.size());
-  inv_h2_.reserve(points.size());
-  original_index_.reserve(points.size());
+  std::array<int, L> level_at{};  // the level's index in levels_; -1 for an empty one
+  std::size_t cells = 0;
   for (int l = 0; l < L; ++l) {
-    const std::vector<int>& m = members[std::size_t(l)];
-    if (m.empty() && !(points.empty() && l == 0)) continue;  // an empty cloud keeps one empty level
-    std::vector<vec3> p(m.size());
-    float widest = 0;
-    for (std::size_t j = 0; j < m.size(); ++j) {
-      p[j] = points[std::size_t(m[j])];
-      widest = std::max(widest, h[std::size_t(m[j])]);
-    }
-    const float radius = widest > 0 ? kappa * widest : 1.0f;
+    level_at[l] = -1;
+    if (members[l] == 0 && !(points.empty() && l == 0)) continue;  // an empty cloud keeps one empty level
+    const float radius = widest[l] > 0 ? kappa * widest[l] : 1.0f;
     // Far more cells than samples is memory for nothing: a level of few wide samples (the
     // sparse part of a cloud, a box stretched by a stray point) gets cells to match.
-    const long long cells = std::min(std::max<long long>(32 * (long long)m.size(), 4096), max_cells);
-    const UniformGrid grid(p, 0.5f * radius, cells);
-    const int first = int(sorted_.size());
-    const GridView level = grid.view();
-    level_offset_.push_back(int(cell_start_.size()));
-    for (int start : grid.cell_start()) cell_start_.push_back(first + start);
-    for (std::size_t s = 0; s < m.size(); ++s) {
-      const int i = m[std::size_t(grid.original_index()[s])];
-      sorted_.push_back(grid.sorted_points()[s]);
-      inv_h2_.push_back(1.0f / (h[std::size_t(i)] * h[std::size_t(i)]));
-      original_index_.push_back(i);
+    const GridView shape = grid_shape(box[l], 0.5f * radius, std::min(std::max(32 * members[l], 4096ll), max_cells));
+    level_at[l] = int(levels_.size());
+    levels_.push_back({shape, radius});
+    level_offset_.push_back(int(cells));
+    cells += std::size_t(shape.dims.x) * shape.dims.y * shape.dims.z;
+  }
+  if (cells >= std::size_t(std::numeric_limits<int>::max())) throw Error("support grid: too many cells");
+  {
+    std::vector<int> key(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const int at = level_at[level[i]];
+      key[i] = level_offset_[std::size_t(at)] + levels_[std::size_t(at)].grid.cell_index(points[i]);
     }
-    levels_.push_back({level, radius});
+    counting_sort(key, cells, cell_start_, original_index_);
+  }
+  sorted_.resize(points.size());
+  inv_h2_.resize(points.size());
+  for (std::size_t s = 0; s < sorted_.size(); ++s) {
+    const auto i = std::size_t(original_index_[s]);
+    sorted_[s] = points[i];
+    inv_h2_[s] = 1.0f / (h[i] * h[i]);
   }
   // The levels' pointers, once the arrays have their final size.
   for (std::size_t l = 0; l < levels_.size(); ++l) {

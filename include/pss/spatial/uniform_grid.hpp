@@ -24,6 +24,12 @@ struct GridView {
                  clamp(int(floor(c.z)), 0, dims.z - 1));
   }
 
+  // The cell's index in cell_start: rows along x, then y, then z.
+  PSS_HOST_DEVICE int cell_index(vec3 p) const {
+    const ivec3 c = cell_of(p);
+    return (c.z * dims.y + c.y) * dims.x + c.x;
+  }
+
   // Calls f(point, sorted index) for every point of the cells that the box c ± radius
   // touches: those within `radius` and some more, for callers that test without branching.
   // (Skipping rows beyond the radius and cutting rows to the ball's chord read ~30 % fewer
@@ -52,6 +58,16 @@ struct GridView {
   }
 };
 
+// The shape of a uniform grid over `box` (the origin's cell where it is empty): cells of
+// `cell_size`, grown by a quarter at a time while the box would need more than `max_cells`.
+// Its points and cell_start are left unset.
+GridView grid_shape(Aabb box, float cell_size, long long max_cells);
+
+// A stable counting sort of items by key (key[i] in [0, keys)): cell_start gets keys + 1
+// offsets, key k's items filling slots [cell_start[k], cell_start[k + 1]), and order[slot]
+// the item in each slot. No copy of the offsets (a grid's cells may outnumber its points).
+void counting_sort(std::span<const int> key, std::size_t keys, std::vector<int>& cell_start, std::vector<int>& order);
+
 class UniformGrid {
  public:
   // Cells of `cell_size` (the query radius makes queries touch at most 3³ cells), grown
@@ -63,17 +79,13 @@ class UniformGrid {
   std::span<const int> cell_start() const { return cell_start_; }
   // original_index()[i] is the input index of sorted point i.
   std::span<const int> original_index() const { return original_index_; }
-  float cell_size() const { return cell_size_; }
-  ivec3 dims() const { return dims_; }
-  vec3 origin() const { return origin_; }
+  ivec3 dims() const { return shape_.dims; }
 
  private:
   std::vector<vec3> sorted_;
   std::vector<int> cell_start_;
   std::vector<int> original_index_;
-  vec3 origin_{0.0f};
-  float cell_size_ = 1.0f;
-  ivec3 dims_{1};
+  GridView shape_;  // its origin, cells and their size
 };
 
 }  // namespace pss
