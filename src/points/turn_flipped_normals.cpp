@@ -109,20 +109,30 @@ std::size_t turn_flipped_normals(const SupportGrid& grid, std::span<vec3> normal
       f(pair, e);
     });
   };
-  ConnectedComponents joined(n);  // the patches
-  cpu::parallel_for(std::int64_t(n), [&](std::int64_t i) {
-    for_each_neighbour(int(i), [&](const Pair& p, vec3) {
-      if (p.j > p.i && p.in_rho2 <= 0.25f && p.agreement > kAgree && p.offset2 < kSideBySide * kSideBySide)
-        joined.join(p.i, p.j);
-    });
-  });
+  // The patches, numbered 0, 1, ... in the order of their least samples: what follows is sized
+  // by their number (at most n/kFewestPerPatch), not by the samples' (issue 28).
   std::vector<int> patch(n);
-  cpu::parallel_for(std::int64_t(n), [&](std::int64_t i) { patch[std::size_t(i)] = joined.find(int(i)); });
+  {
+    ConnectedComponents joined(n);
+    cpu::parallel_for(std::int64_t(n), [&](std::int64_t i) {
+      for_each_neighbour(int(i), [&](const Pair& p, vec3) {
+        if (p.j > p.i && p.in_rho2 <= 0.25f && p.agreement > kAgree && p.offset2 < kSideBySide * kSideBySide)
+          joined.join(p.i, p.j);
+      });
+    });
+    cpu::parallel_for(std::int64_t(n), [&](std::int64_t i) { patch[std::size_t(i)] = joined.find(int(i)); });
+  }
+  // Each patch's least sample (its root, patch[i] == i) takes the number −1 − k, for the k-th
+  // patch; then every sample its root's; then all are made k.
+  int patches = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (patch[i] == int(i)) patch[i] = -1 - patches++;
+  for (std::size_t i = 0; i < n; ++i)
+    if (patch[i] >= 0) patch[i] = patch[std::size_t(patch[i])];
+  for (int& p : patch) p = -1 - p;
   // Normals so scattered that they form no patches of a few samples weigh nothing against
   // each other (and would make the tallies below as large as the neighbourhoods).
-  std::size_t patches = 0;
-  for (std::size_t i = 0; i < n; ++i) patches += patch[i] == int(i);
-  if (patches > n / kFewestPerPatch) return 0;
+  if (std::size_t(patches) > n / kFewestPerPatch) return 0;
   // The evidence between patches, each pair seen from both its samples (each thread its own
   // tally, summed after: sums, so the same for any thread count). From sample i: where its
   // opposed and agreeing neighbours lie in its tangent plane, the means of their unit
@@ -183,22 +193,20 @@ std::size_t turn_flipped_normals(const SupportGrid& grid, std::span<vec3> normal
   std::sort(links.begin(), links.end(), [](const Link& x, const Link& y) {
     return x.strength != y.strength ? x.strength > y.strength : (x.a != y.a ? x.a < y.a : x.b < y.b);
   });
-  ParityUnionFind flips(n);
+  const auto count = std::size_t(patches);
+  ParityUnionFind flips(count);
   for (const Link& l : links) flips.link(l.a, l.b, l.odd);
   // Each group of linked patches: count its samples by side, then turn the smaller side.
-  std::vector<std::int64_t> odd(n, 0), even(n, 0);
-  std::vector<int> group(n), side(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    int p;
-    group[i] = flips.find(patch[i], p);
-    side[i] = p;
-    (p ? odd : even)[std::size_t(group[i])] += 1;
-  }
+  std::vector<int> group(count), side(count);
+  for (int k = 0; k < patches; ++k) group[std::size_t(k)] = flips.find(k, side[std::size_t(k)]);
+  std::vector<std::int64_t> odd(count, 0), even(count, 0);
+  for (const int p : patch) (side[std::size_t(p)] ? odd : even)[std::size_t(group[std::size_t(p)])] += 1;
   std::size_t turned = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t g = std::size_t(group[i]);
+    const auto p = std::size_t(patch[i]);
+    const auto g = std::size_t(group[p]);
     // Ties keep the side of the group's root patch.
-    if (side[i] == (odd[g] > even[g] ? 0 : 1)) {
+    if (side[p] == (odd[g] > even[g] ? 0 : 1)) {
       normals[i] = -normals[i];
       ++turned;
     }
