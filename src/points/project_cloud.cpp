@@ -75,18 +75,22 @@ CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& p
   // lengths, so they scale with the points; the results are mapped back at the end.
   const points_detail::UnitFrame frame = points_detail::unit_frame(input.positions);
   check_neighbourhood(params, frame.diagonal);
-  const std::vector<vec3> positions = points_detail::to_unit(input.positions, frame);
   ProjectionParams unit_params = params;
   unit_params.h = float(double(params.h) / frame.scale);
   unit_params.rho = float(double(params.rho) / frame.scale);
   unit_params.t_tolerance = float(double(params.t_tolerance) / frame.scale);
-  std::vector<ProjectedPoint> projected;
+  CloudProjection out;
+  // The projections keep the input's order, so its per-point values stay with them.
+  out.cloud.origin = input.origin;
+  out.cloud.colors = input.colors;
+  out.cloud.scalars = input.scalars;
   SupportWidths widths;
   NormalsUsed normals_used = NormalsUsed::none;
   OutlierReport outliers;
   std::size_t normals_turned = 0;
   bool file_hints = false;  // the file's normals orient the projections
-  {
+  {  // what the projection needs, freed before the orientation
+    const std::vector<vec3> positions = points_detail::to_unit(input.positions, frame);
     {
       ScopedPhase phase(stats, "support widths", params.support == Support::global);  // else its Progress shows it
       widths = support_widths(positions, unit_params);
@@ -106,8 +110,6 @@ CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& p
     // aside follow (below).
     const std::span<const int> original = grid.original_index();
     const std::size_t m = original.size();
-    std::vector<vec3> hints = file.sorted;
-    hints.resize(m, vec3(0.0f));
     // The points set aside are not samples, but points all the same: projected after.
     std::vector<int> set_aside;
     if (m < n) {
@@ -116,55 +118,60 @@ CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& p
       for (std::size_t i = 0; i < n; ++i)
         if (!sample[i]) set_aside.push_back(int(i));
     }
-    std::vector<vec3> queries(grid.sorted_points().begin(), grid.sorted_points().end());
-    for (int i : set_aside) {
-      queries.push_back(positions[std::size_t(i)]);
-      hints.push_back(file_hints ? set_aside_hint(grid, file, positions[std::size_t(i)], input.normals[std::size_t(i)])
-                                 : vec3(0.0f));
+    std::vector<ProjectedPoint> ordered;  // the samples', in the grid's order, then the others'
+    {
+      const GridMirror g(backend, grid);
+      Mirror<ProjectedPoint> projected(backend, n);
+      Progress progress("projecting", std::int64_t(n));
+      const Mirror<vec3> hint(backend, file.sorted);
+      parallel_for(backend, "projection", std::int64_t(m),
+                   ProjectPointsKernel{g.view(), g.view().points, file_hints ? hint.data() : nullptr, projected.data(),
+                                       unit_params},
+                   stats, &progress);
+      std::vector<vec3> others, other_hints;  // the points set aside, and their hints
+      for (int i : set_aside) {
+        others.push_back(positions[std::size_t(i)]);
+        if (file_hints)
+          other_hints.push_back(
+              set_aside_hint(grid, file, positions[std::size_t(i)], input.normals[std::size_t(i)]));
+      }
+      const Mirror<vec3> other(backend, others);
+      const Mirror<vec3> other_hint(backend, other_hints);
+      if (!others.empty())
+        parallel_for(backend, "projection", std::int64_t(others.size()),
+                     ProjectPointsKernel{g.view(), other.data(), file_hints ? other_hint.data() : nullptr,
+                                         projected.data() + m, unit_params},
+                     stats, &progress);
+      ordered = projected.take();
     }
-    const GridMirror g(backend, grid);
-    const Mirror<vec3> query(backend, queries);
-    const Mirror<vec3> hint(backend, hints);
-    Mirror<ProjectedPoint> out(backend, n);
-    Progress progress("projecting", std::int64_t(n));
-    parallel_for(backend, "projection", std::int64_t(n),
-                 ProjectPointsKernel{g.view(), query.data(), hint.data(), out.data(), unit_params}, stats, &progress);
-    const std::vector<ProjectedPoint> ordered = out.take();
-    projected.resize(n);
-    cpu::parallel_for(std::int64_t(m), [&](std::int64_t k) { projected[std::size_t(original[k])] = ordered[k]; });
-    for (std::size_t k = 0; k < set_aside.size(); ++k) projected[std::size_t(set_aside[k])] = ordered[m + k];
+    out.cloud.positions.resize(n);
+    out.cloud.normals.resize(n);
+    out.status.resize(n);
+    auto place = [&](std::size_t k, std::size_t i) {
+      out.cloud.positions[i] = ordered[k].point;
+      out.cloud.normals[i] = ordered[k].normal;
+      out.status[i] = ordered[k].status;
+    };
+    cpu::parallel_for(std::int64_t(m), [&](std::int64_t k) { place(std::size_t(k), std::size_t(original[k])); });
+    for (std::size_t k = 0; k < set_aside.size(); ++k) place(m + k, std::size_t(set_aside[k]));
   }
-
-  CloudProjection out;
   out.widths.least = float(widths.least * frame.scale);
   out.widths.median = float(widths.median * frame.scale);
   out.widths.largest = float(widths.largest * frame.scale);
-  out.cloud.positions.resize(n);
-  out.cloud.normals.resize(n);
-  out.status.resize(n);
-  // The projections keep the input's order, so its per-point values stay with them.
-  out.cloud.origin = input.origin;
-  out.cloud.colors = input.colors;
-  out.cloud.scalars = input.scalars;
-  for (std::size_t i = 0; i < n; ++i) {
-    out.cloud.positions[i] = projected[i].point;
-    out.cloud.normals[i] = projected[i].normal;
-    out.status[i] = projected[i].status;
-    switch (projected[i].status) {
+  for (const ProjectionStatus status : out.status) switch (status) {
       case ProjectionStatus::converged: ++out.counts.converged; break;
       case ProjectionStatus::not_converged: ++out.counts.not_converged; break;
       case ProjectionStatus::too_few_neighbours: ++out.counts.too_few_neighbours; break;
       case ProjectionStatus::degenerate_normal: ++out.counts.degenerate_normal; break;
     }
-  }
   out.normals = normals_used;
   out.normals_turned = normals_turned;
   out.outliers = outliers;
   // APSS's and RIMLS's normals follow the samples' oriented ones already.
   if (!file_hints && params.surface == SurfaceOperator::mls) {
     ScopedPhase phase(stats, "orient normals", false);  // its Progress shows it
-    std::vector<float> support(n);  // ρ_i: the orientation links the samples of each N(p_i)
-    for (std::size_t i = 0; i < n; ++i) support[i] = widths.h[i] * (unit_params.rho / unit_params.h);
+    std::vector<float> support = std::move(widths.h);  // ρ_i: the orientation links the samples of each N(p_i)
+    for (float& rho : support) rho *= unit_params.rho / unit_params.h;
     orient_normals_consistently(out.cloud.positions, out.cloud.normals, support);
   }
   for (vec3& p : out.cloud.positions) p = frame.from_unit(p);

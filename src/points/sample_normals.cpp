@@ -37,18 +37,16 @@ std::vector<vec3> sample_normals(const SupportGrid& grid, const FileNormals& fil
   used = NormalsUsed::estimated;
   std::vector<vec3> normals;
   const std::size_t n = grid.sorted_points().size();
-  const std::vector<vec3> hints(n, vec3(0.0f));
   ProjectionParams plane = params;
   plane.surface = SurfaceOperator::mls;
   plane.plane = PlaneFitMethod::wls;
   plane.borders = BorderMode::extend;  // a sample's plane, wherever it lies
   {
     const GridMirror g(backend, grid);
-    const Mirror<vec3> hint(backend, hints);
     Mirror<ProjectedPoint> out(backend, n);
     Progress progress("sample normals", std::int64_t(n));
     parallel_for(backend, "sample normals", std::int64_t(n),
-                 ProjectPointsKernel{g.view(), g.view().points, hint.data(), out.data(), plane}, stats, &progress);
+                 ProjectPointsKernel{g.view(), g.view().points, nullptr, out.data(), plane}, stats, &progress);
     const std::vector<ProjectedPoint> fitted = out.take();
     normals.resize(n);
     for (std::size_t i = 0; i < n; ++i) normals[i] = fitted[i].normal;

@@ -25,10 +25,12 @@ PSS_INLINE ProjectedPoint project_point(const SupportGridView& grid, vec3 r, vec
 struct ProjectPointsKernel {
   SupportGridView grid;
   const vec3* points;
-  const vec3* hints;  // the file's normals, or zeros
+  const vec3* hints;  // the file's normals; null for none
   ProjectedPoint* out;
   ProjectionParams params;
-  PSS_HOST_DEVICE void operator()(std::int64_t i) const { out[i] = project_point(grid, points[i], hints[i], params); }
+  PSS_HOST_DEVICE void operator()(std::int64_t i) const {
+    out[i] = project_point(grid, points[i], hints ? hints[i] : vec3(0.0f), params);
+  }
 };
 
 }  // namespace pss
