@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "pss/backend/mirror.hpp"
 #include "pss/backend/parallel_for.hpp"
@@ -41,16 +42,21 @@ std::vector<char> samples_on_the_surface(const SupportGrid& grid, Backend backen
 SupportGrid grid_of_samples(std::span<const vec3> points, std::span<const float> h, float kappa, OutlierPolicy policy,
                             Backend backend, Stats& stats, OutlierReport& report) {
   report = {};
-  SupportGrid grid(points, h, kappa);
-  if (policy == OutlierPolicy::keep) return grid;
+  std::optional<SupportGrid> grid(std::in_place, points, h, kappa);
+  if (policy == OutlierPolicy::keep) return std::move(*grid);
   // Twice: a stray next to another stray fits its plane through it, and stands out once the
   // other is gone. The second pass keeps the first's threshold.
   for (int pass = 0; pass < kOutlierPasses; ++pass) {
-    const std::vector<char> keep = samples_on_the_surface(grid, backend, stats, report);
-    const std::span<const int> original = grid.original_index();
+    const std::vector<char> keep = samples_on_the_surface(*grid, backend, stats, report);
+    const std::span<const int> original = grid->original_index();
+    const auto kept = std::size_t(std::count(keep.begin(), keep.end(), char(1)));
+    if (kept == keep.size()) break;
     std::vector<vec3> kept_points;
     std::vector<float> kept_h;
     std::vector<int> input_index;
+    kept_points.reserve(kept);
+    kept_h.reserve(kept);
+    input_index.reserve(kept);
     for (std::size_t k = 0; k < keep.size(); ++k) {
       if (!keep[k]) continue;
       const int i = original[k];
@@ -58,12 +64,12 @@ SupportGrid grid_of_samples(std::span<const vec3> points, std::span<const float>
       kept_h.push_back(h[std::size_t(i)]);
       input_index.push_back(i);
     }
-    if (kept_points.size() == keep.size()) break;
-    report.set_aside += std::int64_t(keep.size() - kept_points.size());
-    grid = SupportGrid(kept_points, kept_h, kappa);
-    grid.renumber(input_index);
+    report.set_aside += std::int64_t(keep.size() - kept);
+    grid.reset();  // before the next is built: two grids at once were the phase's peak (issue 28)
+    grid.emplace(kept_points, kept_h, kappa);
+    grid->renumber(input_index);
   }
-  return grid;
+  return std::move(*grid);
 }
 
 }  // namespace pss
