@@ -5,6 +5,7 @@
 #include "numbers.hpp"
 #include "pss/backend/backend.hpp"
 #include "pss/core/error.hpp"
+#include "pss/core/memory.hpp"
 #include "pss/core/progress.hpp"
 #include "pss/io/point_cloud_file.hpp"
 
@@ -22,6 +23,7 @@ void add_compute_options(CLI::App& command, ComputeOptions& options) {
 
 Backend start_compute(const ComputeOptions& options) {
   set_cpu_threads(options.threads);
+  watch_peak_memory(!options.stats_path.empty());
   return select_backend(options.backend);
 }
 

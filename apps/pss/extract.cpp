@@ -23,8 +23,7 @@ struct ExtractOptions {
 void run_extract(const ExtractOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   OutputSet outputs({o.volume.input}, {o.output, o.compute.stats_path});
-  set_cpu_threads(o.compute.threads);
-  const Backend backend = select_backend(o.compute.backend);
+  const Backend backend = start_compute(o.compute);
   Stats stats;
   const PreparedVolume volume = load_volume(o.volume, stats);
   ExtractionCounts counts;

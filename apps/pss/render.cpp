@@ -36,8 +36,7 @@ int iterations_of(const std::string& text) { return text == "auto" ? kAutoIterat
 void run_render(const RenderCloudOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   OutputSet outputs({o.input, o.render.camera_file}, {o.render.output, o.render.hits_path, o.render.compute.stats_path});
-  set_cpu_threads(o.render.compute.threads);
-  const Backend backend = select_backend(o.render.compute.backend);
+  const Backend backend = start_compute(o.render.compute);
   Stats stats;
   PointCloud cloud;
   {

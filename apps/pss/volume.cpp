@@ -22,8 +22,7 @@ struct VolumeCommandOptions {
 void run_volume(const VolumeCommandOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   OutputSet outputs({o.volume.input, o.render.camera_file}, {o.render.output, o.render.hits_path, o.render.compute.stats_path});
-  set_cpu_threads(o.render.compute.threads);
-  const Backend backend = select_backend(o.render.compute.backend);
+  const Backend backend = start_compute(o.render.compute);
   Stats stats;
   PreparedVolume volume = load_volume(o.volume, stats);
   volume.params.debug_projection = o.debug_projection;

@@ -39,6 +39,7 @@ struct Watches {
   std::mutex mutex;
   std::vector<std::pair<int, std::int64_t>> open;  // each open watch's id and peak so far
   int next = 0;
+  bool on = false;
   std::int64_t process = -1;
   bool resettable = true;
 
@@ -57,9 +58,16 @@ Watches& watches() {
 
 }  // namespace
 
+void watch_peak_memory(bool on) {
+  Watches& w = watches();
+  std::lock_guard lock(w.mutex);
+  w.on = on;
+}
+
 int begin_peak_watch() {
   Watches& w = watches();
   std::lock_guard lock(w.mutex);
+  if (!w.on) return -1;
   w.fold();
   w.resettable = w.resettable && reset_high_water_mark();
   const int id = w.next++;
@@ -69,6 +77,7 @@ int begin_peak_watch() {
 }
 
 std::int64_t end_peak_watch(int id) {
+  if (id < 0) return -1;
   Watches& w = watches();
   std::lock_guard lock(w.mutex);
   w.fold();
@@ -82,6 +91,7 @@ std::int64_t end_peak_watch(int id) {
 std::int64_t process_peak_bytes() {
   Watches& w = watches();
   std::lock_guard lock(w.mutex);
+  if (!w.on) return -1;
   w.fold();
   return w.process;
 }

@@ -8,12 +8,17 @@
 
 namespace pss {
 
-// Opens a phase's watch: its peak counts from now.
+// Whether phases watch their peaks: off until a run asks (--stats). A watch resets the
+// process's mark, which getrusage and /usr/bin/time then report as the peak since the last
+// phase began; and it costs a read and a write of /proc at each phase (each viewer frame).
+void watch_peak_memory(bool on);
+
+// Opens a phase's watch: its peak counts from now (-1, no watch, while watching is off).
 int begin_peak_watch();
-// Closes it: the peak resident bytes since begin_peak_watch(id); -1 where this system
-// neither tells the resident size nor lets the mark be reset.
+// Closes it: the peak resident bytes since begin_peak_watch(id); -1 for no watch, or where
+// this system neither tells the resident size nor lets the mark be reset.
 std::int64_t end_peak_watch(int id);
-// The peak resident bytes of the whole process so far; -1 where unknown.
+// The peak resident bytes of the whole process so far; -1 where unknown or not watched.
 std::int64_t process_peak_bytes();
 
 }  // namespace pss
