@@ -90,7 +90,27 @@ TEST(LocalOrigin, FloatPositionsComeBackExactly) {
     pss::set_world_positions(cloud, world);
     EXPECT_NE(cloud.origin, dvec3(0.0));
     for (std::size_t i = 0; i < world.size(); ++i) ASSERT_EQ(vec3(cloud.world(i)), vec3(world[i])) << i;
+    // Given as floats (a float file's reader keeps them so), the same origin and positions.
+    std::vector<vec3> floats;
+    for (const dvec3& w : world) floats.push_back(vec3(w));
+    PointCloud from_floats;
+    pss::set_world_positions(from_floats, std::move(floats));
+    EXPECT_EQ(from_floats.origin, cloud.origin);
+    EXPECT_EQ(from_floats.positions, cloud.positions);
   }
+}
+
+// A binary PLY of floats far from zero (read into floats, offset in place) keeps every float.
+TEST_F(GeoTest, AFloatPlyFarFromZeroKeepsItsFloats) {
+  std::vector<vec3> points;
+  for (int i = 0; i < 100; ++i) points.push_back(vec3(kCentre + dvec3(0.25 * i, -0.5 * i, 0.125 * i)));
+  std::string ply = "ply\nformat binary_little_endian 1.0\nelement vertex 100\nproperty float x\nproperty float y\n"
+                    "property float z\nend_header\n";
+  ply.append(reinterpret_cast<const char*>(points.data()), points.size() * sizeof(vec3));
+  const PointCloud cloud = pss::read_point_cloud(write("far.ply", ply));
+  EXPECT_NE(cloud.origin, dvec3(0.0));
+  ASSERT_EQ(cloud.size(), points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) ASSERT_EQ(vec3(cloud.world(i)), points[i]) << i;
 }
 
 TEST_F(GeoTest, EveryReaderKeepsTheDigitsAndTheWritersPutThemBack) {

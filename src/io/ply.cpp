@@ -320,9 +320,21 @@ PointCloud read_data(const fs::path& path, const Header& header, Cursor in) {
   PointCloud cloud;
   cloud.mesh_vertices = std::any_of(header.elements.begin(), header.elements.end(),
                                     [](const Element& e) { return e.name == "face" && e.count > 0; });
+  // Positions of floats (or narrower types) are kept in floats, which hold them exactly: half
+  // the memory of doubles (issue 28).
+  bool float_positions = true;
+  for (std::size_t j = 0; j < slots.size(); ++j)
+    if (slots[j] >= 0 && slots[j] < 3)
+      float_positions = float_positions && (vertex->properties[j].type == Scalar::float32 ||
+                                            vertex->properties[j].type == Scalar::int8 ||
+                                            vertex->properties[j].type == Scalar::uint8 ||
+                                            vertex->properties[j].type == Scalar::int16 ||
+                                            vertex->properties[j].type == Scalar::uint16);
   std::vector<glm::dvec3> world;
+  std::vector<vec3> world_floats;
   const std::uint64_t capacity = std::min(vertex->count, max_records(in, *vertex));
-  world.reserve(capacity);
+  if (float_positions) world_floats.reserve(capacity);
+  else world.reserve(capacity);
   if (normals) cloud.normals.reserve(capacity);
   if (colors) cloud.colors.reserve(capacity);
   for (std::size_t j = 0; j < slots.size(); ++j) {
@@ -341,9 +353,10 @@ PointCloud read_data(const fs::path& path, const Header& header, Cursor in) {
       else in.skip(p.type);
     }
     // A double beyond float range becomes infinite here, and is refused with the NaNs.
-    world.emplace_back(v[0], v[1], v[2]);
-    if (!is_finite(vec3(world.back())))
-      throw file_error(path, "vertex " + std::to_string(i) + " has a non-finite coordinate");
+    const vec3 p(glm::dvec3(v[0], v[1], v[2]));
+    if (!is_finite(p)) throw file_error(path, "vertex " + std::to_string(i) + " has a non-finite coordinate");
+    if (float_positions) world_floats.push_back(p);
+    else world.emplace_back(v[0], v[1], v[2]);
     if (normals) cloud.normals.push_back(vec3(glm::dvec3(v[3], v[4], v[5])));
     if (colors) {
       if (!std::isfinite(v[6]) || !std::isfinite(v[7]) || !std::isfinite(v[8]))
@@ -353,7 +366,8 @@ PointCloud read_data(const fs::path& path, const Header& header, Cursor in) {
     }
   });
   // Elements after the vertices are not read: nothing there is needed.
-  set_world_positions(cloud, world);
+  if (float_positions) set_world_positions(cloud, std::move(world_floats));
+  else set_world_positions(cloud, world);
   tidy_normals(cloud);
   return cloud;
 }

@@ -17,16 +17,32 @@ glm::dvec3 local_origin(const glm::dvec3& lo, const glm::dvec3& hi) {
   return origin;
 }
 
-void set_world_positions(PointCloud& cloud, const std::vector<glm::dvec3>& world) {
+namespace {
+
+template <class Position>
+glm::dvec3 origin_of(const std::vector<Position>& world) {
   glm::dvec3 lo(0.0), hi(0.0);
-  if (!world.empty()) lo = hi = world.front();
-  for (const glm::dvec3& p : world) {
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
+  if (!world.empty()) lo = hi = glm::dvec3(world.front());
+  for (const Position& p : world) {
+    lo = glm::min(lo, glm::dvec3(p));
+    hi = glm::max(hi, glm::dvec3(p));
   }
-  cloud.origin = local_origin(lo, hi);
+  return local_origin(lo, hi);
+}
+
+}  // namespace
+
+void set_world_positions(PointCloud& cloud, const std::vector<glm::dvec3>& world) {
+  cloud.origin = origin_of(world);
   cloud.positions.resize(world.size());
   for (std::size_t i = 0; i < world.size(); ++i) cloud.positions[i] = vec3(world[i] - cloud.origin);
+}
+
+void set_world_positions(PointCloud& cloud, std::vector<vec3>&& world) {
+  cloud.origin = origin_of(world);
+  cloud.positions = std::move(world);
+  if (cloud.origin != glm::dvec3(0.0))
+    for (vec3& p : cloud.positions) p = vec3(glm::dvec3(p) - cloud.origin);
 }
 
 }  // namespace pss
