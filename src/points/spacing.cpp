@@ -4,14 +4,12 @@
 #include <cmath>
 #include <vector>
 
+#include "pss/backend/cpu/parallel_for.hpp"
 #include "pss/core/error.hpp"
-#include "kd_tree.hpp"
+#include "pss/spatial/uniform_grid.hpp"
 #include "unit_frame.hpp"
 
 namespace pss {
-
-using points_detail::CloudAdaptor;
-using points_detail::KdTree;
 
 SpacingEstimate estimate_spacing(std::span<const vec3> input, int k, std::size_t max_samples) {
   if (input.size() < 2) throw Error("cannot estimate the sample spacing of fewer than two points");
@@ -21,21 +19,31 @@ SpacingEstimate estimate_spacing(std::span<const vec3> input, int k, std::size_t
   const std::vector<vec3> unit = points_detail::to_unit(input, frame);
   const std::span<const vec3> points(unit);
   k = std::min<int>(k, int(points.size()) - 1);
-  CloudAdaptor adaptor{points};
-  KdTree tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(16));
-  tree.buildIndex();
+  // A uniform grid of about one cell per point, built in one counting sort: a k-d tree of
+  // every point took 14 s to build at 10^7 points, for 20,000 queries (issue 28).
+  const UniformGrid grid(points, 1e-7f, std::max<long long>(4096, (long long)points.size()));
+  const GridView view = grid.view();
+  const float cell = 1.0f / view.inv_cell;
 
   const std::size_t stride = std::max<std::size_t>(1, points.size() / max_samples);
-  std::vector<unsigned> index(k + 1);
-  std::vector<float> dist2(k + 1);
-  std::vector<double> kth;
+  const std::size_t queries = (points.size() + stride - 1) / stride;
+  std::vector<double> kth(queries), nearest(queries);
+  cpu::parallel_for(std::int64_t(queries), [&](std::int64_t q) {
+    const vec3 c = points[std::size_t(q) * stride];
+    thread_local std::vector<float> d2;
+    // A ball that doubles until it holds k + 1 points (the query's own among them, at
+    // distance 0): the k nearest of those are the k nearest of all.
+    for (float r = cell;; r *= 2) {
+      d2.clear();
+      view.for_each_in_radius(c, r, [&](vec3, float d, int) { d2.push_back(d); });
+      if (d2.size() > std::size_t(k)) break;
+    }
+    std::partial_sort(d2.begin(), d2.begin() + k + 1, d2.end());
+    nearest[std::size_t(q)] = std::sqrt(double(d2[std::min(1, k)]));
+    kth[std::size_t(q)] = std::sqrt(double(d2[std::size_t(k)]));
+  });
   double nearest_sum = 0;
-  for (std::size_t i = 0; i < points.size(); i += stride) {
-    // k + 1 because the query point finds itself at distance 0.
-    const std::size_t found = tree.knnSearch(&points[i].x, k + 1, index.data(), dist2.data());
-    nearest_sum += std::sqrt(double(dist2[std::min<std::size_t>(1, found - 1)]));
-    kth.push_back(std::sqrt(double(dist2[found - 1])));
-  }
+  for (double d : nearest) nearest_sum += d;
   std::nth_element(kth.begin(), kth.begin() + kth.size() / 2, kth.end());
   SpacingEstimate e;
   e.k = k;
