@@ -28,7 +28,7 @@ auto run_interruptibly(Work&& work) -> decltype(work()) {
   });
   for (;;) {
     {
-      const py::gil_scoped_release release;
+      const py::gil_scoped_release release;  // Python's other threads run while the work does
       if (result.wait_for(std::chrono::milliseconds(50)) == std::future_status::ready) break;
     }
     if (PyErr_CheckSignals() != 0) {

@@ -52,7 +52,7 @@ PSS_HOST_DEVICE SecondaryHits trace_secondary(const Finder& f, const TraceSettin
   SecondaryHits out;
   if (!hit.found()) return out;
   const vec3 key = s.shading.key_direction;
-  const vec3 n = face_viewer(hit.normal, primary.dir);
+  const vec3 n = face_viewer(hit.normal, primary.dir);  // the side the secondary rays leave from
   const float offset = f.secondary_offset(hit);
   const Ray bounce{hit.point + offset * n, reflect(primary.dir, n)};
   PSS_NO_UNROLL
