@@ -115,6 +115,19 @@ TEST(EnclosedVolume, HolesCountClosedByTheirLidsOpeningsCountNothing) {
   for (const auto& t : m.triangles)
     if (std::abs(m.positions[std::size_t(t[0])].z - sphere.center.z) < 0.8f) two.triangles.push_back(t);
   EXPECT_NEAR(enclosed_volume(two), less_caps(0.2, 2), 0.02 * ball);
+  // The share of the area in parts counted closed: a cap's height c takes 2π c of the 4π.
+  double share = -1;
+  enclosed_volume(capped, &share);
+  EXPECT_EQ(share, 1.0);
+  enclosed_volume(cut(0.0f), &share);
+  EXPECT_EQ(share, 0.0);
+  TriangleMesh both = cut(0.6f);  // less a cap of 0.4: 0.8 of the sphere's area, closed
+  const TriangleMesh open = cut(0.0f);  // a hemisphere, open, beside it
+  const int offset = int(both.positions.size());
+  for (const vec3& p : open.positions) both.positions.push_back(p + vec3(5, 0, 0));
+  for (auto t : open.triangles) both.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  enclosed_volume(both, &share);
+  EXPECT_NEAR(share, 0.8 / (0.8 + 0.5), 0.02);
 }
 
 TEST(MarchingTetrahedra, ATorusHasEulerCharacteristicZero) {

@@ -16,6 +16,9 @@ namespace pss {
 
 namespace {
 
+// The share of a mesh's area its closed parts must have for their volume to turn it.
+constexpr double kClosedShareToTurn = 0.5;
+
 // The band holds about one cube per cell² of surface, and each sample stands for about
 // h_i² of it (h_i is its distance to the 15th neighbour: about 2.2 spacings): Σ (h_i/cell)²
 // overestimates the cubes about 3-fold (the bunny: 144,000 for 42,000).
@@ -100,9 +103,13 @@ CloudMesh mesh_cloud(const PointCloud& cloud, const MeshParams& params, Backend 
   }
   out.mesh.origin = cloud.origin;
   // Which side is out is a guess where the normals were estimated, and where the file's
-  // disagreed among themselves (some turned: the side kept is the larger one's).
+  // disagreed among themselves (some turned: the side kept is the larger one's). The closed
+  // parts' volume tells it where they are most of the mesh; where most is open (an aerial
+  // scan's ground and roofs), a few closed blobs would decide by chance, and the guess (the
+  // highest sample facing up) stands.
   const bool guessed = out.normals == NormalsUsed::estimated || out.normals_turned > 0;
-  if (guessed && enclosed_volume(out.mesh) < 0) {
+  double closed_share = 0;
+  if (guessed && enclosed_volume(out.mesh, &closed_share) < 0 && closed_share >= kClosedShareToTurn) {
     turn_inside_out(out.mesh);
     out.turned_outward = true;
   }

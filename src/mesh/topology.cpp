@@ -109,9 +109,10 @@ MeshTopology topology(const TriangleMesh& mesh) {
   return t;
 }
 
-double enclosed_volume(const TriangleMesh& mesh) {
+double enclosed_volume(const TriangleMesh& mesh, double* closed_share) {
   mesh_detail::Incidence in = mesh_detail::incidence(mesh.triangles);
   const std::size_t nt = mesh.triangles.size(), nv = mesh.positions.size();
+  if (closed_share) *closed_share = 0;
   if (nt == 0) return 0;
   auto position = [&](int v) { return glm::dvec3(mesh.positions[std::size_t(v)]); };
   // The rim: each edge with one side, as its triangle runs, and the component it bounds
@@ -173,6 +174,14 @@ double enclosed_volume(const TriangleMesh& mesh) {
   for (const RimEdge& e : rim)
     if (closed(e.component))
       volume += cone(position(e.to), position(e.from), centre[std::size_t(holes.find(e.from))], e.component);
+  if (closed_share) {
+    double total = 0, in_closed = 0;
+    for (std::size_t c = 0; c < nt; ++c) {
+      total += area[c];
+      if (closed(c)) in_closed += area[c];
+    }
+    *closed_share = total > 0 ? in_closed / total : 0;
+  }
   return volume;
 }
 

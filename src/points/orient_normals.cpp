@@ -7,7 +7,6 @@
 
 #include "pss/core/indexed_min_heap.hpp"
 #include "pss/core/progress.hpp"
-#include "pss/points/turn_flipped_normals.hpp"
 #include "pss/spatial/support_grid.hpp"
 
 namespace pss {
@@ -64,9 +63,6 @@ void orient_normals_consistently(std::span<const vec3> points, std::span<vec3> n
       });
     }
   }
-  // The tree's signs are a guess across thin parts and creases (the bunny's ears: 1,123 of
-  // its samples inward); turn the parts whose seams show it.
-  turn_flipped_normals(grid, sorted);
   for (std::size_t k = 0; k < n; ++k) normals[std::size_t(original[k])] = sorted[k];
 }
 

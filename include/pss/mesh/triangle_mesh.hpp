@@ -43,8 +43,9 @@ MeshTopology topology(const TriangleMesh& mesh);
 // closed surface, facing into the cavity, counts negative, as it should. Components nearly
 // closed (their holes' lids, fans from each hole's centre, at most a quarter of their area)
 // count closed by those lids; others, a sheet or a scan of one side, enclose nothing and
-// count 0.
-double enclosed_volume(const TriangleMesh& mesh);
+// count 0. closed_share, where given, gets the share of the mesh's area in the components
+// counted closed.
+double enclosed_volume(const TriangleMesh& mesh, double* closed_share = nullptr);
 
 // Every triangle's winding reversed and every normal negated.
 void turn_inside_out(TriangleMesh& mesh);

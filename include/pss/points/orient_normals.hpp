@@ -1,10 +1,12 @@
 // Consistent orientation of unoriented normals (Hoppe et al. 1992): a minimum spanning tree
-// over the neighbour graph with edge cost 1 − |nᵢ·nⱼ| propagates the sign along the
-// smoothest paths; each connected part starts from its highest point, oriented to +z.
-// The graph links p_i to every p_j within radius[j] of it: with the samples' supports ρ_j,
-// the samples of p_i's own neighbourhood N(p_i), so that a sparse part, whose samples lie
-// farther apart, stays connected. The parts the tree flipped, which show as seams, are then
-// turned (turn_flipped_normals.hpp).
+// over the neighbour graph with edge cost 1 − |nᵢ·nⱼ|, plus how far p_j lies off p_i's
+// tangent plane, propagates the sign along the smoothest paths on the surface; each
+// connected part starts from its highest point, oriented to +z. The graph links p_i to
+// every p_j within radius[j] of it: with the samples' supports ρ_j, the samples of p_i's own
+// neighbourhood N(p_i), so that a sparse part, whose samples lie farther apart, stays
+// connected. The seams' turn that a file's normals go through (turn_flipped_normals.hpp) is
+// not applied to the tree's signs: it turned an aerial scan's roofs and ground downward
+// (docs/paper-notes.md).
 #pragma once
 
 #include <span>
