@@ -320,16 +320,14 @@ PointCloud read_data(const fs::path& path, const Header& header, Cursor in) {
   PointCloud cloud;
   cloud.mesh_vertices = std::any_of(header.elements.begin(), header.elements.end(),
                                     [](const Element& e) { return e.name == "face" && e.count > 0; });
-  // Positions of floats (or narrower types) are kept in floats, which hold them exactly: half
-  // the memory of doubles (issue 28).
+  // Positions of floats or of integers of two bytes at most are kept in floats, which hold
+  // them exactly: half the memory of doubles (issue 28).
   bool float_positions = true;
-  for (std::size_t j = 0; j < slots.size(); ++j)
+  for (std::size_t j = 0; j < slots.size(); ++j) {
+    const Scalar type = vertex->properties[j].type;
     if (slots[j] >= 0 && slots[j] < 3)
-      float_positions = float_positions && (vertex->properties[j].type == Scalar::float32 ||
-                                            vertex->properties[j].type == Scalar::int8 ||
-                                            vertex->properties[j].type == Scalar::uint8 ||
-                                            vertex->properties[j].type == Scalar::int16 ||
-                                            vertex->properties[j].type == Scalar::uint16);
+      float_positions = float_positions && (type == Scalar::float32 || size_of(type) <= 2);
+  }
   std::vector<glm::dvec3> world;
   std::vector<vec3> world_floats;
   const std::uint64_t capacity = std::min(vertex->count, max_records(in, *vertex));
