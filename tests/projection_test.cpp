@@ -336,6 +336,30 @@ TEST(Projection, InputNormalsOrientTheirOwnPoints) {
     ASSERT_GT(glm::dot(out.cloud.normals[i], cloud.normals[i]), 0.9f) << i;
 }
 
+// More samples than a chunk of the projection (project_cloud.cpp: 2¹⁶ on a CPU): each
+// chunk's projections must reach their own points, with their own points' hints. Two unit
+// spheres 6 apart, interleaved in the file, normals out on one and in on the other.
+TEST(Projection, CloudsOfSeveralChunksProjectEachPointOntoItsOwnSphere) {
+  test::SampleOptions o;
+  o.noise = 0.002f;
+  o.count = 36000;
+  const PointCloud sphere = test::sample(test::Sphere{}, o);
+  PointCloud cloud;
+  for (std::size_t i = 0; i < 2 * sphere.size(); ++i) {
+    const float side = i % 2 == 0 ? -1.0f : 1.0f;
+    const vec3 p = sphere.positions[i / 2];
+    cloud.positions.push_back(p + vec3(3.0f * side, 0, 0));
+    cloud.normals.push_back(side * glm::normalize(p));
+  }
+  ASSERT_GT(cloud.size(), std::size_t(1) << 16);
+  const CloudProjection out = run(cloud, test::suggested_h(sphere), PlaneFitMethod::mls);
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const vec3 centre(i % 2 == 0 ? -3.0f : 3.0f, 0, 0);
+    ASSERT_LT(std::abs(glm::length(out.cloud.positions[i] - centre) - 1.0f), 0.01f) << i;
+    ASSERT_GT(glm::dot(out.cloud.normals[i], cloud.normals[i]), 0.9f) << i;
+  }
+}
+
 TEST(Projection, NormalsAreConsistentlyOrientedOutward) {
   // Without input normals the eigenvectors' signs are arbitrary; the spanning-tree pass
   // must make all of them agree. On a sphere that means all outward or all inward, and

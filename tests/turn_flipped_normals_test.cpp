@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "pss/core/error.hpp"
 #include "pss/io/point_cloud_file.hpp"
 #include "pss/points/orient_normals.hpp"
 #include "pss/points/outliers.hpp"
@@ -232,6 +233,33 @@ TEST(TurnFlippedNormals, TheBunnysOrientedNormalsFaceAsItsMesh) {
     (glm::dot(normals[i], truth[i]) > 0 ? with : against) += 1;
   }
   EXPECT_LT(std::min(with, against), 40u) << with << " with the faces, " << against << " against";
+}
+
+// pss project lends its arrays to the orientation (issue 28): they must come back as the
+// span overload leaves them, the points unchanged.
+TEST(OrientNormals, LentArraysComeBackAsTheSpanOverloadLeavesThem) {
+  std::vector<vec3> points;
+  const std::vector<vec3> truth = bunny_face_normals(points);
+  std::vector<vec3> normals(points.size());
+  std::mt19937 rng(3);
+  for (std::size_t i = 0; i < points.size(); ++i) normals[i] = (rng() % 2 ? 1.0f : -1.0f) * glm::normalize(truth[i] + vec3(1e-6f));
+  const std::vector<float> support(points.size(), 0.0056f);
+  std::vector<vec3> by_span = normals;
+  orient_normals_consistently(std::span<const vec3>(points), by_span, support);
+  std::vector<vec3> lent_points = points, lent_normals = normals;
+  orient_normals_consistently(lent_points, lent_normals, std::vector<float>(support));
+  EXPECT_EQ(lent_points, points);
+  EXPECT_EQ(lent_normals, by_span);
+  EXPECT_NE(by_span, normals);  // the orientation turned some
+}
+
+TEST(OrientNormals, OneNormalPerPointIsNeeded) {
+  std::vector<vec3> points{vec3(0), vec3(1, 0, 0), vec3(0, 1, 0)}, normals(2, vec3(0, 0, 1));
+  const std::vector<float> radius(3, 2.0f);
+  EXPECT_THROW(orient_normals_consistently(std::span<const vec3>(points), normals, radius), Error);
+  EXPECT_THROW(orient_normals_consistently(points, normals, std::vector<float>(radius)), Error);
+  EXPECT_EQ(points.size(), 3u);  // nothing lent was freed
+  EXPECT_EQ(normals.size(), 2u);
 }
 
 // The samples' normals as project, render and mesh estimate and orient them (adaptive

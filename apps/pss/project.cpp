@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
+#include <utility>
 #include <vector>
 
 #include "commands.hpp"
@@ -29,11 +30,13 @@ void run_project(const ProjectOptions& o) {
   OutputSet outputs({o.input}, {o.output, o.compute.stats_path});
   const Backend backend = start_compute(o.compute);
   Stats stats;
-  const PointCloud cloud = read_cloud(o.input, stats);
+  PointCloud cloud = read_cloud(o.input, stats);
   const ProjectionParams params = projection_params(
       o.surface, cloud, o.input, o.method == "wls" ? PlaneFitMethod::wls : PlaneFitMethod::mls, stats);
 
-  const CloudProjection result = project_cloud(cloud, params, backend, stats);
+  // The input's arrays become the output's (issue 28).
+  const CloudProjection result = project_cloud(std::move(cloud), params, backend, stats);
+  const PointCloud& projected = result.cloud;
   try {
     check_some_projected(result, params);
   } catch (const Error& e) {
@@ -52,7 +55,7 @@ void run_project(const ProjectOptions& o) {
   const double projection_s = stats.time("projection");
   const auto& c = result.counts;
   std::printf("projected %zu points onto the PSS in %.3f s (projection %.3f s, %.0f points/s, %s backend, %d threads)\n",
-              cloud.size(), total, projection_s, double(cloud.size()) / projection_s, backend_name(backend),
+              projected.size(), total, projection_s, double(projected.size()) / projection_s, backend_name(backend),
               cpu_threads());
   std::printf("%s surface%s, h = %g (%s), rho = %g, plane fit %s; converged %lld, not converged %lld, too few "
               "neighbours %lld, degenerate normal %lld; %lld outliers set aside (projected, not samples)\n",
@@ -60,11 +63,11 @@ void run_project(const ProjectOptions& o) {
               support_text(params.support, result.widths).c_str(), params.rho, o.method.c_str(), (long long)c.converged,
               (long long)c.not_converged, (long long)c.too_few_neighbours, (long long)c.degenerate_normal,
               (long long)result.outliers.set_aside);
-  print_normals_turned(result.normals_turned, cloud.size());
+  print_normals_turned(result.normals_turned, projected.size());
 
   if (!o.compute.stats_path.empty()) {
     auto& v = stats.values();
-    record_cloud_run(stats, "project", o.input, o.output, cloud, backend);
+    record_cloud_run(stats, "project", o.input, o.output, projected, backend);
     v["params"] = {{"h", params.h}, {"rho", params.rho}, {"plane_fit", o.method},
                    {"support", support_name(params.support)},
                    {"surface", surface_name(params.surface)}, {"normals", normals_used_name(result.normals)},
@@ -75,7 +78,7 @@ void run_project(const ProjectOptions& o) {
                    {"too_few_neighbours", c.too_few_neighbours}, {"degenerate_normal", c.degenerate_normal}};
     v["outliers_set_aside"] = result.outliers.set_aside;
     v["normals_turned"] = result.normals_turned;
-    v["points_per_second"] = double(cloud.size()) / projection_s;
+    v["points_per_second"] = double(projected.size()) / projection_s;
     stats.write(o.compute.stats_path);
   }
   outputs.commit();

@@ -95,21 +95,21 @@ struct CloudSurfaceArgs {
 };
 
 py::tuple project(const py::handle& points, const py::dict& o) {
-  const PointCloud cloud = cloud_of(points, option(o, "normals"));
+  PointCloud cloud = cloud_of(points, option(o, "normals"));
   const PlaneFitMethod plane = choice(o, "method", {"mls", "wls"}) == "wls" ? PlaneFitMethod::wls : PlaneFitMethod::mls;
   const CloudSurfaceArgs args(o);
   const Backend backend = backend_of(o);
   CloudProjection result = run_interruptibly([&] {
     Stats stats;
     const ProjectionParams params = args.params(cloud, plane);
-    CloudProjection projection = project_cloud(cloud, params, backend, stats);
+    CloudProjection projection = project_cloud(std::move(cloud), params, backend, stats);  // no second copy
     check_some_projected(projection, params);
     return projection;
   });
   std::vector<std::int32_t> status(result.status.size());
   for (std::size_t i = 0; i < status.size(); ++i) status[i] = std::int32_t(result.status[i]);
   const auto n = py::ssize_t(status.size());
-  return py::make_tuple(world_numpy(std::move(result.cloud.positions), cloud.origin, {n, 3}),
+  return py::make_tuple(world_numpy(std::move(result.cloud.positions), result.cloud.origin, {n, 3}),
                         to_numpy(std::move(result.cloud.normals)),
                         to_numpy<std::int32_t>(std::move(status), {n}));
 }

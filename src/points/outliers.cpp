@@ -51,23 +51,13 @@ SupportGrid grid_of_samples(std::span<const vec3> points, std::span<const float>
     const std::span<const int> original = grid->original_index();
     const auto kept = std::size_t(std::count(keep.begin(), keep.end(), char(1)));
     if (kept == keep.size()) break;
-    std::vector<vec3> kept_points;
-    std::vector<float> kept_h;
-    std::vector<int> input_index;
-    kept_points.reserve(kept);
-    kept_h.reserve(kept);
+    std::vector<int> input_index;  // the kept, in the old grid's order: ties go as they went
     input_index.reserve(kept);
-    for (std::size_t k = 0; k < keep.size(); ++k) {
-      if (!keep[k]) continue;
-      const int i = original[k];
-      kept_points.push_back(points[std::size_t(i)]);
-      kept_h.push_back(h[std::size_t(i)]);
-      input_index.push_back(i);
-    }
+    for (std::size_t k = 0; k < keep.size(); ++k)
+      if (keep[k]) input_index.push_back(original[k]);
     report.set_aside += std::int64_t(keep.size() - kept);
     grid.reset();  // before the next is built: two grids at once were the phase's peak (issue 28)
-    grid.emplace(kept_points, kept_h, kappa);
-    grid->renumber(input_index);
+    grid.emplace(points, h, input_index, kappa);
   }
   return std::move(*grid);
 }

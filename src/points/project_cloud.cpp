@@ -1,9 +1,12 @@
 #include "pss/points/project_cloud.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <span>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "pss/backend/cpu/parallel_for.hpp"
 #include "pss/backend/mirror.hpp"
@@ -67,8 +70,7 @@ vec3 set_aside_hint(const SupportGrid& grid, const FileNormals& file, vec3 posit
 
 }  // namespace
 
-CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& params, Backend backend,
-                              Stats& stats) {
+CloudProjection project_cloud(PointCloud input, const ProjectionParams& params, Backend backend, Stats& stats) {
   validate(params);
   const std::size_t n = input.size();
   // Projection runs in the cloud's unit frame (unit_frame.hpp): h, ρ and the tolerance are
@@ -80,17 +82,20 @@ CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& p
   unit_params.rho = float(double(params.rho) / frame.scale);
   unit_params.t_tolerance = float(double(params.t_tolerance) / frame.scale);
   CloudProjection out;
-  // The projections keep the input's order, so its per-point values stay with them.
+  // The projections keep the input's order, so its per-point values stay with them; the
+  // input's arrays become the output's (issue 28: one copy of each at 10^7 points).
   out.cloud.origin = input.origin;
-  out.cloud.colors = input.colors;
-  out.cloud.scalars = input.scalars;
+  out.cloud.colors = std::move(input.colors);
+  out.cloud.scalars = std::move(input.scalars);
+  std::vector<vec3>& positions = out.cloud.positions;
+  positions = std::move(input.positions);
+  for (vec3& p : positions) p = frame.to_unit(p);
   SupportWidths widths;
   NormalsUsed normals_used = NormalsUsed::none;
   OutlierReport outliers;
   std::size_t normals_turned = 0;
   bool file_hints = false;  // the file's normals orient the projections
   {  // what the projection needs, freed before the orientation
-    const std::vector<vec3> positions = points_detail::to_unit(input.positions, frame);
     {
       ScopedPhase phase(stats, "support widths", params.support == Support::global);  // else its Progress shows it
       widths = support_widths(positions, unit_params);
@@ -103,14 +108,10 @@ CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& p
     normals_turned = file.turned;
     file_hints = !file.sorted.empty();
     prepare_sample_normals(grid, file, unit_params, backend, stats, normals_used);
-    // The samples are projected in the grid's order, so that neighbouring threads gather
-    // neighbouring samples from the cache; in a scan's random order, 10⁷ points projected at
-    // a fifth of the rate of 10⁶ on a GPU (docs/benchmarks.md, issue 29). Without input
-    // normals the eigenvector's sign is arbitrary; orientation comes after. The points set
-    // aside follow (below).
+    // The points set aside are not samples, but points all the same: projected after the
+    // samples, with a hint from the nearest sample where the file has normals.
     const std::span<const int> original = grid.original_index();
     const std::size_t m = original.size();
-    // The points set aside are not samples, but points all the same: projected after.
     std::vector<int> set_aside;
     if (m < n) {
       std::vector<char> sample(n, 0);
@@ -118,42 +119,50 @@ CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& p
       for (std::size_t i = 0; i < n; ++i)
         if (!sample[i]) set_aside.push_back(int(i));
     }
-    std::vector<ProjectedPoint> ordered;  // the samples', in the grid's order, then the others'
-    {
-      const GridMirror g(backend, grid);
-      Mirror<ProjectedPoint> projected(backend, n);
-      Progress progress("projecting", std::int64_t(n));
-      const Mirror<vec3> hint(backend, file.sorted);
-      parallel_for(backend, "projection", std::int64_t(m),
-                   ProjectPointsKernel{g.view(), g.view().points, file_hints ? hint.data() : nullptr, projected.data(),
-                                       unit_params},
-                   stats, &progress);
-      std::vector<vec3> others, other_hints;  // the points set aside, and their hints
-      for (int i : set_aside) {
-        others.push_back(positions[std::size_t(i)]);
-        if (file_hints)
-          other_hints.push_back(
-              set_aside_hint(grid, file, positions[std::size_t(i)], input.normals[std::size_t(i)]));
-      }
-      const Mirror<vec3> other(backend, others);
-      const Mirror<vec3> other_hint(backend, other_hints);
-      if (!others.empty())
-        parallel_for(backend, "projection", std::int64_t(others.size()),
-                     ProjectPointsKernel{g.view(), other.data(), file_hints ? other_hint.data() : nullptr,
-                                         projected.data() + m, unit_params},
-                     stats, &progress);
-      ordered = projected.take();
+    std::vector<vec3> others, other_hints;
+    for (int i : set_aside) {
+      others.push_back(positions[std::size_t(i)]);
+      if (file_hints)
+        other_hints.push_back(set_aside_hint(grid, file, positions[std::size_t(i)], input.normals[std::size_t(i)]));
     }
-    out.cloud.positions.resize(n);
+    std::vector<vec3>().swap(input.normals);  // their hints are taken
     out.cloud.normals.resize(n);
     out.status.resize(n);
-    auto place = [&](std::size_t k, std::size_t i) {
-      out.cloud.positions[i] = ordered[k].point;
-      out.cloud.normals[i] = ordered[k].normal;
-      out.status[i] = ordered[k].status;
+    const GridMirror g(backend, grid);
+    const Mirror<vec3> hint(backend, file.sorted);
+    const Mirror<vec3> other(backend, others);
+    const Mirror<vec3> other_hint(backend, other_hints);
+    Progress progress("projecting", std::int64_t(n));
+    // In chunks, each placed at once, so that the projections are never all held beside the
+    // output (28 bytes a point); a GPU is given enough threads a launch to fill it.
+    const std::size_t chunk = std::size_t(1) << (backend == Backend::cpu ? 16 : 20);
+    // points[k], hints[k] (or null) are those of input point index(k), k < count.
+    auto project = [&](const vec3* points, const vec3* hints, std::size_t count, auto index) {
+      for (std::size_t begin = 0; begin < count; begin += chunk) {
+        const std::size_t size = std::min(chunk, count - begin);
+        Mirror<ProjectedPoint> projected(backend, size);
+        parallel_for(backend, "projection", std::int64_t(size),
+                     ProjectPointsKernel{g.view(), points + begin, hints ? hints + begin : nullptr, projected.data(),
+                                         unit_params},
+                     stats, &progress);
+        const std::vector<ProjectedPoint> done = projected.take();
+        cpu::parallel_for(std::int64_t(size), [&](std::int64_t k) {
+          const std::size_t i = index(begin + std::size_t(k));
+          positions[i] = done[std::size_t(k)].point;
+          out.cloud.normals[i] = done[std::size_t(k)].normal;
+          out.status[i] = done[std::size_t(k)].status;
+        });
+      }
     };
-    cpu::parallel_for(std::int64_t(m), [&](std::int64_t k) { place(std::size_t(k), std::size_t(original[k])); });
-    for (std::size_t k = 0; k < set_aside.size(); ++k) place(m + k, std::size_t(set_aside[k]));
+    // The samples are read from the grid, so the positions take the projections as they come.
+    // The samples in the grid's order, so that neighbouring threads gather neighbouring
+    // samples from the cache; in a scan's random order, 10⁷ points projected at a fifth of
+    // the rate of 10⁶ on a GPU (docs/benchmarks.md, issue 29). Without input normals the
+    // eigenvector's sign is arbitrary; orientation comes after.
+    project(g.view().points, file_hints ? hint.data() : nullptr, m,
+            [&](std::size_t k) { return std::size_t(original[k]); });
+    project(other.data(), file_hints ? other_hint.data() : nullptr, set_aside.size(),
+            [&](std::size_t k) { return std::size_t(set_aside[k]); });
   }
   out.widths.least = float(widths.least * frame.scale);
   out.widths.median = float(widths.median * frame.scale);
@@ -172,9 +181,9 @@ CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& p
     ScopedPhase phase(stats, "orient normals", false);  // its Progress shows it
     std::vector<float> support = std::move(widths.h);  // ρ_i: the orientation links the samples of each N(p_i)
     for (float& rho : support) rho *= unit_params.rho / unit_params.h;
-    orient_normals_consistently(out.cloud.positions, out.cloud.normals, support);
+    orient_normals_consistently(positions, out.cloud.normals, std::move(support));
   }
-  for (vec3& p : out.cloud.positions) p = frame.from_unit(p);
+  for (vec3& p : positions) p = frame.from_unit(p);
   return out;
 }
 

@@ -11,34 +11,50 @@ namespace pss {
 
 SupportGrid::SupportGrid(std::span<const vec3> points, std::span<const float> h, float kappa, long long max_cells) {
   if (h.size() != points.size()) throw Error("support grid: one width per point is needed");
+  build(points, h, points.size(), [](std::size_t i) { return i; }, kappa, max_cells);
+}
+
+SupportGrid::SupportGrid(std::span<const vec3> points, std::span<const float> h, std::span<const int> subset,
+                         float kappa, long long max_cells) {
+  if (h.size() != points.size()) throw Error("support grid: one width per point is needed");
+  for (int i : subset)
+    if (i < 0 || std::size_t(i) >= points.size()) throw Error("support grid: a subset index is out of range");
+  build(points, h, subset.size(), [&](std::size_t s) { return std::size_t(subset[s]); }, kappa, max_cells);
+}
+
+template <class Index>
+void SupportGrid::build(std::span<const vec3> points, std::span<const float> h, std::size_t count, Index index,
+                        float kappa, long long max_cells) {
   if (!(kappa > 0) || !std::isfinite(kappa)) throw Error("support grid: rho/h must be a positive number");
   float least = kInfinity;
-  for (float w : h) {
+  for (std::size_t s = 0; s < count; ++s) {
+    const float w = h[index(s)];
     if (!(w > 0) || !std::isfinite(w)) throw Error("support grid: every width h must be a positive number");
     least = std::min(least, w);
   }
   // Level l holds widths in [2^l, 2^(l+1))·least; the last level takes every wider one.
   constexpr int L = SupportGridView::kMaxLevels;
   auto level_of = [&](float w) { return std::clamp(int(std::floor(std::log2(double(w) / double(least)))), 0, L - 1); };
-  std::vector<unsigned char> level(points.size());
+  std::vector<unsigned char> level(count);
   std::array<Aabb, L> box;
   std::array<float, L> widest{};
   std::array<long long, L> members{};
-  for (std::size_t i = 0; i < points.size(); ++i) {
+  for (std::size_t s = 0; s < count; ++s) {
+    const std::size_t i = index(s);
     const int l = level_of(h[i]);
-    level[i] = (unsigned char)l;
+    level[s] = (unsigned char)l;
     box[l].grow(points[i]);
     widest[l] = std::max(widest[l], h[i]);
     ++members[l];
   }
   // Each level a uniform grid; one counting sort over every level's cells, one after another,
-  // sorts the samples by level, then by cell, then by input order.
+  // sorts the samples by level, then by cell, then by their order here.
   kappa_ = kappa;
   std::array<int, L> level_at{};  // the level's index in levels_; -1 for an empty one
   std::size_t cells = 0;
   for (int l = 0; l < L; ++l) {
     level_at[l] = -1;
-    if (members[l] == 0 && !(points.empty() && l == 0)) continue;  // an empty cloud keeps one empty level
+    if (members[l] == 0 && !(count == 0 && l == 0)) continue;  // an empty cloud keeps one empty level
     const float radius = widest[l] > 0 ? kappa * widest[l] : 1.0f;
     // Far more cells than samples is memory for nothing: a level of few wide samples (the
     // sparse part of a cloud, a box stretched by a stray point) gets cells to match.
@@ -50,16 +66,18 @@ SupportGrid::SupportGrid(std::span<const vec3> points, std::span<const float> h,
   }
   if (cells >= std::size_t(std::numeric_limits<int>::max())) throw Error("support grid: too many cells");
   {
-    std::vector<int> key(points.size());
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      const int at = level_at[level[i]];
-      key[i] = level_offset_[std::size_t(at)] + levels_[std::size_t(at)].grid.cell_index(points[i]);
+    std::vector<int> key(count);
+    for (std::size_t s = 0; s < count; ++s) {
+      const int at = level_at[level[s]];
+      key[s] = level_offset_[std::size_t(at)] + levels_[std::size_t(at)].grid.cell_index(points[index(s)]);
     }
+    std::vector<unsigned char>().swap(level);
     counting_sort(key, cells, cell_start_, original_index_);
   }
-  sorted_.resize(points.size());
-  inv_h2_.resize(points.size());
-  for (std::size_t s = 0; s < sorted_.size(); ++s) {
+  for (int& s : original_index_) s = int(index(std::size_t(s)));
+  sorted_.resize(count);
+  inv_h2_.resize(count);
+  for (std::size_t s = 0; s < count; ++s) {
     const auto i = std::size_t(original_index_[s]);
     sorted_[s] = points[i];
     inv_h2_[s] = 1.0f / (h[i] * h[i]);
@@ -87,10 +105,6 @@ SupportGridView SupportGrid::view() const {
 void SupportGrid::set_normals(std::vector<vec3> sorted_normals) {
   if (sorted_normals.size() != sorted_.size()) throw Error("SupportGrid::set_normals: one normal per sample");
   normals_ = std::move(sorted_normals);
-}
-
-void SupportGrid::renumber(std::span<const int> input_index) {
-  for (int& i : original_index_) i = input_index[std::size_t(i)];
 }
 
 }  // namespace pss

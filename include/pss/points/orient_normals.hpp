@@ -10,11 +10,19 @@
 #pragma once
 
 #include <span>
+#include <vector>
 
 #include "pss/core/types.hpp"
 
 namespace pss {
 
+// Throws Error unless there is one normal and one radius per point.
 void orient_normals_consistently(std::span<const vec3> points, std::span<vec3> normals, std::span<const float> radius);
+
+// The same, for a caller that lends its arrays (pss project at 10^7 points, issue 28): the
+// tree grows over the grid's sorted copies while the points and normals are freed; they come
+// back as they were, the normals oriented. The radii are freed once indexed. Where it throws
+// (an interrupt through Progress), the lent arrays may come back empty.
+void orient_normals_consistently(std::vector<vec3>& points, std::vector<vec3>& normals, std::vector<float>&& radius);
 
 }  // namespace pss

@@ -32,9 +32,9 @@ struct CloudProjection {
 
 // Throws Error for invalid parameters (h or ρ not positive and finite, ρ beyond the cloud's
 // bounding-box diagonal). Runs in the cloud's bounding-box frame, so results do not depend
-// on the data's units.
-CloudProjection project_cloud(const PointCloud& input, const ProjectionParams& params, Backend backend,
-                              Stats& stats);
+// on the data's units. The input's arrays become the result's: a caller done with the cloud
+// moves it in, and no second copy of it is held.
+CloudProjection project_cloud(PointCloud input, const ProjectionParams& params, Backend backend, Stats& stats);
 
 void validate(const ProjectionParams& params);
 

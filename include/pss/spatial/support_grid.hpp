@@ -75,6 +75,11 @@ class SupportGrid {
   // h[i] > 0 is point i's width, kappa = ρ_i/h_i. Each level's grid has at most 32 cells per
   // sample (4,096 at least) and at most max_cells (UniformGrid).
   SupportGrid(std::span<const vec3> points, std::span<const float> h, float kappa, long long max_cells = 1ll << 25);
+  // The grid of points subset[0], subset[1], ... alone, without copying them out first (the
+  // samples kept of a cloud); ties within a cell go by their order in `subset`, and
+  // original_index() counts in `points`.
+  SupportGrid(std::span<const vec3> points, std::span<const float> h, std::span<const int> subset, float kappa,
+              long long max_cells = 1ll << 25);
 
   SupportGrid(const SupportGrid&) = delete;  // the levels point into the arrays
   SupportGrid& operator=(const SupportGrid&) = delete;
@@ -93,13 +98,14 @@ class SupportGrid {
   std::span<const int> level_cell_offset() const { return level_offset_; }
   // original_index()[i] is the input index of sorted point i.
   std::span<const int> original_index() const { return original_index_; }
-  // Makes original_index() count in a larger array of which this grid's points were
-  // input_index[0], input_index[1], ... (the samples kept of a cloud).
-  void renumber(std::span<const int> input_index);
   int levels() const { return int(levels_.size()); }
   float kappa() const { return kappa_; }
 
  private:
+  template <class Index>
+  void build(std::span<const vec3> points, std::span<const float> h, std::size_t count, Index index, float kappa,
+             long long max_cells);
+
   std::vector<vec3> sorted_;
   std::vector<float> inv_h2_;
   std::vector<vec3> normals_;
