@@ -193,7 +193,7 @@ std::int64_t flip_between_centres(TriangleMesh& mesh, int first_centre, double m
   const Incidence in = incidence(mesh.triangles);
   const auto& sides = in.sides;
   auto exists = [&](int a, int b) {
-    const Side key{std::min(a, b), std::max(a, b), false, -1};
+    const Side key{std::min(a, b), std::max(a, b), -1, false};
     const auto at = std::lower_bound(sides.begin(), sides.end(), key, [](const Side& x, const Side& y) {
       return x.low != y.low ? x.low < y.low : x.high < y.high;
     });

@@ -15,8 +15,8 @@ namespace pss::mesh_detail {
 // runs from low to high.
 struct Side {
   int low, high;
+  int triangle;  // 16 bytes a side, not 24: a mesh has three sides a triangle (issue 28)
   bool forward;
-  std::int64_t triangle;
   bool same_edge(const Side& o) const { return low == o.low && high == o.high; }
 };
 
@@ -26,7 +26,8 @@ struct Incidence {
   ConnectedComponents<std::int64_t> fans;        // of corners 3·triangle + k (vertex k of the triangle)
 };
 
-// Triangles with a repeated vertex take part in no fan (their corners stay alone).
+// Triangles with a repeated vertex take part in no fan (their corners stay alone). Throws
+// Error for 2^31 triangles or more (march_tetrahedra makes fewer).
 Incidence incidence(const std::vector<std::array<int, 3>>& triangles);
 
 }  // namespace pss::mesh_detail

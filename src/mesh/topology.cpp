@@ -1,9 +1,11 @@
 #include <algorithm>
+#include <limits>
 
 #include <glm/ext/vector_double3.hpp>
 #include <glm/geometric.hpp>
 
 #include "incidence.hpp"
+#include "pss/core/error.hpp"
 #include "pss/mesh/triangle_mesh.hpp"
 
 namespace pss {
@@ -21,6 +23,7 @@ namespace mesh_detail {
 
 Incidence incidence(const std::vector<std::array<int, 3>>& triangles) {
   const std::size_t nt = triangles.size();
+  if (nt > std::size_t(std::numeric_limits<int>::max())) throw Error("a mesh of 2^31 triangles or more");
   Incidence in{{}, ConnectedComponents<std::int64_t>(nt), ConnectedComponents<std::int64_t>(3 * nt)};
   // The sides sorted on (low, high, triangle) in about linear time: counted into one bucket
   // per lower vertex, then each bucket, a vertex's few edges, sorted on its own.
@@ -29,7 +32,7 @@ Incidence incidence(const std::vector<std::array<int, 3>>& triangles) {
   std::vector<std::int64_t> start(std::size_t(vertices) + 1, 0);
   auto side = [&](std::size_t i, int k) {
     const int a = triangles[i][std::size_t(k)], b = triangles[i][std::size_t((k + 1) % 3)];
-    return Side{std::min(a, b), std::max(a, b), a < b, std::int64_t(i)};
+    return Side{std::min(a, b), std::max(a, b), int(i), a < b};
   };
   for (std::size_t i = 0; i < nt; ++i)
     for (int k = 0; k < 3; ++k) ++start[std::size_t(side(i, k).low) + 1];

@@ -7,6 +7,7 @@
 
 #include "pss/core/error.hpp"
 #include "pss/core/indexed_min_heap.hpp"
+#include "pss/core/memory.hpp"
 #include "pss/core/progress.hpp"
 #include "pss/spatial/support_grid.hpp"
 
@@ -78,11 +79,6 @@ std::vector<vec3> sorted_normals(const SupportGrid& grid, std::span<const vec3> 
 
 void check_one_normal_per_point(std::size_t points, std::size_t normals) {
   if (normals != points) throw Error("orient normals: one normal per point is needed");
-}
-
-template <class T>
-void release(std::vector<T>& v) {
-  std::vector<T>().swap(v);
 }
 
 }  // namespace

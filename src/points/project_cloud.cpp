@@ -12,6 +12,7 @@
 #include "pss/backend/mirror.hpp"
 #include "pss/backend/parallel_for.hpp"
 #include "pss/core/error.hpp"
+#include "pss/core/memory.hpp"
 #include "pss/points/orient_normals.hpp"
 #include "pss/points/outliers.hpp"
 #include "pss/points/sample_normals.hpp"
@@ -125,7 +126,7 @@ CloudProjection project_cloud(PointCloud input, const ProjectionParams& params, 
       if (file_hints)
         other_hints.push_back(set_aside_hint(grid, file, positions[std::size_t(i)], input.normals[std::size_t(i)]));
     }
-    std::vector<vec3>().swap(input.normals);  // their hints are taken
+    release(input.normals);  // their hints are taken
     out.cloud.normals.resize(n);
     out.status.resize(n);
     const GridMirror g(backend, grid);

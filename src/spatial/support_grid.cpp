@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "pss/core/error.hpp"
+#include "pss/core/memory.hpp"
 
 namespace pss {
 
@@ -71,7 +72,7 @@ void SupportGrid::build(std::span<const vec3> points, std::span<const float> h, 
       const int at = level_at[level[s]];
       key[s] = level_offset_[std::size_t(at)] + levels_[std::size_t(at)].grid.cell_index(points[index(s)]);
     }
-    std::vector<unsigned char>().swap(level);
+    release(level);
     counting_sort(key, cells, cell_start_, original_index_);
   }
   for (int& s : original_index_) s = int(index(std::size_t(s)));

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 namespace pss {
 
@@ -20,5 +21,12 @@ int begin_peak_watch();
 std::int64_t end_peak_watch(int id);
 // The peak resident bytes of the whole process so far; -1 where unknown or not watched.
 std::int64_t process_peak_bytes();
+
+// Frees a vector's buffer now (clear() keeps it): a long run hands back what each step is
+// done with before the next allocates.
+template <class T>
+void release(std::vector<T>& v) {
+  std::vector<T>().swap(v);
+}
 
 }  // namespace pss
