@@ -345,6 +345,37 @@ TEST(MeshCloud, ClosedShapesGiveWatertightMeshesOnTheSurface) {
   }
 }
 
+// Noise of 0.4 h: the fits wrap a sample a few σ off the sphere in a bubble of its own (19
+// here), each held by fewer than three samples.
+TEST(MeshCloud, BubblesAroundNoisySamplesAreRemoved) {
+  test::SampleOptions o;
+  o.count = 12000;
+  o.noise = 0.03f;
+  const CloudMesh m = mesh_of(test::sample(test::Sphere{}, o), SurfaceOperator::mls, 0, BorderMode::extend);
+  const MeshTopology t = topology(m.mesh);
+  EXPECT_GE(m.counts.unsupported_parts, 5);
+  EXPECT_EQ(t.components, 1);
+  EXPECT_TRUE(t.watertight());
+  EXPECT_EQ(t.unreferenced_vertices, 0);
+}
+
+// A part as small as the data can make, a sphere of radius 3h beside a larger one, is held
+// by its own samples and stays.
+TEST(MeshCloud, ASmallPartHeldByItsSamplesStays) {
+  test::SampleOptions o;
+  o.count = 6000;
+  PointCloud cloud = test::sample(test::Sphere{}, o);
+  const float h = test::suggested_h(cloud);
+  o.count = std::size_t(6000 * 9 * h * h);  // the same density on a radius of 3h
+  const PointCloud small = test::sample(test::Sphere{vec3(2, 0, 0), 3 * h}, o);
+  cloud.positions.insert(cloud.positions.end(), small.positions.begin(), small.positions.end());
+  const CloudMesh m = mesh_of(cloud);
+  const MeshTopology t = topology(m.mesh);
+  EXPECT_EQ(m.counts.unsupported_parts, 0);
+  EXPECT_EQ(t.components, 2);
+  EXPECT_TRUE(t.watertight());
+}
+
 // A box with a bore (issue 26's CAD part, sampled with its exact normals): a closed surface
 // of genus one, so χ = 0, with creases; MLS's and RIMLS's meshes are one watertight
 // component, on the faces away from the creases (farther than 2h from an edge or rim).

@@ -330,22 +330,7 @@ std::int64_t remove_pinches(TriangleMesh& mesh) {
     removed += std::int64_t(nt - kept_triangles.size());
     mesh.triangles.swap(kept_triangles);
   }
-  // Drop the vertices no triangle uses, keeping the others' order.
-  std::vector<int> renumber(mesh.positions.size(), -1);
-  for (const auto& t : mesh.triangles)
-    for (int v : t) renumber[std::size_t(v)] = 0;
-  int next = 0;
-  for (std::size_t v = 0; v < renumber.size(); ++v)
-    if (renumber[v] == 0) {
-      renumber[v] = next;
-      mesh.positions[std::size_t(next)] = mesh.positions[v];
-      if (!mesh.normals.empty()) mesh.normals[std::size_t(next)] = mesh.normals[v];
-      ++next;
-    }
-  mesh.positions.resize(std::size_t(next));
-  if (!mesh.normals.empty()) mesh.normals.resize(std::size_t(next));
-  for (auto& t : mesh.triangles)
-    for (int& v : t) v = renumber[std::size_t(v)];
+  drop_unused_vertices(mesh);
   return removed;
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "implicit_surface.hpp"
+#include "unsupported_parts.hpp"
 #include "pss/core/error.hpp"
 #include "pss/mesh/cloud_implicit.hpp"
 #include "pss/points/project_cloud.hpp"
@@ -101,6 +102,7 @@ CloudMesh mesh_cloud(const PointCloud& cloud, const MeshParams& params, Backend 
     out.mesh = march_tetrahedra(lattice, grid.sorted_points(), implicit, mesh_detail::kMaxSlope,
                                 params.crease_angle, out.counts);
   }
+  out.counts.unsupported_parts = mesh_detail::remove_unsupported_parts(out.mesh, grid);
   out.mesh.origin = cloud.origin;
   // Which side is out is a guess where the normals were estimated, and where the file's
   // disagreed among themselves (some turned: the side kept is the larger one's). The closed

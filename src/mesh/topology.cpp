@@ -188,6 +188,24 @@ double enclosed_volume(const TriangleMesh& mesh, double* closed_share) {
   return volume;
 }
 
+void drop_unused_vertices(TriangleMesh& mesh) {
+  std::vector<int> renumber(mesh.positions.size(), -1);
+  for (const auto& t : mesh.triangles)
+    for (int v : t) renumber[std::size_t(v)] = 0;
+  int next = 0;
+  for (std::size_t v = 0; v < renumber.size(); ++v)
+    if (renumber[v] == 0) {
+      renumber[v] = next;
+      mesh.positions[std::size_t(next)] = mesh.positions[v];
+      if (!mesh.normals.empty()) mesh.normals[std::size_t(next)] = mesh.normals[v];
+      ++next;
+    }
+  mesh.positions.resize(std::size_t(next));
+  if (!mesh.normals.empty()) mesh.normals.resize(std::size_t(next));
+  for (auto& t : mesh.triangles)
+    for (int& v : t) v = renumber[std::size_t(v)];
+}
+
 void turn_inside_out(TriangleMesh& mesh) {
   for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
   for (vec3& n : mesh.normals) n = -n;

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
+#include <memory>
 
 #include "pss/backend/mirror.hpp"
 #include "pss/backend/parallel_for.hpp"
@@ -42,7 +42,9 @@ std::vector<char> samples_on_the_surface(const SupportGrid& grid, Backend backen
 SupportGrid grid_of_samples(std::span<const vec3> points, std::span<const float> h, float kappa, OutlierPolicy policy,
                             Backend backend, Stats& stats, OutlierReport& report) {
   report = {};
-  std::optional<SupportGrid> grid(std::in_place, points, h, kappa);
+  // Held by pointer so that the old grid is freed before the next is built (an optional's
+  // emplace does the same, but GCC 12 then warns of its vectors as maybe uninitialised).
+  auto grid = std::make_unique<SupportGrid>(points, h, kappa);
   if (policy == OutlierPolicy::keep) return std::move(*grid);
   // Twice: a stray next to another stray fits its plane through it, and stands out once the
   // other is gone. The second pass keeps the first's threshold.
@@ -57,7 +59,7 @@ SupportGrid grid_of_samples(std::span<const vec3> points, std::span<const float>
       if (keep[k]) input_index.push_back(original[k]);
     report.set_aside += std::int64_t(keep.size() - kept);
     grid.reset();  // before the next is built: two grids at once were the phase's peak (issue 28)
-    grid.emplace(points, h, input_index, kappa);
+    grid = std::make_unique<SupportGrid>(points, h, input_index, kappa);
   }
   return std::move(*grid);
 }

@@ -65,6 +65,7 @@ struct MarchCounts {
   std::int64_t crease_vertices = 0;    // on sharp creases (src/mesh/creases.hpp)
   std::int64_t crease_flips = 0;       // edges turned to join two of them
   std::int64_t pinched_triangles = 0;  // removed to keep every vertex one fan (remove_pinches)
+  std::int64_t unsupported_parts = 0;  // a cloud's mesh: parts no samples hold, removed (mesh_cloud.cpp)
 };
 
 // The mesh of the implicit's zero set in the cubes reached from the cubes holding `seeds`:

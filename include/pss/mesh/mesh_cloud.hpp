@@ -34,6 +34,12 @@ struct MeshParams {
   float crease_angle = kDefaultCreaseAngle;  // degrees, in (0, 180]; 180: no creases
 };
 
+// A part of a cloud's mesh (vertices joined by triangles) is held by the samples within its
+// bounding sphere; one held by fewer than this, as few as a fit takes (points/projection.hpp),
+// is no surface of the data's: the bubble the fits wrap around a noisy sample a few σ off
+// the surface (a 30,000-point sphere with noise 0.4 h gave 48 of them), and is removed.
+inline constexpr int kMinPartSamples = 3;
+
 struct CloudMesh {
   TriangleMesh mesh;
   MarchCounts counts;
