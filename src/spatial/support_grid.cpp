@@ -11,13 +11,11 @@
 namespace pss {
 
 SupportGrid::SupportGrid(std::span<const vec3> points, std::span<const float> h, float kappa, long long max_cells) {
-  if (h.size() != points.size()) throw Error("support grid: one width per point is needed");
   build(points, h, points.size(), [](std::size_t i) { return i; }, kappa, max_cells);
 }
 
 SupportGrid::SupportGrid(std::span<const vec3> points, std::span<const float> h, std::span<const int> subset,
                          float kappa, long long max_cells) {
-  if (h.size() != points.size()) throw Error("support grid: one width per point is needed");
   for (int i : subset)
     if (i < 0 || std::size_t(i) >= points.size()) throw Error("support grid: a subset index is out of range");
   build(points, h, subset.size(), [&](std::size_t s) { return std::size_t(subset[s]); }, kappa, max_cells);
@@ -26,6 +24,7 @@ SupportGrid::SupportGrid(std::span<const vec3> points, std::span<const float> h,
 template <class Index>
 void SupportGrid::build(std::span<const vec3> points, std::span<const float> h, std::size_t count, Index index,
                         float kappa, long long max_cells) {
+  if (h.size() != points.size()) throw Error("support grid: one width per point is needed");
   if (!(kappa > 0) || !std::isfinite(kappa)) throw Error("support grid: rho/h must be a positive number");
   float least = kInfinity;
   for (std::size_t s = 0; s < count; ++s) {
