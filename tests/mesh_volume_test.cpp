@@ -45,8 +45,9 @@ Volume ct_ball(vec3 center, float radius, float noise = 0, ivec3 dims = ivec3(40
 }
 
 struct BallFit {
-  double mean_distance = 0, max_distance = 0, mean_angle = 0;  // voxels; degrees
+  double mean_distance = 0, max_distance = 0, mean_angle = 0, max_angle = 0;  // voxels; degrees
   bool normals_outward = true, triangles_outward = true;
+  std::size_t inward_triangles = 0;
 };
 
 BallFit fit(const TriangleMesh& m, vec3 center, float radius) {
@@ -58,12 +59,16 @@ BallFit fit(const TriangleMesh& m, vec3 center, float radius) {
     f.max_distance = std::max(f.max_distance, distance);
     const float cosine = glm::dot(glm::normalize(d), m.normals[i]);
     f.normals_outward = f.normals_outward && cosine > 0.9f;
-    f.mean_angle += std::acos(std::min(1.0f, cosine)) * 180 / std::numbers::pi / double(m.positions.size());
+    const double angle = std::acos(std::min(1.0f, cosine)) * 180 / std::numbers::pi;
+    f.mean_angle += angle / double(m.positions.size());
+    f.max_angle = std::max(f.max_angle, angle);
   }
   for (const auto& t : m.triangles) {
     const vec3 a = m.positions[std::size_t(t[0])], b = m.positions[std::size_t(t[1])];
     const vec3 c = m.positions[std::size_t(t[2])];
-    f.triangles_outward = f.triangles_outward && glm::dot(glm::cross(b - a, c - a), (a + b + c) / 3.0f - center) > 0;
+    const bool outward = glm::dot(glm::cross(b - a, c - a), (a + b + c) / 3.0f - center) > 0;
+    f.triangles_outward = f.triangles_outward && outward;
+    f.inward_triangles += !outward;
   }
   return f;
 }
@@ -87,6 +92,34 @@ TEST(VolumeMesh, ACtLikeBallIsOneWatertightOutwardSurfaceOnItsEdge) {
     EXPECT_FLOAT_EQ(m.cell, 1.0f);  // a voxel
     // A narrow band: about two corners evaluated per cube meshed, not the ball's inside.
     EXPECT_LT(m.counts.corners, 3 * m.counts.cubes_crossed);
+  }
+}
+
+// A CT of thick slices: the ball sampled 6:1, its edge blurred over a third of a slice. The
+// neighbourhoods, θ1 and the hit test measure lengths in the lattice's metric
+// (VolumeView::metric), and the fits' planes are found there: with round balls in space
+// (3u held one slice across the coarse axis) the mesh of (0.5, 0.5, 3) was open (220
+// boundary edges) with normals 26° off on average, and that of (3, 3, 0.5) 6° off, 27° at
+// worst, 0.3 from the sphere. Left: on (0.5, 0.5, 3) a few slivers (7 of 13,748, a thirtieth
+// of the median area) fold inward where the surface grazes the thick slices.
+TEST(VolumeMesh, AVolumeOfThickSlicesIsOneClosedSurfaceWithTheBallsNormals) {
+  const vec3 center(16.2f, 15.8f, 17.3f);
+  const float radius = 10;
+  for (const auto& [spacing, dims] : {std::pair{vec3(0.5f, 0.5f, 3.0f), ivec3(64, 64, 12)},
+                                      std::pair{vec3(3.0f, 3.0f, 0.5f), ivec3(12, 12, 70)}}) {
+    SCOPED_TRACE(spacing.z);
+    test::SampleVolumeOptions o;
+    o.dims = dims;
+    o.spacing = spacing;
+    const Volume v = test::sample_volume(test::smooth_indicator(test::sphere_distance(center, radius), 100, 1.0f), o);
+    const VolumeMesh m = mesh_of(prepared(v, 50));
+    test::expect_one_closed_surface(m.mesh, 2);
+    const BallFit f = fit(m.mesh, center, radius);
+    EXPECT_LT(f.mean_distance, 0.2);  // world units; u = 0.91 and 1.65
+    EXPECT_LT(f.max_distance, 0.6);
+    EXPECT_LT(f.mean_angle, 4.5);
+    EXPECT_LT(f.max_angle, 12);
+    EXPECT_LE(f.inward_triangles, m.mesh.triangles.size() / 1000);
   }
 }
 

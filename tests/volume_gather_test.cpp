@@ -25,16 +25,18 @@ struct Gathered {
   float window, theta;
 };
 
-// Every voxel of the volume, in the lattice's order, that VoxelWeights keeps within the ball.
+// Every voxel of the volume, in the lattice's order, that VoxelWeights keeps within the ball,
+// round in the lattice's metric: one step along any axis measures u.
 std::vector<Gathered> brute_force(const FieldView& f, vec3 c, float radius, vec3 n, bool weighted_only) {
-  const VoxelWeights weights{1.0f / (radius * radius), n, weighted_only};
   const VolumeView& v = f.volume;
+  const float u = v.voxel_size();
+  const VoxelWeights weights{1.0f / (radius * radius), n, weighted_only, u / v.spacing};
   std::vector<Gathered> out;
   for (int k = 0; k < v.dims.z; ++k)
     for (int j = 0; j < v.dims.y; ++j)
       for (int i = 0; i < v.dims.x; ++i) {
         const vec3 d = v.origin + vec3(float(i), float(j), float(k)) * v.spacing - c;
-        if (length2(d) > radius * radius) continue;
+        if (length2(d / v.spacing) * u * u > radius * radius) continue;
         Gathered g{d, 0, 0};
         if (weights(f, d, v.index(i, j, k), g.window, g.theta)) out.push_back(g);
       }

@@ -181,7 +181,7 @@ TEST(VolumeRender, RadiusBeyondTheNeighbourhoodCapacityIsAnError) {
   // Radius 6 voxels: (6 + 0.87)³·4π/3 ≈ 1360 voxels > kMaxNeighbours (512).
   const VolumeParams params = VolumeParams::from_voxels(1.0f, VolumeMethod::predictor_corrector, 4.0f, 0.75f, 0.9f,
                                                         0.1f, 6.0f);
-  ASSERT_GT(neighbourhood_bound(params.radius, vec3(1.0f)), float(kMaxNeighbours));
+  ASSERT_GT(neighbourhood_bound(params.radius, VolumeView{}), float(kMaxNeighbours));
   EXPECT_THROW(test::prepare_iso(test::sample_volume(test::sphere_distance(vec3(8.0f), 5.0f), o), 0.0f, params), Error);
 }
 

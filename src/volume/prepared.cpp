@@ -14,7 +14,7 @@ PreparedVolume prepare_volume(VolumeFields fields, const FeatureParams& feature,
                               Stats& stats) {
   // The kernels hold at most kMaxNeighbours voxels per neighbourhood: refuse a radius that
   // could need more here, rather than let a gather stop early.
-  const float bound = neighbourhood_bound(params.radius, fields.volume.spacing);
+  const float bound = neighbourhood_bound(params.radius, fields.volume.view());
   if (bound > float(kMaxNeighbours)) {
     char message[200];
     std::snprintf(message, sizeof message,

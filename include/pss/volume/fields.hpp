@@ -54,7 +54,8 @@ struct FieldView {
 // terraces on the sample lattice, sheets in empty space). Dividing by the voxel's own
 // |∇f| makes |v − f|/|∇f| the first-order distance from the voxel to the iso-surface, so
 // k is a width in world units and far voxels, where f is flat, weigh nothing
-// (docs/paper-notes.md, §4).
+// (docs/paper-notes.md, §4). On a grid of unequal spacing the distance is measured in the
+// lattice's metric, as the neighbourhoods are (VolumeView::metric): `gradient` per unit of it.
 PSS_INLINE float theta_iso(float value, vec3 gradient, const FeatureParams& f) {
   const float difference = f.iso - value;
   const float width2 = f.smoothing * f.smoothing * length2(gradient);
@@ -68,7 +69,7 @@ PSS_INLINE float theta_gradient(vec3 gradient, float inv_max_gradient2) {
 // θ1 or θ2 of one voxel.
 PSS_INLINE float feature_weight(const VolumeView& volume, const vec3* gradients, float inv_max_gradient2,
                                 const FeatureParams& f, std::int64_t voxel) {
-  return f.kind == FeatureKind::iso ? theta_iso(volume.values[voxel], gradients[voxel], f)
+  return f.kind == FeatureKind::iso ? theta_iso(volume.values[voxel], gradients[voxel] / volume.metric(), f)
                                     : theta_gradient(gradients[voxel], inv_max_gradient2);
 }
 

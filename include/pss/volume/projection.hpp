@@ -73,7 +73,8 @@ struct VolumeProjection {
 };
 
 // One row of the lattice's box around a ball: voxels i0…i1 of row (j, k), the first at
-// `index`, all at the offsets dy, dz from the ball's centre (dyz = dy² + dz²).
+// `index`, all at the offsets dy, dz from the ball's centre (dyz = dy² + dz² in the
+// lattice's metric, VolumeView::metric).
 struct VoxelRow {
   float dy, dz, dyz;
   int i0, i1;
@@ -81,36 +82,39 @@ struct VoxelRow {
 };
 
 // Calls row(VoxelRow) for the rows of the lattice's box around the ball B(x, radius) whose
-// line meets the ball, in the lattice's order.
+// line meets the ball, in the lattice's order. The ball is round in the lattice's metric:
+// on a grid of unequal spacing, an ellipsoid in space.
 template <class F>
 PSS_HOST_DEVICE void for_each_voxel_row_near(const VolumeView& v, vec3 x, float radius, F&& row) {
-  const vec3 lo = v.to_grid(x - vec3(radius)), hi = v.to_grid(x + vec3(radius));
+  const vec3 m = v.metric();
+  const vec3 lo = v.to_grid(x - radius / m), hi = v.to_grid(x + radius / m);
   const int i0 = max(-int(floor(-lo.x)), 0), i1 = min(int(floor(hi.x)), v.dims.x - 1);
   const int j0 = max(-int(floor(-lo.y)), 0), j1 = min(int(floor(hi.y)), v.dims.y - 1);
   const int k0 = max(-int(floor(-lo.z)), 0), k1 = min(int(floor(hi.z)), v.dims.z - 1);
   const float r2 = radius * radius;
   for (int k = k0; k <= k1; ++k) {
-    const float dz = v.origin.z + float(k) * v.spacing.z - x.z;
+    const float dz = v.origin.z + float(k) * v.spacing.z - x.z, mz = dz * m.z;
     for (int j = j0; j <= j1; ++j) {
-      const float dy = v.origin.y + float(j) * v.spacing.y - x.y;
-      const float dyz = dy * dy + dz * dz;
+      const float dy = v.origin.y + float(j) * v.spacing.y - x.y, my = dy * m.y;
+      const float dyz = my * my + mz * mz;
       if (dyz > r2 || i0 > i1) continue;
       row(VoxelRow{dy, dz, dyz, i0, i1, v.index(i0, j, k)});
     }
   }
 }
 
-// Calls f(p − x, voxel index) for the voxels p within `radius` of x, in the lattice's order.
+// Calls f(p − x, voxel index) for the voxels p within `radius` of x in the lattice's metric,
+// in the lattice's order.
 template <class F>
 PSS_HOST_DEVICE void for_each_voxel_near(const VolumeView& v, vec3 x, float radius, F&& f) {
-  const float r2 = radius * radius;
+  const float r2 = radius * radius, mx = v.metric().x;
   for_each_voxel_row_near(v, x, radius, [&](const VoxelRow& row) {
     // (Cutting the row to the ball's chord made engine frames 20 % slower: the row's
     // sqrt and divisions cost more than the few voxel tests they spare.)
     std::int64_t index = row.index;
     for (int i = row.i0; i <= row.i1; ++i, ++index) {
       const float dx = v.origin.x + float(i) * v.spacing.x - x.x;
-      if (dx * dx + row.dyz <= r2) f(vec3(dx, row.dy, row.dz), index);
+      if ((dx * mx) * (dx * mx) + row.dyz <= r2) f(vec3(dx, row.dy, row.dz), index);
     }
   });
 }
@@ -125,7 +129,7 @@ PSS_HOST_DEVICE void for_each_voxel_near(const VolumeView& v, vec3 x, float radi
 inline constexpr int kMaxNeighbours = 512;
 
 // Whether a voxel at offset d from the centre counts, and with which weights: the window
-// (1 − d²/ρ²)² and θ (θ1 or θ2 times the window and the facing). θ counts a voxel only as far
+// (1 − d²/ρ²)², d measured in the lattice's metric, and θ (θ1 or θ2 times the window and the facing). θ counts a voxel only as far
 // as its gradient faces the way of n, the surface being fitted: the two faces of a wall
 // thinner than the ball are sheets of opposite orientation, and a fit over both would settle
 // between them. With `weighted_only` (the predictor, whose sums all carry θ), voxels whose
@@ -134,6 +138,7 @@ struct VoxelWeights {
   float inv_r2;
   vec3 n;
   bool weighted_only;
+  vec3 metric;  // VolumeView::metric
 
   // 1 for a gradient within 60° of n, falling linearly to 0 at 90° and beyond: continuous,
   // so that the fit changes smoothly as n turns. `direction` is ∇f/|∇f|, or 0 where ∇f = 0.
@@ -143,7 +148,7 @@ struct VoxelWeights {
     return f < 0.0f ? 0.0f : (f > 1.0f ? 1.0f : f);
   }
   PSS_HOST_DEVICE bool operator()(const FieldView& fields, vec3 d, std::int64_t index, float& window, float& theta) const {
-    const float u = 1.0f - length2(d) * inv_r2;
+    const float u = 1.0f - length2(d * metric) * inv_r2;
     window = u * u;
     const FeatureVoxel voxel = fields.features[index];
     const float weighted = window * voxel.weight;
@@ -167,7 +172,7 @@ struct VoxelNeighbourhood {
   PSS_HOST_DEVICE void gather(const FieldView& fields, vec3 c, float radius, vec3 n, bool weighted_only) {
     center = c;
     count = 0;
-    const VoxelWeights weights{1.0f / (radius * radius), n, weighted_only};
+    const VoxelWeights weights{1.0f / (radius * radius), n, weighted_only, fields.volume.metric()};
 #if PSS_CPU_AVX2
     if (cpu::has_avx2()) {
       gather_rows_avx2(fields, radius, weights);
@@ -183,7 +188,7 @@ struct VoxelNeighbourhood {
   PSS_HOST_DEVICE void gather_scalar(const FieldView& fields, vec3 c, float radius, vec3 n, bool weighted_only) {
     center = c;
     count = 0;
-    const VoxelWeights weights{1.0f / (radius * radius), n, weighted_only};
+    const VoxelWeights weights{1.0f / (radius * radius), n, weighted_only, fields.volume.metric()};
     for_each_voxel_near(fields.volume, c, radius, [&](vec3 d, std::int64_t index) { add(fields, weights, d, index); });
     pad();
   }
@@ -220,15 +225,15 @@ struct VoxelNeighbourhood {
         const std::int64_t index = row.index + (i - row.i0);
         const int lanes = min(row.i1 - i + 1, 8);
         if (index + 8 <= voxels) {
-          count += detail::gather_row_avx2(fields.features, index, i, lanes, v.origin.x, v.spacing.x, center.x, row.dy,
-                                           row.dz, row.dyz, r2, weights.inv_r2, weights.n, weights.weighted_only,
-                                           count, slots);
+          count += detail::gather_row_avx2(fields.features, index, i, lanes, v.origin.x, v.spacing.x, center.x,
+                                           weights.metric.x, row.dy, row.dz, row.dyz, r2, weights.inv_r2, weights.n,
+                                           weights.weighted_only, count, slots);
           count = min(count, kMaxNeighbours);
           continue;
         }
         for (int l = 0; l < lanes; ++l) {
-          const float x = v.origin.x + float(i + l) * v.spacing.x - center.x;
-          if (x * x + row.dyz <= r2) add(fields, weights, vec3(x, row.dy, row.dz), index + l);
+          const float x = v.origin.x + float(i + l) * v.spacing.x - center.x, mx = x * weights.metric.x;
+          if (mx * mx + row.dyz <= r2) add(fields, weights, vec3(x, row.dy, row.dz), index + l);
         }
       }
     });
@@ -288,7 +293,7 @@ struct WalkedVoxelNeighbourhood {
     fields = &f;
     center = c;
     radius = r;
-    weights = VoxelWeights{1.0f / (r * r), n, weighted_only};
+    weights = VoxelWeights{1.0f / (r * r), n, weighted_only, f.volume.metric()};
   }
   template <class F>
   PSS_HOST_DEVICE void for_each(F&& f) const {
@@ -332,38 +337,61 @@ using VoxelScratch = VoxelNeighbourhood;
 #endif
 
 // The most voxels a ball of this radius can hold on this grid, for the host's check: each
-// voxel's cell lies in the ball grown by half a cell diagonal.
-PSS_INLINE float neighbourhood_bound(float radius, vec3 spacing) {
-  const vec3 r = radius / spacing + 0.87f;
-  return 4.18879f * r.x * r.y * r.z;
+// voxel's cell lies in the ball grown by half a cell diagonal. In lattice steps the ball's
+// semi-axes are radius/u along every axis (VolumeView::metric).
+PSS_INLINE float neighbourhood_bound(float radius, const VolumeView& v) {
+  const float r = radius / v.voxel_size() + 0.87f;
+  return 4.18879f * r * r * r;
 }
 
 // Inverse power steps per normal update: each starts from the previous n, and the outer
 // iterations of Eq. 3 and 4 go on refining it.
 inline constexpr int kEigenIterations = 4;
 
+// The normal of the plane that fits the covariance C = Σw·dᵢdᵢᵀ / Σw best, starting from n:
+// the smallest eigenvector of C measured in the lattice's metric M (VolumeView::metric), MCM,
+// taken back to space (the plane n'·Mx = c has the normal Mn'). On a grid of unequal spacing
+// the neighbourhood is long along the coarse axis, and the plain C's smallest eigenvector
+// would lie across it whatever the surface (a ball's mesh then had normals 26° off).
+// Unchanged where the eigenvector is invalid.
+PSS_INLINE vec3 plane_normal(const Sym3& c, vec3 n, vec3 metric) {
+  if (metric == vec3(1.0f)) {
+    const EigenResult eig = smallest_eigenvector(c, n, kEigenIterations);
+    return eig.status == EigenStatus::invalid ? n : eig.vector;
+  }
+  const vec3 m = metric;
+  const Sym3 mcm{c.xx * m.x * m.x, c.xy * m.x * m.y, c.xz * m.x * m.z, c.yy * m.y * m.y, c.yz * m.y * m.z,
+                 c.zz * m.z * m.z};
+  const EigenResult eig = smallest_eigenvector(mcm, glm::normalize(n / m), kEigenIterations);
+  return eig.status == EigenStatus::invalid ? n : glm::normalize(m * eig.vector);
+}
+
 namespace detail {
 
 // Eq. 4's energy along n for fixed n about x0 = P(r): E(t) = Σ Θᵢ(t)·⟨n, pᵢ − (x0 + t·n)⟩²,
-// Θᵢ(t) = α1·θᵢ + α2·θ3(‖pᵢ − (x0 + t·n)‖), with its derivative for Brent. zᵢ = ⟨n, pᵢ − x0⟩,
-// sᵢ = zᵢ − t, ‖pᵢ − x0 − t·n‖² = ‖pᵢ − x0‖² − 2t·zᵢ + t², so dθ3/dt = 2sᵢθ3/h². Both
-// parts of Θ carry the neighbourhood's window.
+// Θᵢ(t) = α1·θᵢ + α2·θ3(‖pᵢ − (x0 + t·n)‖), with its derivative for Brent. θ3's distance is
+// the lattice's metric M (VolumeView::metric): with dᵢ = pᵢ − x0, zᵢ = ⟨n, dᵢ⟩, sᵢ = zᵢ − t,
+// ‖M(dᵢ − t·n)‖² = ‖Mdᵢ‖² − 2t·⟨Mdᵢ, Mn⟩ + t²‖Mn‖², so dθ3/dt = 2(⟨Mdᵢ, Mn⟩ − t‖Mn‖²)θ3/h²
+// (2sᵢθ3/h² on a cubic grid, M = 1). Both parts of Θ carry the neighbourhood's window.
 template <class Nb>
 struct CorrectorEnergy {
   const Nb& nb;
   vec3 n;
   float h, alpha;
+  vec3 metric;
 
   PSS_HOST_DEVICE float operator()(float t, float& derivative) const {
     const float inv_h2 = 1.0f / (h * h);
+    const vec3 mn = n * metric;
+    const float mn2 = metric == vec3(1.0f) ? 1.0f : length2(mn);  // n is a unit vector
     float sums[2];
     nb.sum(sums, [&](vec3 d, float window, float theta, float (&terms)[2]) {
-      const float z = glm::dot(d, n);
-      const float s = z - t;
-      const float theta3 = window * exp_nonpositive(-(length2(d) - 2 * t * z + t * t) * inv_h2);
+      const vec3 md = d * metric;
+      const float s = glm::dot(d, n) - t, along = glm::dot(md, mn) - t * mn2;
+      const float theta3 = window * exp_nonpositive(-(length2(md) - 2 * t * glm::dot(md, mn) + t * t * mn2) * inv_h2);
       const float w = alpha * theta + (1 - alpha) * theta3;
       terms[0] = w * s * s;
-      terms[1] = (1 - alpha) * 2 * s * theta3 * inv_h2 * s * s - 2 * w * s;
+      terms[1] = (1 - alpha) * 2 * along * theta3 * inv_h2 * s * s - 2 * w * s;
     });
     derivative = sums[1];
     return sums[0];
@@ -371,13 +399,13 @@ struct CorrectorEnergy {
 };
 
 // Eq. 4's weight Θᵢ = α1·θᵢ + α2·θ3(‖pᵢ − c‖) with c = `center` (relative to the
-// neighbourhood's centre), the window carried by both parts: the corrector's covariance and
-// polynomial weight their voxels so.
+// neighbourhood's centre) and the distance in the lattice's metric, the window carried by
+// both parts: the corrector's covariance and polynomial weight their voxels so.
 struct CorrectorWeight {
   float alpha, inv_h2;
-  vec3 center;
+  vec3 center, metric;
   PSS_HOST_DEVICE float operator()(vec3 d, float window, float theta) const {
-    return alpha * theta + (1 - alpha) * window * exp_nonpositive(-length2(d - center) * inv_h2);
+    return alpha * theta + (1 - alpha) * window * exp_nonpositive(-length2((d - center) * metric) * inv_h2);
   }
 };
 
@@ -454,8 +482,7 @@ struct Predictor {
       c.xz -= m.x * delta.z + m.z * delta.x;
       c.yz -= m.y * delta.z + m.z * delta.y;
       t += dt;
-      const EigenResult eig = smallest_eigenvector(c.scaled(1.0f / w), n, kEigenIterations);
-      if (eig.status != EigenStatus::invalid) n = eig.vector;
+      n = plane_normal(c.scaled(1.0f / w), n, fields->volume.metric());
       if (abs(dt) < params.t_tolerance) break;
       if (abs(t) > stop_beyond && iteration < params.max_predictor_iterations) {
         stopped_early = true;
@@ -485,10 +512,11 @@ PSS_HOST_DEVICE VolumeProjection correct(const FieldView& fields, const VolumePa
   vec3 n = predicted.frame.n;
   const float h = params.h, alpha = params.alpha;
   const float inv_h2 = 1.0f / (h * h);
+  const vec3 metric = fields.volume.metric();
   nb.gather(fields, x0, params.radius, n, false);
   float t = 0;
   for (int it = 0; it < params.max_corrector_iterations; ++it) {
-    const detail::CorrectorEnergy<Nb> energy{nb, n, h, alpha};
+    const detail::CorrectorEnergy<Nb> energy{nb, n, h, alpha, metric};
     // Brent searches t ± h from the minimiser of the α1 part alone (a θ-weighted mean of
     // the heights, closed form), which is where the α2 part only nudges it.
     float sums[2];
@@ -499,18 +527,15 @@ PSS_HOST_DEVICE VolumeProjection correct(const FieldView& fields, const VolumePa
     const float w = sums[0], wz = sums[1];
     const float start = w > 0 ? clamp(wz / w, t - h, t + h) : t;
     const float t_next = brent_minimize(energy, t - h, t + h, start, params.t_tolerance).x;
-    const WeightedMoments moments = nb.moments(detail::CorrectorWeight{alpha, inv_h2, t_next * n});
+    const WeightedMoments moments = nb.moments(detail::CorrectorWeight{alpha, inv_h2, t_next * n, metric});
     const Sym3 c = moments.second;
     const float weight_sum = moments.weight_sum;
-    if (weight_sum > 0) {
-      const EigenResult eig = smallest_eigenvector(c.scaled(1.0f / weight_sum), n, kEigenIterations);
-      if (eig.status != EigenStatus::invalid) n = eig.vector;
-    }
+    if (weight_sum > 0) n = plane_normal(c.scaled(1.0f / weight_sum), n, metric);
     const bool settled = abs(t_next - t) < params.t_tolerance;
     t = t_next;
     if (settled) break;
   }
-  VolumeProjection out = detail::fit_and_project(nb, x0, n, h, detail::CorrectorWeight{alpha, inv_h2, t * n});
+  VolumeProjection out = detail::fit_and_project(nb, x0, n, h, detail::CorrectorWeight{alpha, inv_h2, t * n, metric});
   out.predicted = predicted.point;
   return out;
 }

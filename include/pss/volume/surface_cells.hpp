@@ -70,18 +70,22 @@ PSS_INLINE bool passes_feature_test(const FieldView& v, const CellView& cells, c
 // p ± reach·n (sampled every quarter voxel), reach being how far the PSS, a surface
 // smoothed at the scale h, may stand off the interpolant's (which keeps the noise); a fit
 // that settled beside a small blob or off the rim of a cap has no crossing along its normal.
-// A gradient surface needs p next to a cell of high θ2.
+// The reach is a length in the lattice's metric, as h is (VolumeView::metric): across thick
+// slices it spans as many slices as across thin ones. A gradient surface needs p next to a
+// cell of high θ2.
 PSS_INLINE bool is_data_surface(const FieldView& v, const CellView& cells, const FeatureParams& f, vec3 p, vec3 n,
                                 float reach) {
   if (!cells.has(v.volume.to_grid(p), kCellBeside)) return false;
   if (f.kind == FeatureKind::gradient) return true;
   const int steps = max(1, int(ceil(4.0f * reach / v.volume.voxel_size())));
+  const vec3 metric = v.volume.metric();
+  const float along = metric == vec3(1.0f) ? reach : reach / glm::length(n * metric);  // in space, along n
   bool below = false, above = false;
   const Aabb box = v.volume.bounds();
   for (int i = -steps; i <= steps; ++i) {
     // Only inside the box: beyond it the data are not known (sampling would clamp to the
     // face's values and make a crossing of the face itself).
-    const vec3 q = p + (reach * float(i) / float(steps)) * n;
+    const vec3 q = p + (along * float(i) / float(steps)) * n;
     if (glm::any(glm::lessThan(q, box.lo)) || glm::any(glm::greaterThan(q, box.hi))) continue;
     const float value = sample(v.volume, q);
     below = below || value <= f.iso;

@@ -32,6 +32,14 @@ struct VolumeView {
   // The voxel unit u of the method's defaults: the edge of a cube of one voxel's volume,
   // so that a ball of a few u holds several layers of voxels along every axis.
   PSS_HOST_DEVICE float voxel_size() const { return pow(spacing.x * spacing.y * spacing.z, 1.0f / 3.0f); }
+  // The neighbourhoods' metric: an offset d weighs as |d ⊙ metric()|, its length in lattice
+  // steps times u, so that a ball of a few u holds a few layers along every axis however
+  // unequal the spacing (a CT's slices 6× the pixels: a round ball of 3u held one slice).
+  // Exactly 1 on a cubic grid.
+  PSS_HOST_DEVICE vec3 metric() const {
+    if (spacing.x == spacing.y && spacing.y == spacing.z) return vec3(1.0f);
+    return voxel_size() / spacing;
+  }
 };
 
 // The cell holding continuous grid coordinate g (clamped into the grid) and the fractions

@@ -45,13 +45,15 @@ struct GatherSlots {
 };
 
 // Tests the voxels i, …, i + lanes − 1 (lanes ≤ 8) of one lattice row, the first at `index`,
-// against the ball of squared radius r2 (dyz = dy² + dz² of the row), computes their window
+// against the ball of squared radius r2 in the lattice's metric (dyz = the row's dy² + dz²
+// there, metric_x the metric along x), computes their window
 // (1 − d²/ρ²)² and θ as VoxelWeights does (with `weighted_only`, θ < 1e-5 leaves a voxel out),
 // and stores those kept at `count`. Reads 8 voxels from `index`, whatever `lanes`: the caller
 // keeps index + 8 within the array. Returns how many were kept.
 [[gnu::target("avx2,fma,bmi2")]] inline int gather_row_avx2(const FeatureVoxel* features, std::int64_t index,
                                                             int i, int lanes, float origin_x, float spacing_x,
-                                                            float center_x, float dy, float dz, float dyz, float r2,
+                                                            float center_x, float metric_x, float dy, float dz,
+                                                            float dyz, float r2,
                                                             float inv_r2, vec3 n, bool weighted_only, int count,
                                                             const GatherSlots& out) {
   const float* voxels = &features[index].weight;
@@ -69,7 +71,8 @@ struct GatherSlots {
   const __m256 column = _mm256_add_ps(_mm256_set1_ps(float(i)), voxel);
   const __m256 dx = _mm256_sub_ps(_mm256_fmadd_ps(column, _mm256_set1_ps(spacing_x), _mm256_set1_ps(origin_x)),
                                   _mm256_set1_ps(center_x));
-  const __m256 d2 = _mm256_fmadd_ps(dx, dx, _mm256_set1_ps(dyz));
+  const __m256 mx = _mm256_mul_ps(dx, _mm256_set1_ps(metric_x));
+  const __m256 d2 = _mm256_fmadd_ps(mx, mx, _mm256_set1_ps(dyz));
   __m256 keep = _mm256_and_ps(_mm256_cmp_ps(d2, _mm256_set1_ps(r2), _CMP_LE_OQ),
                               _mm256_cmp_ps(voxel, _mm256_set1_ps(float(lanes)), _CMP_LT_OQ));
 
