@@ -173,6 +173,40 @@ TEST(VolumeGather, ReadsNothingPastTheLastVoxel) {
   munmap(mapping, pages * page);
 }
 
+// Eq. 4's energy over a gathered N(x) against its definition summed over the brute force's
+// voxels on a grid of unequal spacing, θ3's distance |M(pᵢ − x0 − t·n)| in the lattice's
+// metric (VolumeView::metric), and its derivative, which Brent follows, against the energy's
+// central difference.
+TEST(VolumeGather, TheCorrectorsEnergyIsItsDefinitionInTheLatticesMetric) {
+  const VolumeFields fields = random_fields(ivec3(23, 9, 11), 13);
+  const FieldView f = fields.view();
+  const VolumeView& v = f.volume;
+  const vec3 metric = v.voxel_size() / v.spacing;
+  ASSERT_GT(std::max({metric.x, metric.y, metric.z}) / std::min({metric.x, metric.y, metric.z}), 1.2f);
+  const auto [lo, hi] = v.bounds();
+  const vec3 c = 0.5f * (lo + hi) + vec3(0.13f, -0.07f, 0.05f);
+  const vec3 n = glm::normalize(vec3(0.3f, -0.5f, 0.8f));
+  const float radius = 2.9f, h = 1.9f, alpha = 0.9f;
+  VoxelNeighbourhood nb;
+  nb.gather_scalar(f, c, radius, n, false);
+  const std::vector<Gathered> voxels = brute_force(f, c, radius, n, false);
+  ASSERT_GT(voxels.size(), 50u);
+  const detail::CorrectorEnergy<VoxelNeighbourhood> energy{nb, n, h, alpha, v.metric()};
+  for (const float t : {-0.8f, -0.1f, 0.0f, 0.35f, 1.2f}) {
+    double truth = 0;
+    for (const Gathered& g : voxels) {
+      const double theta3 = g.window * std::exp(-double(length2((g.d - t * n) * metric)) / double(h * h));
+      const double s = double(glm::dot(g.d, n)) - t;
+      truth += (alpha * g.theta + (1 - alpha) * theta3) * s * s;
+    }
+    float derivative = 0, unused = 0;
+    EXPECT_NEAR(energy(t, derivative), truth, 1e-4 * (1 + truth)) << "t = " << t;
+    const float dt = 1e-2f;
+    const double numeric = (double(energy(t + dt, unused)) - double(energy(t - dt, unused))) / (2 * dt);
+    EXPECT_NEAR(derivative, numeric, 1e-2 * (1 + std::abs(numeric))) << "t = " << t;
+  }
+}
+
 // More voxels in the ball than N(x) holds: the first kMaxNeighbours in the lattice's order.
 TEST(VolumeGather, KeepsTheFirstVoxelsWhenTheBallHoldsMoreThanItsCapacity) {
   const VolumeFields fields = random_fields(ivec3(20, 20, 20), 5);
