@@ -129,10 +129,10 @@ PSS_HOST_DEVICE void for_each_voxel_near(const VolumeView& v, vec3 x, float radi
 inline constexpr int kMaxNeighbours = 512;
 
 // Whether a voxel at offset d from the centre counts, and with which weights: the window
-// (1 − d²/ρ²)², d measured in the lattice's metric, and θ (θ1 or θ2 times the window and the facing). θ counts a voxel only as far
-// as its gradient faces the way of n, the surface being fitted: the two faces of a wall
-// thinner than the ball are sheets of opposite orientation, and a fit over both would settle
-// between them. With `weighted_only` (the predictor, whose sums all carry θ), voxels whose
+// (1 − d²/ρ²)², d measured in the lattice's metric, and θ (θ1 or θ2 times the window and
+// the facing). θ counts a voxel only as far as its gradient faces the way of n, the surface
+// being fitted: the two faces of a wall thinner than the ball are sheets of opposite
+// orientation, and a fit over both would settle between them. With `weighted_only` (the predictor, whose sums all carry θ), voxels whose
 // windowed θ is below 1e-5 are left out: they could not move any sum by more than that fraction.
 struct VoxelWeights {
   float inv_r2;
