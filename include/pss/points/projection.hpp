@@ -162,7 +162,7 @@ struct MlsEnergy {
       const float d2 = length2(p - r);
       const float z = glm::dot(p - r, n);
       const float s = z - t;
-      const float w = exp(-(d2 - 2 * t * z + t * t) * inv_h2);
+      const float w = exp_nonpositive(-(d2 - 2 * t * z + t * t) * inv_h2);  // inline: Brent calls it most
       e += w * s * s;
       de += w * s * 2 * (s * s * inv_h2 - 1);
     });
