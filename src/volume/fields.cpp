@@ -76,12 +76,13 @@ VolumeFields compute_fields(Volume volume) {
 void set_feature(VolumeFields& fields, const FeatureParams& feature) {
   const VolumeView v = fields.volume.view();
   const float inv_max2 = fields.inv_max_gradient2();
+  const vec3 metric = v.metric();
   fields.features.resize(fields.gradients.size());
   FeatureVoxel* out = fields.features.data();
   const vec3* g = fields.gradients.data();
   cpu::parallel_for(v.dims.x * std::int64_t(v.dims.y) * v.dims.z, [&](std::int64_t i) {
     const float length = glm::length(g[i]);
-    out[i] = {feature_weight(v, g, inv_max2, feature, i), length > 0 ? g[i] / length : vec3(0.0f)};
+    out[i] = {feature_weight(v, metric, g, inv_max2, feature, i), length > 0 ? g[i] / length : vec3(0.0f)};
   });
 }
 

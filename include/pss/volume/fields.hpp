@@ -66,10 +66,10 @@ PSS_INLINE float theta_iso(float value, vec3 gradient, const FeatureParams& f) {
 PSS_INLINE float theta_gradient(vec3 gradient, float inv_max_gradient2) {
   return length2(gradient) * inv_max_gradient2;
 }
-// θ1 or θ2 of one voxel.
-PSS_INLINE float feature_weight(const VolumeView& volume, const vec3* gradients, float inv_max_gradient2,
+// θ1 or θ2 of one voxel; `metric` is volume.metric(), which the caller computes once.
+PSS_INLINE float feature_weight(const VolumeView& volume, vec3 metric, const vec3* gradients, float inv_max_gradient2,
                                 const FeatureParams& f, std::int64_t voxel) {
-  return f.kind == FeatureKind::iso ? theta_iso(volume.values[voxel], gradients[voxel] / volume.metric(), f)
+  return f.kind == FeatureKind::iso ? theta_iso(volume.values[voxel], gradients[voxel] / metric, f)
                                     : theta_gradient(gradients[voxel], inv_max_gradient2);
 }
 
