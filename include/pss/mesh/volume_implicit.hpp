@@ -13,16 +13,22 @@
 namespace pss {
 
 // Where the projection converges onto a point where the data have a surface
-// (surface_cells.hpp), f is as above. Where it does not, there is no surface of the PSS that
-// the data back near x: the fit may draw a sheet along a dip of the values that never
-// reaches v (inside a tooth's dentine, say), or smooth away a void a voxel wide that the
-// data have; rendering rejects such points one by one, but a mesh needs every corner's
-// side, or the surface breaks open where its cubes' corners project onto such a sheet. Of
-// an iso-surface the data say which side x is on: there f is the first-order distance
+// (surface_cells.hpp), within two cube sides of x, f is as above. Where it does not, there is
+// no surface of the PSS that the data back near x: the fit may draw a sheet along a dip of
+// the values that never reaches v (inside a tooth's dentine, say), or smooth away a void a
+// voxel wide that the data have; rendering rejects such points one by one, but a mesh needs
+// every corner's side, or the surface breaks open where its cubes' corners project onto such
+// a sheet. And a corner of a cube the surface crosses lies within a cube's diagonal (√3
+// sides) of it: a projection that walked farther went to another sheet (on thick slices, a
+// neighbourhood long across them carries the predictor's steps several voxels away), and its
+// distance beside a neighbour's near one made the cube a jump, a hole in the mesh. Of an
+// iso-surface the data say which side x is on: there f is the first-order distance
 // (v − f(x))/|∇f(x)| (the cube's side where f is flat), at most the cube's side
 // (`side_reach`), so that the change of sign it makes with a neighbour is meshed, never
 // taken for a jump (marching_tetrahedra.hpp): the data cross v between them. The band does
 // not grow from x. Beyond the box, or of a gradient surface, such a corner is not valid.
+inline constexpr float kProjectionReachSides = 2.0f;  // beyond √3: a cube's diagonal
+
 struct VolumeImplicit {
   VolumeScene scene;
   float side_reach;  // the cube's side
@@ -31,7 +37,9 @@ struct VolumeImplicit {
     VoxelScratch nb;
     const VolumeProjection proj = project_volume_point(fields, scene.params, x, nb);
     const vec3 n = -proj.normal;
+    const float reach = kProjectionReachSides * side_reach;
     if (proj.status == VolumeProjectionStatus::ok && is_finite(proj.point) &&
+        length2(x - proj.point) <= reach * reach &&
         is_data_surface(fields, scene.cells, scene.feature, proj.point, proj.normal, scene.params.surface_reach()))
       return {glm::dot(x - proj.point, n), proj.point, n, true};
     if (scene.feature.kind != FeatureKind::iso || !fields.volume.bounds().contains(x))
