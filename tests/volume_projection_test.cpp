@@ -7,6 +7,7 @@
 
 #include "pss/volume/fields.hpp"
 #include "pss/volume/projection.hpp"
+#include "pss/volume/surface_cells.hpp"
 #include "support/volumes.hpp"
 
 namespace pss {
@@ -89,6 +90,44 @@ TEST(VolumeTheta, ExponentialFormRecoversTheIsoSurfacePrintedFormDoesNot) {
   EXPECT_LT(good.max_distance, 0.15f);
   // 1 − exp weighs the voxels farthest from the surface most: the fit is pulled ~h away.
   EXPECT_GT(bad.rms_distance, 0.5f);
+}
+
+// θ2 per lattice step (theta_gradient): the same values on thick slices, or thin ones, weigh
+// every voxel as on a cubic grid, and the ray's feature test agrees at the same lattice
+// points. In space, a jump between two slices 6× the pixels apart is 1/6 as steep.
+TEST(VolumeTheta, GradientWeightsPerLatticeStepAreThoseOfACubicGrid) {
+  test::SampleVolumeOptions o;
+  o.dims = ivec3(14, 12, 10);
+  o.noise = 1;  // random values: gradients every way
+  const Field flat{[](vec3) { return 0.0f; }, [](vec3) { return vec3(0, 0, 1); }};
+  const FeatureParams feature = gradient_feature(0.04f);
+  const auto fields_at = [&](vec3 spacing) {
+    o.spacing = spacing;
+    VolumeFields f = compute_fields(test::sample_volume(flat, o));
+    set_feature(f, feature);
+    return f;
+  };
+  const VolumeFields cubic = fields_at(vec3(1.0f));
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> along(0.0f, 1.0f);
+  for (const vec3 spacing : {vec3(0.5f, 0.5f, 3.0f), vec3(3.0f, 3.0f, 0.5f)}) {
+    SCOPED_TRACE(spacing.z);
+    const VolumeFields thick = fields_at(spacing);
+    for (std::size_t i = 0; i < cubic.features.size(); ++i)
+      ASSERT_NEAR(thick.features[i].weight, cubic.features[i].weight, 1e-5f) << i;
+    // Every cell in reach, so that only θ2 decides.
+    const SurfaceCells cubic_cells = find_surface_cells(cubic, feature, 1e3f);
+    const SurfaceCells thick_cells = find_surface_cells(thick, feature, 1e3f);
+    int passed = 0;
+    for (int k = 0; k < 500; ++k) {
+      const vec3 g = vec3(along(rng), along(rng), along(rng)) * vec3(o.dims - 1);
+      const bool in_cubic = passes_feature_test(cubic.view(), cubic_cells.view(), feature, g, 1.0f);
+      EXPECT_EQ(passes_feature_test(thick.view(), thick_cells.view(), feature, g * spacing, 1.0f), in_cubic) << k;
+      passed += in_cubic;
+    }
+    EXPECT_GT(passed, 50);  // both answers are tested
+    EXPECT_LT(passed, 450);
+  }
 }
 
 // A float distance-field sphere of radius 11 about (20, 20, 20) in 40³ voxels, its θ1

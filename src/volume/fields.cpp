@@ -67,8 +67,9 @@ VolumeFields compute_fields(Volume volume) {
     cpu::parallel_for(std::int64_t(n), [&](std::int64_t i) { out.gradients[std::size_t(i)][axis] = d[std::size_t(i)]; });
   };
   for (int axis = 0; axis < 3; ++axis) component(axis);
-  float max2 = 0;
-  for (const vec3& x : out.gradients) max2 = std::max(max2, length2(x));
+  float max2 = 0;  // per unit of the lattice's metric, as θ2 (theta_gradient)
+  const vec3 metric = v.metric();
+  for (const vec3& x : out.gradients) max2 = std::max(max2, length2(x / metric));
   out.max_gradient = sqrt(max2);
   return out;
 }

@@ -37,7 +37,7 @@ struct FieldView {
   // θ1 or θ2 and ∇f/|∇f| per voxel, for the FeatureParams in use: one record per voxel (the
   // CPU's gather reads whole rows of eight, volume/voxel_gather_avx2.hpp).
   const FeatureVoxel* features = nullptr;
-  float inv_max_gradient2 = 0;             // 1 / max|∇f|²
+  float inv_max_gradient2 = 0;             // 1 / max|∇f|², ∇f per unit of the metric (theta_gradient)
 
   PSS_HOST_DEVICE vec3 gradient_at(vec3 p) const {
     return trilinear(gradients, volume.dims, TrilinearCell::at(volume.dims, volume.to_grid(p)));
@@ -62,7 +62,11 @@ PSS_INLINE float theta_iso(float value, vec3 gradient, const FeatureParams& f) {
   if (!(width2 > 0)) return difference == 0 ? 1.0f : 0.0f;
   return exp(-difference * difference / width2);
 }
-// θ2 = (|∇f| / max|∇f|)².
+// θ2 = (|∇f| / max|∇f|)². On a grid of unequal spacing ∇f is taken per unit of the
+// lattice's metric (VolumeView::metric), the max too: a step in the data is a jump between
+// neighbouring voxels, which across slices 6× the pixels is 1/6 as steep in space, and θ2
+// in space kept only the surfaces facing across the pixels. Per lattice step every voxel's
+// θ2 is that of the same values on a cubic grid.
 PSS_INLINE float theta_gradient(vec3 gradient, float inv_max_gradient2) {
   return length2(gradient) * inv_max_gradient2;
 }
@@ -70,7 +74,7 @@ PSS_INLINE float theta_gradient(vec3 gradient, float inv_max_gradient2) {
 PSS_INLINE float feature_weight(const VolumeView& volume, vec3 metric, const vec3* gradients, float inv_max_gradient2,
                                 const FeatureParams& f, std::int64_t voxel) {
   return f.kind == FeatureKind::iso ? theta_iso(volume.values[voxel], gradients[voxel] / metric, f)
-                                    : theta_gradient(gradients[voxel], inv_max_gradient2);
+                                    : theta_gradient(gradients[voxel] / metric, inv_max_gradient2);
 }
 
 // The host owner of the precomputed fields.
@@ -78,7 +82,7 @@ struct VolumeFields {
   Volume volume;
   std::vector<vec3> gradients;
   std::vector<FeatureVoxel> features;  // empty until set_feature()
-  float max_gradient = 0;
+  float max_gradient = 0;  // max|∇f| per unit of the lattice's metric (theta_gradient)
 
   float inv_max_gradient2() const { return max_gradient > 0 ? 1.0f / (max_gradient * max_gradient) : 0.0f; }
   FieldView view() const { return {volume.view(), gradients.data(), features.data(), inv_max_gradient2()}; }

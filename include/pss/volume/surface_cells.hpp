@@ -60,7 +60,8 @@ PSS_INLINE bool passes_feature_test(const FieldView& v, const CellView& cells, c
   if (!cells.has(g, kCellInReach)) return false;
   const TrilinearCell cell = TrilinearCell::at(v.volume.dims, g);
   const vec3 gradient = trilinear(v.gradients, v.volume.dims, cell);
-  if (f.kind == FeatureKind::gradient) return theta_gradient(gradient, v.inv_max_gradient2) > f.threshold;
+  if (f.kind == FeatureKind::gradient)
+    return theta_gradient(gradient / v.volume.metric(), v.inv_max_gradient2) > f.threshold;
   const float difference = abs(f.iso - trilinear(v.volume.values, v.volume.dims, cell));
   return difference <= 2.0f * reach * glm::length(gradient);
 }
