@@ -209,11 +209,11 @@ TEST(VolumeGather, TheCorrectorsEnergyIsItsDefinitionInTheLatticesMetric) {
 
 // More voxels in the ball than N(x) holds: the first kMaxNeighbours in the lattice's order.
 TEST(VolumeGather, KeepsTheFirstVoxelsWhenTheBallHoldsMoreThanItsCapacity) {
-  const VolumeFields fields = random_fields(ivec3(20, 20, 20), 5);
+  const VolumeFields fields = random_fields(ivec3(28, 28, 28), 5);
   const FieldView f = fields.view();
   const auto [lo, hi] = fields.volume.view().bounds();
   const vec3 c = 0.5f * (lo + hi) + vec3(0.01f, 0.02f, 0.03f), n(0.0f, 0.0f, 1.0f);
-  const float radius = 6.0f * fields.volume.spacing.x;
+  const float radius = 10.5f * fields.volume.spacing.x;
   for (bool weighted_only : {false, true}) {
     ASSERT_GT(brute_force(f, c, radius, n, weighted_only).size(), std::size_t(kMaxNeighbours) + 50);
     for (Path path : {Path::dispatched, Path::scalar})

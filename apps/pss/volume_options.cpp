@@ -35,8 +35,8 @@ void add_volume_surface_flags(CLI::App& command, VolumeOptions& o, bool method_f
   }
   command
       .add_option("--radius", o.settings.radius,
-                  "neighbourhood radius in units of h: the voxels within it are N(.); h*radius at most about 4 voxels "
-                  "on a cubic grid (the kernels hold 512 voxels)")
+                  "neighbourhood radius in units of h: the voxels within it are N(.); h*radius at most about 9 voxels "
+                  "on a cubic grid (the kernels hold 4096 voxels)")
       ->check(finite_range(kMinRadius, kMaxRadius))
       ->capture_default_str();
   command.add_option("--alpha", o.settings.alpha, "alpha1 of the corrector's Theta = alpha1*theta + (1-alpha1)*theta3")

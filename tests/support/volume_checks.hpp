@@ -52,12 +52,14 @@ struct Rendered {
   std::vector<std::pair<vec3, vec3>> hits;
 };
 
-// 64×64 rays from an oblique view, like `pss volume --view 30,20 --size 64x64`.
+// 64×64 rays from an oblique view, like `pss volume --view 30,20 --size 64x64`; the
+// neighbourhoods' radius 1.5h, as the CLI's default.
 inline Rendered render(const Volume& volume, std::optional<float> iso, VolumeMethod method, float h_voxels = 2.0f,
                 CameraSettings view = {64, 64, 30, 20, 35}) {
   Stats stats;
   VolumeFields fields = compute_fields(volume);
-  const VolumeParams params = VolumeParams::from_voxels(fields.volume.view().voxel_size(), method, h_voxels);
+  const VolumeParams params = VolumeParams::from_voxels(fields.volume.view().voxel_size(), method, h_voxels, 0.75f,
+                                                        0.9f, 0.1f, 1.5f * h_voxels);
   const float voxel = fields.volume.view().voxel_size();
   const FeatureParams feature = iso ? iso_feature(*iso, kIsoSmoothingVoxels * voxel) : gradient_feature();
   const PreparedVolume prepared = prepare_volume(std::move(fields), feature, params, stats);

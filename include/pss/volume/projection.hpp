@@ -125,8 +125,12 @@ PSS_HOST_DEVICE void for_each_voxel_near(const VolumeView& v, vec3 x, float radi
 // (1 − d²/ρ²)², which falls to zero at ρ, so that the projection changes continuously as
 // the point moves and voxels enter or leave N (a hard edge shows the lattice in the
 // shading and stalls the ray's fixed-point iteration; the paper does not say how far
-// "the neighbouring voxels" reach). The capacity bounds ρ (neighbourhood_bound).
-inline constexpr int kMaxNeighbours = 512;
+// "the neighbouring voxels" reach). The capacity bounds ρ (neighbourhood_bound): a ball of
+// radius 9 voxels (h = 6 voxels at the default radius 1.5h, for noisy scans), 80 KB of a CPU
+// thread's stack, of which a projection touches only what it gathers. (It was 512, h ≤ 2.6
+// voxels; walking the lattice at each pass instead, as the GPU does, took 3.7× as long on
+// the tooth with h = 3.) Beyond it every pass of every projection would be long: refused.
+inline constexpr int kMaxNeighbours = 4096;
 
 // Whether a voxel at offset d from the centre counts, and with which weights: the window
 // (1 − d²/ρ²)², d measured in the lattice's metric, and θ (θ1 or θ2 times the window and
@@ -282,7 +286,7 @@ struct VoxelNeighbourhood {
 };
 
 // The same N(x) walked on the lattice again at each pass instead of stored: a few registers
-// instead of 10 KB of stack per GPU thread. The same voxels in the same order.
+// instead of 20 bytes a voxel of stack per GPU thread. The same voxels in the same order.
 struct WalkedVoxelNeighbourhood {
   const FieldView* fields = nullptr;
   vec3 center;
@@ -327,9 +331,10 @@ struct WalkedVoxelNeighbourhood {
 };
 
 // The kernels' scratch space. The GPU walks the lattice at each pass: a stored N(x) takes
-// 10 KB per thread, in local memory, against a budget of 1 KiB (tests/gpu/kernel_stacks.py).
-// (An earlier GPU build stored it; walking measured 1.6–2× slower predictor-corrector
-// frames on an H100 then, docs/benchmarks.md, a cost to measure again with the stack budget.)
+// 20 bytes a voxel per thread (80 KB), in local memory, against a budget of 1 KiB
+// (tests/gpu/kernel_stacks.py). (An earlier GPU build stored 512 voxels; walking measured
+// 1.6–2× slower predictor-corrector frames on an H100 then, docs/benchmarks.md, a cost to
+// measure again with the stack budget.)
 #if defined(__CUDA_ARCH__)
 using VoxelScratch = WalkedVoxelNeighbourhood;
 #else
