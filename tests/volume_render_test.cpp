@@ -206,7 +206,12 @@ TEST(VolumeRender, RadiusBeyondTheNeighbourhoodCapacityIsAnError) {
   const VolumeParams params = VolumeParams::from_voxels(1.0f, VolumeMethod::predictor_corrector, 4.0f, 0.75f, 0.9f,
                                                         0.1f, 10.0f);
   ASSERT_GT(neighbourhood_bound(params.radius, VolumeView{}), float(kMaxNeighbours));
-  EXPECT_THROW(test::prepare_iso(test::sample_volume(test::sphere_distance(vec3(8.0f), 5.0f), o), 0.0f, params), Error);
+  const Volume volume = test::sample_volume(test::sphere_distance(vec3(8.0f), 5.0f), o);
+  EXPECT_THROW(test::prepare_iso(volume, 0.0f, params), Error);
+  // Radius 9 voxels, h = 6 at the default radius 1.5h, is taken (--radius's help).
+  const VolumeParams widest = VolumeParams::from_voxels(1.0f, VolumeMethod::predictor_corrector, 6.0f, 0.75f, 0.9f,
+                                                        0.1f, 9.0f);
+  EXPECT_NO_THROW(test::prepare_iso(volume, 0.0f, widest));
 }
 
 // Empty-space skipping changes the speed only: with every brick marked occupied the rays
