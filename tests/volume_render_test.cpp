@@ -86,6 +86,25 @@ TEST(VolumeRender, SmoothIndicatorMaximalGradientSurface) {
                  {95, 0.3, 0.6, 8.0});
 }
 
+// A step sharper than a voxel (width 0.3): its ridge of θ2 above the threshold is thinner
+// than the step b = 1.5 voxels between a ray's samples. The paper's test, θ2 above the
+// threshold at the sample, let most rays step over it (terraces on the tooth); every sample
+// within b/2 of a cell above it is projected, and the rays find the sphere as the iso-surface's do.
+TEST(VolumeRender, AGradientRidgeThinnerThanTheStepIsFound) {
+  const Field sphere = test::sphere_distance(vec3(20.0f), 11.0f);
+  const Field f = test::smooth_indicator(sphere, 255.0f, 0.3f);
+  test::SampleVolumeOptions o;
+  o.dims = ivec3(40);
+  o.quantize = true;
+  const Volume volume = test::sample_volume(f, o);
+  const Rendered gradient = render(volume, std::nullopt, VolumeMethod::predictor_corrector);
+  const Rendered iso = render(volume, 127.5f, VolumeMethod::predictor_corrector);
+  std::printf("thin ridge: %zu gradient hits, %zu iso hits\n", gradient.hits.size(), iso.hits.size());
+  EXPECT_GT(double(gradient.hits.size()), 0.95 * double(iso.hits.size()));
+  const Accuracy a = measure(sphere, gradient.hits);
+  EXPECT_LT(a.rms_distance, 0.3);
+}
+
 // Noise σ = 0.4 voxels (a float distance field plus Gaussian noise; an 8-bit torus at 20
 // per voxel plus noise of σ = 8): a mesh vertex interpolated on one edge inherits about σ
 // of it, a central-difference normal σ/√2 per component over |∇f| = 1, ~20°. The PSS

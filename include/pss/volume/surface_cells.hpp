@@ -50,18 +50,20 @@ struct SurfaceCells {
 };
 
 // The fragment test (§5.1) at the world position p: p is within reach of a crossed cell,
-// and the data say the surface may be within `reach` of p: for an iso-surface the
+// and for an iso-surface the data say the surface may be within `reach` of p: the
 // first-order distance |v − f(p)|/|∇f(p)| is at most twice the reach (twice: on a step
-// sharper than a voxel the Sobel gradient halves the slope), for a gradient surface
-// θ2 > threshold there (the paper's own test).
+// sharper than a voxel the Sobel gradient halves the slope). A gradient surface's crossed
+// cells are those with a corner of θ2 above the threshold, and nearness to one is its whole
+// test: the paper's own, θ2 > threshold at p, misses a ridge of θ2 thinner than the step
+// between a ray's samples, and the tooth's render showed terraces where rays crossed it
+// between two samples (docs/paper-notes.md, §5.1 marching).
 PSS_INLINE bool passes_feature_test(const FieldView& v, const CellView& cells, const FeatureParams& f, vec3 p,
                                     float reach) {
   const vec3 g = v.volume.to_grid(p);
   if (!cells.has(g, kCellInReach)) return false;
+  if (f.kind == FeatureKind::gradient) return true;  // in reach of a cell above the threshold
   const TrilinearCell cell = TrilinearCell::at(v.volume.dims, g);
   const vec3 gradient = trilinear(v.gradients, v.volume.dims, cell);
-  if (f.kind == FeatureKind::gradient)
-    return theta_gradient(gradient / v.volume.metric(), v.inv_max_gradient2) > f.threshold;
   const float difference = abs(f.iso - trilinear(v.volume.values, v.volume.dims, cell));
   return difference <= 2.0f * reach * glm::length(gradient);
 }
