@@ -75,13 +75,17 @@ TEST(VolumeRender, GaussianBlobsIsoSurface) {
 // the weighted centre by about width²/R ≈ 0.2 voxels: rms 0.3, max 0.6. The ridge is
 // about twice as thick as θ1's shell (θ2 halves at |d| ≈ 1.3), and so is the lattice noise
 // of the normals: rms 8°.
-TEST(VolumeRender, SmoothIndicatorMaximalGradientSurface) {
-  const Field sphere = test::sphere_distance(vec3(20.0f), 11.0f);
-  const Field f = test::smooth_indicator(sphere, 255.0f, 1.5f);
+// The sphere of radius 11 about (20, 20, 20) as 255/(1 + e^(d/width)) in 40³ voxels of 8 bits.
+Volume smooth_sphere(float width) {
   test::SampleVolumeOptions o;
   o.dims = ivec3(40);
   o.quantize = true;
-  const Volume volume = test::sample_volume(f, o);
+  return test::sample_volume(test::smooth_indicator(test::sphere_distance(vec3(20.0f), 11.0f), 255.0f, width), o);
+}
+
+TEST(VolumeRender, SmoothIndicatorMaximalGradientSurface) {
+  const Field sphere = test::sphere_distance(vec3(20.0f), 11.0f);
+  const Volume volume = smooth_sphere(1.5f);
   expect_surface("gradient mode", sphere, volume, render(volume, std::nullopt, VolumeMethod::predictor_corrector),
                  {95, 0.3, 0.6, 8.0});
 }
@@ -92,11 +96,7 @@ TEST(VolumeRender, SmoothIndicatorMaximalGradientSurface) {
 // within b/2 of a cell above it is projected, and the rays find the sphere as the iso-surface's do.
 TEST(VolumeRender, AGradientRidgeThinnerThanTheStepIsFound) {
   const Field sphere = test::sphere_distance(vec3(20.0f), 11.0f);
-  const Field f = test::smooth_indicator(sphere, 255.0f, 0.3f);
-  test::SampleVolumeOptions o;
-  o.dims = ivec3(40);
-  o.quantize = true;
-  const Volume volume = test::sample_volume(f, o);
+  const Volume volume = smooth_sphere(0.3f);
   const Rendered gradient = render(volume, std::nullopt, VolumeMethod::predictor_corrector);
   const Rendered iso = render(volume, 127.5f, VolumeMethod::predictor_corrector);
   std::printf("thin ridge: %zu gradient hits, %zu iso hits\n", gradient.hits.size(), iso.hits.size());
