@@ -246,6 +246,58 @@ TEST(VolumeMesh, VoidsAVoxelWideLeaveNoHole) {
   EXPECT_EQ(m.counts.cubes_refused, 0);
 }
 
+// An iso-value within the noise of a plateau (the tooth's enamel at 230 of its 225–240):
+// the ball's inside is 232 with noise of 3, so the data cross 230 at random all through
+// it, in bubbles. Projections of neighbouring corners there land on different bubbles a
+// side or two away, and their distances made the march take their change of sign for a
+// jump (4 to 6 cubes refused, 16 to 24 boundary edges, on three seeds). Where the data put
+// both corners on their sides, the data's surface passes between them; where a projection
+// a side away contradicts the data, it went past the nearest sheet, and the data's side is
+// taken: every part of the mesh is closed.
+TEST(VolumeMesh, AnIsoValueWithinAPlateausNoiseMeshesClosed) {
+  for (const std::uint32_t seed : {1u, 2u, 3u}) {
+    SCOPED_TRACE(seed);
+    test::SampleVolumeOptions o;
+    o.dims = ivec3(40);
+    o.noise = 3;
+    o.seed = seed;
+    const vec3 center(19.6f, 20.3f, 19.8f);
+    const Volume v = test::sample_volume(test::smooth_indicator(test::sphere_distance(center, 12), 232, 0.4f), o);
+    const VolumeMesh m = mesh_of(prepared(v, 230));
+    EXPECT_EQ(m.counts.cubes_refused, 0);
+    EXPECT_TRUE(topology(m.mesh).watertight()) << topology(m.mesh).boundary_edges << " boundary edges";
+  }
+}
+
+// A corner's side is the data's exactly where the value there is on the side of the
+// iso-value that f's sign says. Where the PSS smooths the plateau's bubbles away, f and the
+// data disagree within a side of the PSS's sheet (there the change of sign may still be a
+// jump); beyond, the corner takes the data's side.
+TEST(VolumeMesh, ACornersSideIsTheDatasWhereTheyAgree) {
+  test::SampleVolumeOptions o;
+  o.dims = ivec3(40);
+  o.noise = 3;
+  const Volume v = test::sample_volume(
+      test::smooth_indicator(test::sphere_distance(vec3(19.6f, 20.3f, 19.8f), 12), 232, 0.4f), o);
+  const PreparedVolume volume = prepared(v, 230);
+  const VolumeImplicit implicit{volume.scene(), 1};
+  int agree = 0, disagree = 0;
+  for (int k = 4; k < 36; ++k)
+    for (int j = 4; j < 36; ++j)
+      for (int i = 4; i < 36; ++i) {
+        const vec3 x{float(i), float(j), float(k)};
+        const SignedDistance s = implicit(x);
+        if (!s.valid) continue;
+        const bool inside_by_data = v.values[std::size_t((k * 40 + j) * 40 + i)] > 230;
+        const bool same = inside_by_data == (s.distance < 0);
+        ASSERT_EQ(s.side_from_data, same) << i << " " << j << " " << k;
+        ASSERT_TRUE(same || std::abs(s.distance) <= 1) << s.distance;
+        if (s.on_surface) ++(same ? agree : disagree);
+      }
+  EXPECT_GT(disagree, 100);
+  EXPECT_GT(agree, 2 * disagree);
+}
+
 // The gradient surface of the same step is where |∇f| peaks: the sphere of radius R.
 TEST(VolumeMesh, AGradientSurfaceIsTheStepsSteepestSheet) {
   const vec3 center(19.6f, 20.3f, 19.8f);

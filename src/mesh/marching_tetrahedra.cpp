@@ -129,11 +129,12 @@ const ivec3 kAcross[6] = {{-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, 1, 0}, {0, 0, -
 // distance to it is at most their distance at either end. Inside a part thinner than the
 // fits' support the far end's value may be larger (MLS blends both sides), never the near
 // end's; where both are, the sign changes across a jump of the implicit (normals oriented
-// apart), not across the surface.
+// apart), not across the surface. Unless the data put both on their sides: then the data's
+// surface passes between them, whatever the distances.
 bool jumps(const CornerSample (&at)[8], float most) {
   for (int a = 0; a < 8; ++a)
     for (int b = a + 1; b < 8; ++b)
-      if ((at[a].distance < 0) != (at[b].distance < 0) &&
+      if ((at[a].distance < 0) != (at[b].distance < 0) && !(at[a].side_from_data && at[b].side_from_data) &&
           std::min(std::abs(at[a].distance), std::abs(at[b].distance)) >
               most * std::sqrt(float(std::popcount(unsigned(a ^ b)))))
         return true;

@@ -20,6 +20,7 @@ struct CornerSample {
   vec3 surface_point{0.0f};
   bool valid = false;
   bool on_surface = true;  // surface_point lies on the surface; false: the band does not grow there
+  bool side_from_data = false;  // the data put the corner on this side (marching_tetrahedra.hpp)
 };
 
 // An edge whose ends' signs differ (distance_a < 0 <= distance_b or the reverse), and the

@@ -17,6 +17,7 @@ struct SignedDistance {
   vec3 surface_point, normal;  // P(x), and the outward unit normal there
   bool valid;                  // a projection the data back, which may be trusted
   bool on_surface = true;      // false: f gives x's side, from the data, and surface_point is x
+  bool side_from_data = false;  // the data put x on f's side: a volume's iso-surface
 };
 
 // out[i] = the implicit at corners[i].
@@ -27,7 +28,7 @@ struct SampleCornersKernel {
   CornerSample* out;
   PSS_HOST_DEVICE void operator()(std::int64_t i) const {
     const SignedDistance s = implicit(corners[i]);
-    out[i] = {s.distance, s.surface_point, s.valid, s.on_surface};
+    out[i] = {s.distance, s.surface_point, s.valid, s.on_surface, s.side_from_data};
   }
 };
 

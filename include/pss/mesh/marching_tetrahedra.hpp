@@ -73,7 +73,7 @@ struct MarchCounts {
 // corners of opposite signs the nearer to the surface lies within `max_slope` times their
 // distance of it (where the surface passes between two points, a distance to it is at most
 // theirs at either end; where both are farther, the sign changes across a jump of the
-// implicit, not the surface); the band grows into the face neighbours across faces whose
+// implicit, not the surface, unless the data put both on their sides); the band grows into the face neighbours across faces whose
 // corners' signs differ and into the cubes of the corners' surface points. The result is
 // edge-manifold, vertex-manifold, consistently oriented (outward: towards positive
 // distance) and deterministic: the same for any thread count and batch order. Where the

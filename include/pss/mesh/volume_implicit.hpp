@@ -24,9 +24,14 @@ namespace pss {
 // distance beside a neighbour's near one made the cube a jump, a hole in the mesh. Of an
 // iso-surface the data say which side x is on: there f is the first-order distance
 // (v − f(x))/|∇f(x)| (the cube's side where f is flat), at most the cube's side
-// (`side_reach`), so that the change of sign it makes with a neighbour is meshed, never
-// taken for a jump (marching_tetrahedra.hpp): the data cross v between them. The band does
-// not grow from x. Beyond the box, or of a gradient surface, such a corner is not valid.
+// (`side_reach`), and its side is the data's, so that the change of sign it makes with a
+// neighbour is meshed, never taken for a jump (marching_tetrahedra.hpp): the data cross v
+// between them. The band does not grow from x. Beyond the box, or of a gradient surface,
+// such a corner is not valid. A projection's side is the data's too wherever they agree: in
+// a noisy plateau at v (the tooth's enamel at 230) two neighbours' projections may land on
+// different sheets a side or two away, with the data crossing v between them. Where they
+// disagree, f is the PSS's within a side of its sheet (it smooths the data); beyond, the
+// projection went past the sheet nearest x, and the data's side is taken, as above.
 inline constexpr float kProjectionReachSides = 2.0f;  // beyond √3: a cube's diagonal
 
 struct VolumeImplicit {
@@ -38,18 +43,21 @@ struct VolumeImplicit {
     const VolumeProjection proj = project_volume_point(fields, scene.params, x, nb);
     const vec3 n = -proj.normal;
     const float reach = kProjectionReachSides * side_reach;
+    const bool sided = scene.feature.kind == FeatureKind::iso && fields.volume.bounds().contains(x);
+    const float difference = sided ? scene.feature.iso - sample(fields.volume, x) : 0.0f;
     if (proj.status == VolumeProjectionStatus::ok && is_finite(proj.point) &&
         length2(x - proj.point) <= reach * reach &&
-        is_data_surface(fields, scene.cells, scene.feature, proj.point, proj.normal, scene.params.surface_reach()))
-      return {glm::dot(x - proj.point, n), proj.point, n, true};
-    if (scene.feature.kind != FeatureKind::iso || !fields.volume.bounds().contains(x))
-      return {0.0f, x, vec3(0.0f), false};
-    const float difference = scene.feature.iso - sample(fields.volume, x);
+        is_data_surface(fields, scene.cells, scene.feature, proj.point, proj.normal, scene.params.surface_reach())) {
+      const float distance = glm::dot(x - proj.point, n);
+      const bool agrees = sided && (difference < 0) == (distance < 0);
+      if (!sided || agrees || abs(distance) <= side_reach) return {distance, proj.point, n, true, true, agrees};
+    }
+    if (!sided) return {0.0f, x, vec3(0.0f), false};
     const vec3 g = fields.gradient_at(x);
     const float length = glm::length(g);
     if (!(length > 0))  // flat (saturated) data: no gradient, no projection, but a side
-      return {difference > 0 ? side_reach : difference < 0 ? -side_reach : 0.0f, x, vec3(0.0f), true, false};
-    return {clamp(difference / length, -side_reach, side_reach), x, -g / length, true, false};
+      return {difference > 0 ? side_reach : difference < 0 ? -side_reach : 0.0f, x, vec3(0.0f), true, false, true};
+    return {clamp(difference / length, -side_reach, side_reach), x, -g / length, true, false, true};
   }
 };
 
