@@ -1,6 +1,7 @@
 #include "pss/io/las.hpp"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -8,6 +9,7 @@
 
 #include "bytes.hpp"
 #include "color.hpp"
+#include "file_window.hpp"
 #include "pss/core/error.hpp"
 #include "pss/io/output_file.hpp"
 
@@ -28,30 +30,16 @@ constexpr RecordFormat kFormats[] = {{20, 0},  {28, 0},  {26, 20}, {34, 28}, {57
 
 // A little-endian value at a byte offset the caller has checked.
 template <class T>
-T get(const std::string& file, std::uint64_t at) {
-  return io::load<T>(file.data() + at, kSwap);
-}
-
-// The attributes every record format has, kept as scalar properties for outputs to carry:
-// the intensity (bytes 12-13) and the ASPRS class, bits 0-4 of byte 15 in formats 0-5 (its
-// upper bits are flags) and byte 16 in formats 6-10.
-template <class RecordAt>
-std::vector<ScalarProperty> record_attributes(const std::string& file, std::uint64_t points, unsigned format,
-                                              RecordAt record_at) {
-  ScalarProperty intensity{"intensity", ScalarType::uint16, std::vector<double>(points)};
-  ScalarProperty classification{"classification", ScalarType::uint8, std::vector<double>(points)};
-  for (std::uint64_t i = 0; i < points; ++i) {
-    const std::uint64_t r = record_at(i);
-    intensity.values[i] = get<std::uint16_t>(file, r + 12);
-    classification.values[i] = format <= 5 ? get<std::uint8_t>(file, r + 15) & 0x1F : get<std::uint8_t>(file, r + 16);
-  }
-  return {std::move(intensity), std::move(classification)};
+T get(std::string_view bytes, std::uint64_t at) {
+  return io::load<T>(bytes.data() + at, kSwap);
 }
 
 }  // namespace
 
 PointCloud read_las(const std::filesystem::path& path) {
-  const std::string file = read_file(path);
+  io::FileWindow data(path);
+  data.fill(std::size_t(std::min<std::uint64_t>(kHeader14, data.size())));
+  const std::string_view file = data.view();  // the header's bytes; data.size() is the file's
   if (!file.starts_with("LASF")) throw file_error(path, "not a LAS file (no 'LASF' signature)");
   if (file.size() < kHeaderBefore14)
     throw file_error(path, "truncated: " + std::to_string(file.size()) + " bytes, less than a LAS header");
@@ -63,10 +51,10 @@ PointCloud read_las(const std::filesystem::path& path) {
   const unsigned format = get<std::uint8_t>(file, 104);
   const std::uint64_t record_length = get<std::uint16_t>(file, 105);
   const std::size_t needed_header = minor >= 4 ? kHeader14 : kHeaderBefore14;
-  if (header_size < needed_header || header_size > file.size())
+  if (header_size < needed_header || header_size > data.size())
     throw file_error(path, "header size " + std::to_string(header_size) + " is not between LAS 1." +
                                std::to_string(minor) + "'s " + std::to_string(needed_header) + " and the file's " +
-                               std::to_string(file.size()) + " bytes");
+                               std::to_string(data.size()) + " bytes");
   // LAZ sets the top bits of the format (LASzip's convention).
   if (format & 0xC0) throw file_error(path, "compressed LAS (LAZ) is not supported; decompress it to .las first (laszip, PDAL)");
   if (format > 10) throw file_error(path, "unknown point data record format " + std::to_string(format));
@@ -74,9 +62,9 @@ PointCloud read_las(const std::filesystem::path& path) {
   if (record_length < record.length)
     throw file_error(path, "point records of " + std::to_string(record_length) + " bytes are shorter than format " +
                                std::to_string(format) + "'s " + std::to_string(record.length));
-  if (data_offset < header_size || data_offset > file.size())
+  if (data_offset < header_size || data_offset > data.size())
     throw file_error(path, "offset to point data " + std::to_string(data_offset) + " is not between the header's " +
-                               std::to_string(header_size) + " bytes and the file's " + std::to_string(file.size()));
+                               std::to_string(header_size) + " bytes and the file's " + std::to_string(data.size()));
 
   std::uint64_t points = get<std::uint32_t>(file, 107);
   if (minor >= 4) {
@@ -88,7 +76,7 @@ PointCloud read_las(const std::filesystem::path& path) {
     points = std::max(points, points64);
   }
   if (points == 0) throw file_error(path, "no points");
-  const std::uint64_t available = file.size() - data_offset;
+  const std::uint64_t available = data.size() - data_offset;
   if (points > available / record_length)
     throw file_error(path, "truncated: " + std::to_string(points) + " points of " + std::to_string(record_length) +
                                " bytes need more than the " + std::to_string(available) + " bytes after the header");
@@ -101,30 +89,45 @@ PointCloud read_las(const std::filesystem::path& path) {
       throw file_error(path, "invalid scale " + format_number(scale[k]) + " or offset " + format_number(offset[k]) +
                                  " of axis " + "xyz"[k]);
   }
-  const auto record_at = [&](std::uint64_t i) { return data_offset + i * record_length; };
+  // The records front to back: the attributes every record format has, kept as scalar
+  // properties for outputs to carry (the intensity, bytes 12-13, and the ASPRS class, bits
+  // 0-4 of byte 15 in formats 0-5, whose upper bits are flags, and byte 16 in formats 6-10),
+  // and the colours' 16-bit channels until the brightest says how they scale.
   PointCloud cloud;
   std::vector<glm::dvec3> world;
   world.reserve(points);
+  ScalarProperty intensity{"intensity", ScalarType::uint16, {}};
+  ScalarProperty classification{"classification", ScalarType::uint8, {}};
+  intensity.values.reserve(points);
+  classification.values.reserve(points);
+  std::vector<std::array<std::uint16_t, 3>> channels;
+  if (record.rgb != 0) channels.reserve(points);
+  data.skip(data_offset);
   for (std::uint64_t i = 0; i < points; ++i) {
-    const std::uint64_t r = record_at(i);
-    const glm::dvec3 integer(get<std::int32_t>(file, r), get<std::int32_t>(file, r + 4), get<std::int32_t>(file, r + 8));
+    if (!data.fill(record_length))  // the file shrank while it was read
+      throw file_error(path, "truncated: expected " + std::to_string(points) + " points, read " + std::to_string(i));
+    const std::string_view r = data.view();
+    const glm::dvec3 integer(get<std::int32_t>(r, 0), get<std::int32_t>(r, 4), get<std::int32_t>(r, 8));
     world.push_back(integer * scale + offset);
     if (!is_finite(vec3(world.back())))
       throw file_error(path, "point " + std::to_string(i) + " lies beyond float's range");
+    intensity.values.push_back(get<std::uint16_t>(r, 12));
+    classification.values.push_back(format <= 5 ? get<std::uint8_t>(r, 15) & 0x1F : get<std::uint8_t>(r, 16));
+    if (record.rgb != 0)
+      channels.push_back({get<std::uint16_t>(r, record.rgb), get<std::uint16_t>(r, record.rgb + 2),
+                          get<std::uint16_t>(r, record.rgb + 4)});
+    data.consume(record_length);
   }
   set_world_positions(cloud, world);
-  cloud.scalars = record_attributes(file, points, format, record_at);
+  cloud.scalars = {std::move(intensity), std::move(classification)};
   if (record.rgb != 0) {
-    const auto channel = [&](std::uint64_t i, int c) {
-      return get<std::uint16_t>(file, record_at(i) + record.rgb + 2 * std::uint64_t(c));
-    };
     std::uint16_t brightest = 0;
-    for (std::uint64_t i = 0; i < points; ++i)
-      for (int c = 0; c < 3; ++c) brightest = std::max(brightest, channel(i, c));
+    for (const auto& rgb : channels)
+      for (const std::uint16_t c : rgb) brightest = std::max(brightest, c);
     cloud.colors.resize(points);
     for (std::uint64_t i = 0; i < points; ++i)
       for (int c = 0; c < 3; ++c)
-        cloud.colors[i][c] = brightest <= 255 ? std::uint8_t(channel(i, c)) : io::channel_from_16bit(channel(i, c));
+        cloud.colors[i][c] = brightest <= 255 ? std::uint8_t(channels[i][c]) : io::channel_from_16bit(channels[i][c]);
   }
   return cloud;
 }

@@ -16,6 +16,7 @@
 #include "pss/io/point_cloud_file.hpp"
 #include "bytes.hpp"
 #include "color.hpp"
+#include "file_window.hpp"
 #include "ply_types.hpp"
 #include "text.hpp"
 
@@ -114,10 +115,9 @@ bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; 
 // Whitespace-separated tokens; records usually sit one per line, but PLY does not require it.
 class AsciiCursor {
  public:
-  AsciiCursor(const fs::path& path, std::string_view data, int first_line)
-      : path_(path), data_(data), line_(first_line) {}
+  AsciiCursor(const fs::path& path, io::FileWindow& data, int first_line) : path_(path), data_(data), line_(first_line) {}
 
-  std::size_t remaining() const { return data_.size() - pos_; }
+  std::uint64_t remaining() const { return data_.remaining(); }
   // The shortest a value can be: one character and a separator.
   static std::size_t min_bytes(Scalar) { return 2; }
 
@@ -139,26 +139,40 @@ class AsciiCursor {
   }
 
  private:
+  // The next token, valid until the next call.
   std::string_view next() {
-    while (pos_ < data_.size() && is_space(data_[pos_])) line_ += data_[pos_++] == '\n';
-    if (pos_ == data_.size()) throw EndOfData{};
-    const std::size_t begin = pos_;
-    while (pos_ < data_.size() && !is_space(data_[pos_])) ++pos_;
-    return data_.substr(begin, pos_ - begin);
+    for (;;) {
+      const std::string_view v = data_.view();
+      std::size_t i = 0;
+      while (i < v.size() && is_space(v[i])) line_ += v[i++] == '\n';
+      data_.consume(i);
+      if (i < v.size()) break;
+      if (!data_.fill(1)) throw EndOfData{};
+    }
+    for (;;) {
+      const std::string_view v = data_.view();
+      std::size_t j = 0;
+      while (j < v.size() && !is_space(v[j])) ++j;
+      if (j < v.size() || !data_.fill(v.size() + 1)) {
+        data_.consume(j);
+        return v.substr(0, j);
+      }
+      if (v.size() >= kLongestToken) fail("a value longer than " + std::to_string(kLongestToken) + " characters");
+    }
   }
 
+  static constexpr std::size_t kLongestToken = 4096;
   const fs::path& path_;
-  std::string_view data_;
-  std::size_t pos_ = 0;
+  io::FileWindow& data_;
   int line_;
 };
 
 class BinaryCursor {
  public:
-  BinaryCursor(const fs::path& path, std::string_view data, std::endian endian)
-      : path_(path), data_(data), swap_(endian != std::endian::native) {}
+  BinaryCursor(const fs::path& path, io::FileWindow& data, std::endian endian)
+      : path_(path), data_(data), data_begin_(data.offset()), swap_(endian != std::endian::native) {}
 
-  std::size_t remaining() const { return data_.size() - pos_; }
+  std::uint64_t remaining() const { return data_.remaining(); }
   static std::size_t min_bytes(Scalar type) { return size_of(type); }
 
   double value(Scalar type) {
@@ -175,22 +189,25 @@ class BinaryCursor {
     }
     return 0;
   }
-  void skip(Scalar type, std::uint64_t n = 1) { take(n * size_of(type)); }
+  void skip(Scalar type, std::uint64_t n = 1) {
+    if (!data_.skip(n * size_of(type))) throw EndOfData{};
+  }
   [[noreturn]] void fail(const std::string& problem) const {
-    throw file_error(path_, "byte " + std::to_string(pos_) + " of the data: " + problem);
+    throw file_error(path_, "byte " + std::to_string(data_.offset() - data_begin_) + " of the data: " + problem);
   }
 
  private:
-  const char* take(std::uint64_t bytes) {
-    if (bytes > remaining()) throw EndOfData{};
-    const char* p = data_.data() + pos_;
-    pos_ += bytes;
+  // The next `bytes` bytes (at most 8), valid until the next call.
+  const char* take(std::size_t bytes) {
+    if (!data_.fill(bytes)) throw EndOfData{};
+    const char* p = data_.view().data();
+    data_.consume(bytes);
     return p;
   }
 
   const fs::path& path_;
-  std::string_view data_;
-  std::size_t pos_ = 0;
+  io::FileWindow& data_;
+  std::uint64_t data_begin_;
   bool swap_;
 };
 
@@ -370,18 +387,32 @@ PointCloud read_data(const fs::path& path, const Header& header, Cursor in) {
   return cloud;
 }
 
+// Reads on until the window holds the header's last line, or the file or kLongestHeader ends
+// (parse_header then says what is wrong).
+constexpr std::size_t kLongestHeader = std::size_t(1) << 24;
+Header read_header(const fs::path& path, io::FileWindow& file) {
+  for (std::size_t want = 1 << 16;; want *= 2) {
+    file.fill(std::min<std::uint64_t>(std::min(want, kLongestHeader), file.remaining()));
+    const std::string_view v = file.view();
+    const std::size_t end = v.find("\nend_header");
+    if ((end != std::string_view::npos && v.find('\n', end + 1) != std::string_view::npos) ||
+        v.size() >= file.remaining() || want >= kLongestHeader)
+      return parse_header(path, v);
+  }
+}
+
 }  // namespace
 
 PointCloud read_ply(const fs::path& path) {
-  const std::string file = read_file(path);
-  const Header header = parse_header(path, file);
-  const std::string_view data = std::string_view(file).substr(header.data_begin);
+  io::FileWindow file(path);
+  const Header header = read_header(path, file);
+  file.consume(header.data_begin);
   switch (header.format) {
-    case Format::Ascii: return read_data(path, header, AsciiCursor(path, data, header.lines + 1));
+    case Format::Ascii: return read_data(path, header, AsciiCursor(path, file, header.lines + 1));
     case Format::BinaryLittleEndian:
-      return read_data(path, header, BinaryCursor(path, data, std::endian::little));
+      return read_data(path, header, BinaryCursor(path, file, std::endian::little));
     case Format::BinaryBigEndian:
-      return read_data(path, header, BinaryCursor(path, data, std::endian::big));
+      return read_data(path, header, BinaryCursor(path, file, std::endian::big));
   }
   return {};
 }

@@ -9,30 +9,53 @@
 #include "pss/core/error.hpp"
 #include "pss/io/output_file.hpp"
 #include "pss/io/point_cloud_file.hpp"
+#include "file_window.hpp"
 
 namespace pss {
 namespace {
 
 bool is_separator(char c) { return c == ' ' || c == '\t' || c == ',' || c == '\r'; }
 
+// Six numbers of a double's 17 digits with their separators fit many times over; a longer
+// line is no point's, and is not held whole.
+constexpr std::size_t kLongestLine = std::size_t(1) << 20;
+
+// The next line without its '\n' (the last may have none), valid until the next call; false
+// at the end of the file. A line beyond kLongestLine comes back cut to one character more.
+bool next_line(io::FileWindow& file, std::string_view& line) {
+  for (std::size_t want = 1;; want = file.view().size() + 1) {
+    if (!file.fill(want) && file.view().empty()) return false;
+    const std::string_view v = file.view();
+    const std::size_t end = v.find('\n');
+    if (end != std::string_view::npos) {
+      line = v.substr(0, end);
+      file.consume(end + 1);
+      return true;
+    }
+    if (v.size() > kLongestLine || v.size() < want) {  // too long, or the file's last line
+      line = v.substr(0, std::min(v.size(), kLongestLine + 1));
+      file.consume(v.size());
+      return true;
+    }
+  }
+}
+
 }  // namespace
 
 PointCloud read_xyz(const std::filesystem::path& path) {
-  const std::string file = read_file(path);
-  const std::string_view text = file;
+  io::FileWindow file(path);
   PointCloud cloud;
   std::vector<glm::dvec3> world;
   std::size_t columns = 0;  // fixed by the first point line
   int first_point_line = 0;
   int line_number = 0;
-  for (std::size_t pos = 0; pos < text.size();) {
-    const std::size_t end = std::min(text.find('\n', pos), text.size());
-    const std::string_view line = text.substr(pos, end - pos);
-    pos = end + 1;
+  for (std::string_view line; next_line(file, line);) {
     ++line_number;
     const auto fail = [&](const std::string& problem) {
       return file_error(path, "line " + std::to_string(line_number) + ": " + problem);
     };
+    if (line.size() > kLongestLine)
+      throw fail("longer than " + std::to_string(kLongestLine) + " characters: not a file of points");
 
     double v[6];  // read in double: a georeferenced cloud's digits (cloud.hpp)
     std::size_t count = 0;
