@@ -16,6 +16,7 @@
 #include "pss/core/memory.hpp"
 #include "pss/io/point_cloud_file.hpp"
 #include "support/cli.hpp"
+#include "support/file_bytes.hpp"
 
 namespace pss {
 namespace {
@@ -32,12 +33,7 @@ class FileWindowTest : public test::CliTest {
   void expect_the_same_whatever_the_window(const std::string& name, const std::string& bytes);
 };
 
-template <class T>
-std::string bytes_of(T value, bool big_endian = false) {
-  auto raw = std::bit_cast<std::array<char, sizeof(T)>>(value);
-  if (big_endian != (std::endian::native == std::endian::big)) std::reverse(raw.begin(), raw.end());
-  return std::string(raw.data(), raw.size());
-}
+using test::bytes_of;
 
 TEST_F(FileWindowTest, AWindowOfAnySizeGivesTheFilesBytesInOrder) {
   std::string bytes;
@@ -148,25 +144,8 @@ TEST_F(FileWindowTest, XyzWithCommentsBlankLinesAndNoFinalNewline) {
   expect_the_same_whatever_the_window("b.xyz", "1e3 2 3\n4 5 6\n7 8 9\n");
 }
 
-// LAS 1.2, point format 2 (26-byte records with RGB), two points after a VLR's bytes.
 TEST_F(FileWindowTest, LasWithColoursAfterAVariableLengthRecord) {
-  std::string h = "LASF" + std::string(4, '\0') + std::string(16, '\0') + bytes_of(std::uint8_t(1)) +
-                  bytes_of(std::uint8_t(2)) + std::string(64, '\0') + bytes_of(std::uint16_t(1)) +
-                  bytes_of(std::uint16_t(2024)) + bytes_of(std::uint16_t(227)) + bytes_of(std::uint32_t(227 + 10)) +
-                  bytes_of(std::uint32_t(0)) + bytes_of(std::uint8_t(2)) + bytes_of(std::uint16_t(26)) +
-                  bytes_of(std::uint32_t(2)) + std::string(20, '\0');
-  for (const double s : {0.01, 0.5, 0.25}) h += bytes_of(s);
-  for (const double o : {100.0, -200.0, 1000.0}) h += bytes_of(o);
-  h += std::string(48, '\0');
-  ASSERT_EQ(h.size(), 227u);
-  h += std::string(10, 'v');
-  for (int i = 0; i < 2; ++i) {
-    h += bytes_of(std::int32_t(1000 * i - 3)) + bytes_of(std::int32_t(4 - i)) + bytes_of(std::int32_t(8 * i));
-    h += bytes_of(std::uint16_t(100 + i)) + bytes_of(std::uint8_t(0)) + bytes_of(std::uint8_t(6)) + std::string(2, '\0');
-    h += bytes_of(std::uint16_t(7));
-    for (const std::uint16_t c : {std::uint16_t(255 * i), std::uint16_t(300), std::uint16_t(i)}) h += bytes_of(c);
-  }
-  expect_the_same_whatever_the_window("a.las", h);
+  expect_the_same_whatever_the_window("a.las", test::las_12_format_2(2, 10));
 }
 
 // Resident bytes now (Linux), for the read's cost beside it.

@@ -5,11 +5,13 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <string>
 
 #include "bytes.hpp"
 #include "color.hpp"
 #include "file_window.hpp"
+#include "point_streams.hpp"
 #include "pss/core/error.hpp"
 #include "pss/io/output_file.hpp"
 
@@ -34,10 +36,16 @@ T get(std::string_view bytes, std::uint64_t at) {
   return io::load<T>(bytes.data() + at, kSwap);
 }
 
-}  // namespace
+// The header's facts about the points, checked against the file's size.
+struct LasLayout {
+  unsigned format;
+  RecordFormat record;
+  std::uint64_t record_length, points;
+  glm::dvec3 scale, offset;
+};
 
-PointCloud read_las(const std::filesystem::path& path) {
-  io::FileWindow data(path);
+// Reads and checks the header, and leaves `data` at the first point record.
+LasLayout read_las_header(const std::filesystem::path& path, io::FileWindow& data) {
   data.fill(std::size_t(std::min<std::uint64_t>(kHeader14, data.size())));
   const std::string_view file = data.view();  // the header's bytes; data.size() is the file's
   if (!file.starts_with("LASF")) throw file_error(path, "not a LAS file (no 'LASF' signature)");
@@ -89,47 +97,73 @@ PointCloud read_las(const std::filesystem::path& path) {
       throw file_error(path, "invalid scale " + format_number(scale[k]) + " or offset " + format_number(offset[k]) +
                                  " of axis " + "xyz"[k]);
   }
-  // The records front to back: the attributes every record format has, kept as scalar
-  // properties for outputs to carry (the intensity, bytes 12-13, and the ASPRS class, bits
-  // 0-4 of byte 15 in formats 0-5, whose upper bits are flags, and byte 16 in formats 6-10),
-  // and the colours' 16-bit channels until the brightest says how they scale.
-  PointCloud cloud;
-  std::vector<glm::dvec3> world;
-  world.reserve(points);
-  ScalarProperty intensity{"intensity", ScalarType::uint16, {}};
-  ScalarProperty classification{"classification", ScalarType::uint8, {}};
-  intensity.values.reserve(points);
-  classification.values.reserve(points);
-  std::vector<std::array<std::uint16_t, 3>> channels;
-  if (record.rgb != 0) channels.reserve(points);
   data.skip(data_offset);
-  for (std::uint64_t i = 0; i < points; ++i) {
-    if (!data.fill(record_length))  // the file shrank while it was read
-      throw file_error(path, "truncated: expected " + std::to_string(points) + " points, read " + std::to_string(i));
-    const std::string_view r = data.view();
-    const glm::dvec3 integer(get<std::int32_t>(r, 0), get<std::int32_t>(r, 4), get<std::int32_t>(r, 8));
-    world.push_back(integer * scale + offset);
-    if (!is_finite(vec3(world.back())))
-      throw file_error(path, "point " + std::to_string(i) + " lies beyond float's range");
-    intensity.values.push_back(get<std::uint16_t>(r, 12));
-    classification.values.push_back(format <= 5 ? get<std::uint8_t>(r, 15) & 0x1F : get<std::uint8_t>(r, 16));
-    if (record.rgb != 0)
-      channels.push_back({get<std::uint16_t>(r, record.rgb), get<std::uint16_t>(r, record.rgb + 2),
-                          get<std::uint16_t>(r, record.rgb + 4)});
-    data.consume(record_length);
-  }
-  set_world_positions(cloud, world);
-  cloud.scalars = {std::move(intensity), std::move(classification)};
-  if (record.rgb != 0) {
-    std::uint16_t brightest = 0;
-    for (const auto& rgb : channels)
-      for (const std::uint16_t c : rgb) brightest = std::max(brightest, c);
-    cloud.colors.resize(points);
-    for (std::uint64_t i = 0; i < points; ++i)
-      for (int c = 0; c < 3; ++c)
-        cloud.colors[i][c] = brightest <= 255 ? std::uint8_t(channels[i][c]) : io::channel_from_16bit(channels[i][c]);
-  }
-  return cloud;
+  return {format, record, record_length, points, scale, offset};
 }
+
+// The points of a LAS file, a record at a time. Colours: the brightest channel of the whole
+// file says whether they are 8-bit values in 16-bit fields or 16-bit ones, so a file with
+// colours is read twice, the first time for them alone.
+class LasStream final : public PointStream {
+ public:
+  explicit LasStream(const std::filesystem::path& path) : path_(path), data_(path), las_(read_las_header(path, data_)) {
+    if (las_.record.rgb == 0) return;
+    io::FileWindow first(path);
+    read_las_header(path, first);
+    for (std::uint64_t i = 0; i < las_.points && first.fill(las_.record_length); ++i) {
+      for (int c = 0; c < 3; ++c)
+        brightest_ = std::max(brightest_, get<std::uint16_t>(first.view(), las_.record.rgb + 2 * std::uint64_t(c)));
+      first.consume(las_.record_length);
+    }
+  }
+
+  std::uint64_t declared_count() const override { return las_.points; }
+
+  // The attributes every record format has are kept as scalar properties for outputs to
+  // carry: the intensity (bytes 12-13) and the ASPRS class, bits 0-4 of byte 15 in formats
+  // 0-5 (its upper bits are flags) and byte 16 in formats 6-10.
+  std::size_t read(PointPart& part, std::size_t most) override {
+    if (part.scalars.empty())
+      part.scalars = {{"intensity", ScalarType::uint16, {}}, {"classification", ScalarType::uint8, {}}};
+    const std::uint64_t end = std::min<std::uint64_t>(las_.points, next_ + most), begin = next_;
+    for (std::uint64_t i = begin; i < end; ++i) {
+      if (!data_.fill(las_.record_length))  // the file shrank while it was read
+        throw file_error(path_, "truncated: expected " + std::to_string(las_.points) + " points, read " + std::to_string(i));
+      const std::string_view r = data_.view();
+      const glm::dvec3 integer(get<std::int32_t>(r, 0), get<std::int32_t>(r, 4), get<std::int32_t>(r, 8));
+      part.world.push_back(integer * las_.scale + las_.offset);
+      if (!is_finite(vec3(part.world.back())))
+        throw file_error(path_, "point " + std::to_string(i) + " lies beyond float's range");
+      part.scalars[0].values.push_back(get<std::uint16_t>(r, 12));
+      part.scalars[1].values.push_back(las_.format <= 5 ? get<std::uint8_t>(r, 15) & 0x1F : get<std::uint8_t>(r, 16));
+      if (las_.record.rgb != 0) {
+        Rgb8 color;
+        for (int c = 0; c < 3; ++c) {
+          const auto channel = get<std::uint16_t>(r, las_.record.rgb + 2 * std::uint64_t(c));
+          color[c] = brightest_ <= 255 ? std::uint8_t(channel) : io::channel_from_16bit(channel);
+        }
+        part.colors.push_back(color);
+      }
+      data_.consume(las_.record_length);
+    }
+    next_ = end;
+    return std::size_t(end - begin);
+  }
+
+ private:
+  std::filesystem::path path_;
+  io::FileWindow data_;
+  LasLayout las_;
+  std::uint16_t brightest_ = 0;
+  std::uint64_t next_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<PointStream> open_las_stream(const std::filesystem::path& path) {
+  return std::make_unique<LasStream>(path);
+}
+
+PointCloud read_las(const std::filesystem::path& path) { return read_all(*open_las_stream(path)); }
 
 }  // namespace pss

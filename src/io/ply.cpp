@@ -7,16 +7,20 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include "pss/core/error.hpp"
 #include "pss/io/output_file.hpp"
 #include "pss/io/point_cloud_file.hpp"
+#include "pss/io/point_stream.hpp"
 #include "bytes.hpp"
 #include "color.hpp"
 #include "file_window.hpp"
+#include "point_streams.hpp"
 #include "ply_types.hpp"
 #include "text.hpp"
 
@@ -224,13 +228,15 @@ std::string describe(const Element& element) {
   return element.name == "vertex" ? n + " vertices" : n + " " + quote(element.name) + " elements";
 }
 
-// Runs read_record for each record, reporting truncation as "expected N, read M".
+// Runs read_record for records [begin, end) of the element, reporting truncation as
+// "expected N, read M".
 template <class ReadRecord>
-void for_each_record(const fs::path& path, const Element& element, ReadRecord read_record) {
+void for_each_record(const fs::path& path, const Element& element, std::uint64_t begin, std::uint64_t end,
+                     ReadRecord read_record) {
   if (element.properties.empty()) return;  // no bytes to read, however large the count
-  std::uint64_t i = 0;
+  std::uint64_t i = begin;
   try {
-    for (; i < element.count; ++i) read_record(i);
+    for (; i < end; ++i) read_record(i);
   } catch (const EndOfData&) {
     throw file_error(path,
                      "truncated: expected " + describe(element) + ", read " + std::to_string(i));
@@ -313,80 +319,6 @@ std::uint64_t max_records(const Cursor& in, const Element& element) {
   return min_record == 0 ? 0 : (in.remaining() + 1) / min_record;
 }
 
-template <class Cursor>
-PointCloud read_data(const fs::path& path, const Header& header, Cursor in) {
-  const auto vertex = std::find_if(header.elements.begin(), header.elements.end(),
-                                   [](const Element& e) { return e.name == "vertex"; });
-  if (vertex == header.elements.end()) throw file_error(path, "no vertex element");
-  const std::vector<int> slots = vertex_slots(path, *vertex);
-  if (vertex->count == 0) throw file_error(path, "no vertices");
-
-  for (auto e = header.elements.begin(); e != vertex; ++e) {
-    for_each_record(path, *e, [&](std::uint64_t) {
-      for (const Property& p : e->properties) {
-        if (p.count) skip_list(in, p);
-        else in.skip(p.type);
-      }
-    });
-  }
-  const bool normals = std::find(slots.begin(), slots.end(), kNormal) != slots.end();
-  const bool colors = std::find(slots.begin(), slots.end(), kColor) != slots.end();
-  std::array<Scalar, 3> color_types{};
-  for (std::size_t j = 0; j < slots.size(); ++j)
-    if (slots[j] >= kColor && slots[j] < kSlots) color_types[slots[j] - kColor] = vertex->properties[j].type;
-  PointCloud cloud;
-  cloud.mesh_vertices = std::any_of(header.elements.begin(), header.elements.end(),
-                                    [](const Element& e) { return e.name == "face" && e.count > 0; });
-  // Positions of floats or of integers of two bytes at most are kept in floats, which hold
-  // them exactly: half the memory of doubles (issue 28).
-  bool float_positions = true;
-  for (std::size_t j = 0; j < slots.size(); ++j) {
-    const Scalar type = vertex->properties[j].type;
-    if (slots[j] >= 0 && slots[j] < 3)
-      float_positions = float_positions && (type == Scalar::float32 || size_of(type) <= 2);
-  }
-  std::vector<glm::dvec3> world;
-  std::vector<vec3> world_floats;
-  const std::uint64_t capacity = std::min(vertex->count, max_records(in, *vertex));
-  if (float_positions) world_floats.reserve(capacity);
-  else world.reserve(capacity);
-  if (normals) cloud.normals.reserve(capacity);
-  if (colors) cloud.colors.reserve(capacity);
-  for (std::size_t j = 0; j < slots.size(); ++j) {
-    if (slots[j] < kSlots) continue;
-    const Property& p = vertex->properties[j];
-    cloud.scalars.push_back({p.name, p.type, {}});
-    cloud.scalars.back().values.reserve(capacity);
-  }
-  for_each_record(path, *vertex, [&](std::uint64_t i) {
-    double v[kSlots] = {};
-    for (std::size_t j = 0; j < slots.size(); ++j) {
-      const Property& p = vertex->properties[j];
-      if (p.count) skip_list(in, p);
-      else if (slots[j] >= kSlots) cloud.scalars[slots[j] - kSlots].values.push_back(scalar_value(in, p));
-      else if (slots[j] >= 0) v[slots[j]] = in.value(p.type);
-      else in.skip(p.type);
-    }
-    // A double beyond float range becomes infinite here, and is refused with the NaNs.
-    const vec3 p(glm::dvec3(v[0], v[1], v[2]));
-    if (!is_finite(p)) throw file_error(path, "vertex " + std::to_string(i) + " has a non-finite coordinate");
-    if (float_positions) world_floats.push_back(p);
-    else world.emplace_back(v[0], v[1], v[2]);
-    if (normals) cloud.normals.push_back(vec3(glm::dvec3(v[3], v[4], v[5])));
-    if (colors) {
-      if (!std::isfinite(v[6]) || !std::isfinite(v[7]) || !std::isfinite(v[8]))
-        throw file_error(path, "vertex " + std::to_string(i) + " has a non-finite colour");
-      cloud.colors.emplace_back(color_channel(v[6], color_types[0]), color_channel(v[7], color_types[1]),
-                                color_channel(v[8], color_types[2]));
-    }
-  });
-  // Elements after the vertices are not read: nothing there is needed.
-  if (float_positions) set_world_positions(cloud, std::move(world_floats));
-  else set_world_positions(cloud, world);
-  tidy_normals(cloud);
-  return cloud;
-}
-
 // Reads on until the window holds the header's last line, or the file or kLongestHeader ends
 // (parse_header then says what is wrong).
 constexpr std::size_t kLongestHeader = std::size_t(1) << 24;
@@ -401,20 +333,109 @@ Header read_header(const fs::path& path, io::FileWindow& file) {
   }
 }
 
+// The vertices of a PLY file, a part at a time, through a cursor of its format.
+template <class Cursor>
+class PlyStream final : public PointStream {
+ public:
+  PlyStream(const fs::path& path, std::unique_ptr<io::FileWindow> file, Header header, int first_line)
+      : path_(path), file_(std::move(file)), header_(std::move(header)), in_(make_cursor(first_line)) {
+    const auto vertex = std::find_if(header_.elements.begin(), header_.elements.end(),
+                                     [](const Element& e) { return e.name == "vertex"; });
+    if (vertex == header_.elements.end()) throw file_error(path, "no vertex element");
+    vertex_ = &*vertex;
+    slots_ = vertex_slots(path, *vertex_);
+    if (vertex_->count == 0) throw file_error(path, "no vertices");
+    for (auto e = header_.elements.begin(); e != vertex; ++e) {
+      for_each_record(path, *e, 0, e->count, [&](std::uint64_t) {
+        for (const Property& p : e->properties) {
+          if (p.count) skip_list(in_, p);
+          else in_.skip(p.type);
+        }
+      });
+    }
+    normals_ = std::find(slots_.begin(), slots_.end(), kNormal) != slots_.end();
+    colors_ = std::find(slots_.begin(), slots_.end(), kColor) != slots_.end();
+    for (std::size_t j = 0; j < slots_.size(); ++j)
+      if (slots_[j] >= kColor && slots_[j] < kSlots) color_types_[slots_[j] - kColor] = vertex_->properties[j].type;
+    mesh_vertices_ = std::any_of(header_.elements.begin(), header_.elements.end(),
+                                 [](const Element& e) { return e.name == "face" && e.count > 0; });
+    // Positions of floats or of integers of two bytes at most are kept in floats, which hold
+    // them exactly: half the memory of doubles (issue 28).
+    for (std::size_t j = 0; j < slots_.size(); ++j) {
+      const Scalar type = vertex_->properties[j].type;
+      if (slots_[j] >= 0 && slots_[j] < 3)
+        float_positions_ = float_positions_ && (type == Scalar::float32 || size_of(type) <= 2);
+    }
+    expected_ = std::min(vertex_->count, max_records(in_, *vertex_));
+  }
+
+  std::uint64_t declared_count() const override { return expected_; }
+  bool float_positions() const override { return float_positions_; }
+  bool mesh_vertices() const override { return mesh_vertices_; }
+
+  std::size_t read(PointPart& part, std::size_t most) override {
+    if (part.scalars.empty())
+      for (std::size_t j = 0; j < slots_.size(); ++j)
+        if (slots_[j] >= kSlots) part.scalars.push_back({vertex_->properties[j].name, vertex_->properties[j].type, {}});
+    const std::uint64_t end = std::min<std::uint64_t>(vertex_->count, next_ + most);
+    const std::uint64_t begin = next_;
+    // Elements after the vertices are not read: nothing there is needed.
+    for_each_record(path_, *vertex_, begin, end, [&](std::uint64_t i) { read_vertex(part, i); });
+    next_ = end;
+    return std::size_t(end - begin);
+  }
+
+ private:
+  Cursor make_cursor(int first_line) {
+    if constexpr (std::is_same_v<Cursor, AsciiCursor>) return AsciiCursor(path_, *file_, first_line);
+    else return BinaryCursor(path_, *file_, header_.format == Format::BinaryBigEndian ? std::endian::big : std::endian::little);
+  }
+
+  void read_vertex(PointPart& part, std::uint64_t i) {
+    double v[kSlots] = {};
+    for (std::size_t j = 0; j < slots_.size(); ++j) {
+      const Property& p = vertex_->properties[j];
+      if (p.count) skip_list(in_, p);
+      else if (slots_[j] >= kSlots) part.scalars[std::size_t(slots_[j] - kSlots)].values.push_back(scalar_value(in_, p));
+      else if (slots_[j] >= 0) v[slots_[j]] = in_.value(p.type);
+      else in_.skip(p.type);
+    }
+    // A double beyond float range becomes infinite here, and is refused with the NaNs.
+    const vec3 p(glm::dvec3(v[0], v[1], v[2]));
+    if (!is_finite(p)) throw file_error(path_, "vertex " + std::to_string(i) + " has a non-finite coordinate");
+    part.world.emplace_back(v[0], v[1], v[2]);
+    if (normals_) part.normals.push_back(vec3(glm::dvec3(v[3], v[4], v[5])));
+    if (colors_) {
+      if (!std::isfinite(v[6]) || !std::isfinite(v[7]) || !std::isfinite(v[8]))
+        throw file_error(path_, "vertex " + std::to_string(i) + " has a non-finite colour");
+      part.colors.emplace_back(color_channel(v[6], color_types_[0]), color_channel(v[7], color_types_[1]),
+                               color_channel(v[8], color_types_[2]));
+    }
+  }
+
+  fs::path path_;
+  std::unique_ptr<io::FileWindow> file_;
+  Header header_;
+  Cursor in_;
+  const Element* vertex_ = nullptr;
+  std::vector<int> slots_;
+  bool normals_ = false, colors_ = false, mesh_vertices_ = false, float_positions_ = true;
+  std::array<Scalar, 3> color_types_{};
+  std::uint64_t expected_ = 0, next_ = 0;
+};
+
 }  // namespace
 
-PointCloud read_ply(const fs::path& path) {
-  io::FileWindow file(path);
-  const Header header = read_header(path, file);
-  file.consume(header.data_begin);
-  switch (header.format) {
-    case Format::Ascii: return read_data(path, header, AsciiCursor(path, file, header.lines + 1));
-    case Format::BinaryLittleEndian:
-      return read_data(path, header, BinaryCursor(path, file, std::endian::little));
-    case Format::BinaryBigEndian:
-      return read_data(path, header, BinaryCursor(path, file, std::endian::big));
-  }
-  return {};
+std::unique_ptr<PointStream> open_ply_stream(const fs::path& path) {
+  auto file = std::make_unique<io::FileWindow>(path);
+  Header header = read_header(path, *file);
+  file->consume(header.data_begin);
+  const int first_line = header.lines + 1;
+  if (header.format == Format::Ascii)
+    return std::make_unique<PlyStream<AsciiCursor>>(path, std::move(file), std::move(header), first_line);
+  return std::make_unique<PlyStream<BinaryCursor>>(path, std::move(file), std::move(header), first_line);
 }
+
+PointCloud read_ply(const fs::path& path) { return read_all(*open_ply_stream(path)); }
 
 }  // namespace pss

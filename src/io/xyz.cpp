@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <string>
 #include <string_view>
 
@@ -10,6 +11,7 @@
 #include "pss/io/output_file.hpp"
 #include "pss/io/point_cloud_file.hpp"
 #include "file_window.hpp"
+#include "point_streams.hpp"
 
 namespace pss {
 namespace {
@@ -40,63 +42,78 @@ bool next_line(io::FileWindow& file, std::string_view& line) {
   }
 }
 
+// The points of an XYZ file, a line at a time.
+class XyzStream final : public PointStream {
+ public:
+  explicit XyzStream(const std::filesystem::path& path) : path_(path), file_(path) {}
+
+  std::uint64_t declared_count() const override { return 0; }
+
+  std::size_t read(PointPart& part, std::size_t most) override {
+    std::size_t added = 0;
+    for (std::string_view line; added < most && next_line(file_, line);) {
+      ++line_number_;
+      const auto fail = [&](const std::string& problem) {
+        return file_error(path_, "line " + std::to_string(line_number_) + ": " + problem);
+      };
+      if (line.size() > kLongestLine)
+        throw fail("longer than " + std::to_string(kLongestLine) + " characters: not a file of points");
+      double v[6];  // read in double: a georeferenced cloud's digits (cloud.hpp)
+      std::size_t count = 0;
+      for (std::size_t i = 0; i < line.size();) {
+        if (is_separator(line[i])) {
+          ++i;
+          continue;
+        }
+        if (count == 0 && line[i] == '#') break;  // a comment line
+        std::size_t j = i;
+        while (j < line.size() && !is_separator(line[j])) ++j;
+        std::string_view token = line.substr(i, j - i);
+        i = j;
+        if (count == 6) throw fail("more than 6 numbers");
+        if (token.size() > 1 && token[0] == '+') token.remove_prefix(1);  // from_chars rejects '+'
+        const auto [stop, ec] = std::from_chars(token.data(), token.data() + token.size(), v[count]);
+        if (ec == std::errc::result_out_of_range || (std::isinf(float(v[count])) && !std::isinf(v[count])))
+          throw fail("number out of range " + quote(token, 40));
+        if (ec != std::errc() || stop != token.data() + token.size())
+          throw fail("malformed number " + quote(token, 40));
+        ++count;
+      }
+      if (count == 0) continue;  // blank or comment
+      if (columns_ == 0) {
+        if (count != 3 && count != 6)
+          throw fail("expected 3 or 6 numbers (x y z [nx ny nz]), found " + std::to_string(count));
+        columns_ = count;
+        first_point_line_ = line_number_;
+      } else if (count != columns_) {
+        throw fail("found " + std::to_string(count) + " numbers, but line " + std::to_string(first_point_line_) +
+                   " has " + std::to_string(columns_));
+      }
+      if (!is_finite(vec3(glm::dvec3(v[0], v[1], v[2])))) throw fail("non-finite coordinate");
+      part.world.emplace_back(v[0], v[1], v[2]);
+      if (columns_ == 6) part.normals.emplace_back(v[3], v[4], v[5]);
+      ++added;
+    }
+    points_ += added;
+    if (added == 0 && points_ == 0) throw file_error(path_, "no points");
+    return added;
+  }
+
+ private:
+  std::filesystem::path path_;
+  io::FileWindow file_;
+  std::size_t columns_ = 0;  // fixed by the first point line
+  int first_point_line_ = 0, line_number_ = 0;
+  std::uint64_t points_ = 0;
+};
+
 }  // namespace
 
-PointCloud read_xyz(const std::filesystem::path& path) {
-  io::FileWindow file(path);
-  PointCloud cloud;
-  std::vector<glm::dvec3> world;
-  std::size_t columns = 0;  // fixed by the first point line
-  int first_point_line = 0;
-  int line_number = 0;
-  for (std::string_view line; next_line(file, line);) {
-    ++line_number;
-    const auto fail = [&](const std::string& problem) {
-      return file_error(path, "line " + std::to_string(line_number) + ": " + problem);
-    };
-    if (line.size() > kLongestLine)
-      throw fail("longer than " + std::to_string(kLongestLine) + " characters: not a file of points");
-
-    double v[6];  // read in double: a georeferenced cloud's digits (cloud.hpp)
-    std::size_t count = 0;
-    for (std::size_t i = 0; i < line.size();) {
-      if (is_separator(line[i])) {
-        ++i;
-        continue;
-      }
-      if (count == 0 && line[i] == '#') break;  // a comment line
-      std::size_t j = i;
-      while (j < line.size() && !is_separator(line[j])) ++j;
-      std::string_view token = line.substr(i, j - i);
-      i = j;
-      if (count == 6) throw fail("more than 6 numbers");
-      if (token.size() > 1 && token[0] == '+') token.remove_prefix(1);  // from_chars rejects '+'
-      const auto [stop, ec] = std::from_chars(token.data(), token.data() + token.size(), v[count]);
-      if (ec == std::errc::result_out_of_range || (std::isinf(float(v[count])) && !std::isinf(v[count])))
-        throw fail("number out of range " + quote(token, 40));
-      if (ec != std::errc() || stop != token.data() + token.size())
-        throw fail("malformed number " + quote(token, 40));
-      ++count;
-    }
-    if (count == 0) continue;  // blank or comment
-    if (columns == 0) {
-      if (count != 3 && count != 6)
-        throw fail("expected 3 or 6 numbers (x y z [nx ny nz]), found " + std::to_string(count));
-      columns = count;
-      first_point_line = line_number;
-    } else if (count != columns) {
-      throw fail("found " + std::to_string(count) + " numbers, but line " +
-                 std::to_string(first_point_line) + " has " + std::to_string(columns));
-    }
-    world.emplace_back(v[0], v[1], v[2]);
-    if (!is_finite(vec3(world.back()))) throw fail("non-finite coordinate");
-    if (columns == 6) cloud.normals.emplace_back(v[3], v[4], v[5]);
-  }
-  if (world.empty()) throw file_error(path, "no points");
-  set_world_positions(cloud, world);
-  tidy_normals(cloud);
-  return cloud;
+std::unique_ptr<PointStream> open_xyz_stream(const std::filesystem::path& path) {
+  return std::make_unique<XyzStream>(path);
 }
+
+PointCloud read_xyz(const std::filesystem::path& path) { return read_all(*open_xyz_stream(path)); }
 
 void write_xyz(const std::filesystem::path& path, const PointCloud& cloud) {
   if (cloud.has_normals() && cloud.normals.size() != cloud.size())
