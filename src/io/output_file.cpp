@@ -299,4 +299,47 @@ std::string read_file(const std::filesystem::path& path) {
   return data;
 }
 
+ScratchFile::ScratchFile(const std::filesystem::path& folder)
+    : path_(temporary_beside(folder / "pss-scratch")) {
+  temporaries::add(path_);
+  errno = 0;
+  descriptor_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+  if (descriptor_ < 0) {
+    const std::string why = system_message();
+    temporaries::forget(path_);
+    throw write_error(path_, why);
+  }
+}
+
+ScratchFile::~ScratchFile() {
+  ::close(descriptor_);
+  remove_temporary(path_);
+}
+
+void ScratchFile::write_at(std::uint64_t offset, const void* bytes, std::size_t size) {
+  const char* from = static_cast<const char*>(bytes);
+  while (size > 0) {
+    errno = 0;
+    const ssize_t done = ::pwrite(descriptor_, from, size, off_t(offset));
+    if (done < 0 && errno == EINTR) continue;
+    if (done <= 0) throw write_error(path_, system_message());
+    from += done;
+    offset += std::uint64_t(done);
+    size -= std::size_t(done);
+  }
+}
+
+void ScratchFile::read_at(std::uint64_t offset, void* bytes, std::size_t size) const {
+  char* to = static_cast<char*>(bytes);
+  while (size > 0) {
+    errno = 0;
+    const ssize_t done = ::pread(descriptor_, to, size, off_t(offset));
+    if (done < 0 && errno == EINTR) continue;
+    if (done <= 0) throw file_error(path_, "cannot read: " + (done == 0 ? std::string("it ended early") : system_message()));
+    to += done;
+    offset += std::uint64_t(done);
+    size -= std::size_t(done);
+  }
+}
+
 }  // namespace pss

@@ -9,6 +9,7 @@
 // SIGTERM and SIGHUP as well as on errors.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -76,6 +77,26 @@ class OutputSet {
 };
 
 void write_text_file(const std::filesystem::path& path, std::string_view text);
+
+// A command's own temporary file (issue 28: a cloud's tiles on disk), named for this process
+// in `folder`, read and written at offsets; removed when destroyed, and on SIGINT, SIGTERM
+// and SIGHUP as the outputs' temporaries are. Every failure (a folder that cannot take it, a
+// full disk) throws file_error naming the file.
+class ScratchFile {
+ public:
+  explicit ScratchFile(const std::filesystem::path& folder);
+  ~ScratchFile();
+  ScratchFile(const ScratchFile&) = delete;
+  ScratchFile& operator=(const ScratchFile&) = delete;
+
+  const std::filesystem::path& path() const { return path_; }
+  void write_at(std::uint64_t offset, const void* bytes, std::size_t size);
+  void read_at(std::uint64_t offset, void* bytes, std::size_t size) const;
+
+ private:
+  std::filesystem::path path_;
+  int descriptor_ = -1;
+};
 
 // The whole file in memory: the readers parse from one buffer, which is much faster than
 // stream extraction. Throws file_error(path, "cannot open: ...") / "cannot read: ..."; a
