@@ -46,13 +46,14 @@ void tidy_normals(PointCloud& cloud) {
     cloud.normals.clear();
     return;
   }
-  for (vec3& n : cloud.normals) {
-    // In double: the squared length of a huge or tiny float normal over- or underflows.
-    const double len2 = double(n.x) * n.x + double(n.y) * n.y + double(n.z) * n.z;
-    // Already unit within rounding: leave the bits alone, so write/read round trips are exact.
-    if (len2 > 0.0 && std::abs(len2 - 1.0) > 1e-6)
-      n = vec3(glm::dvec3(n) / std::sqrt(len2));
-  }
+  for (vec3& n : cloud.normals) n = tidy_normal(n);
+}
+
+vec3 tidy_normal(vec3 n) {
+  // In double: the squared length of a huge or tiny float normal over- or underflows.
+  const double len2 = double(n.x) * n.x + double(n.y) * n.y + double(n.z) * n.z;
+  // Already unit within rounding: leave the bits alone, so write/read round trips are exact.
+  return len2 > 0.0 && std::abs(len2 - 1.0) > 1e-6 ? vec3(glm::dvec3(n) / std::sqrt(len2)) : n;
 }
 
 }  // namespace pss

@@ -23,5 +23,7 @@ void write_point_cloud(const std::filesystem::path& path, const PointCloud& clou
 // direction to recover, and dropping one would misalign the arrays). One non-finite normal
 // drops them all: a cloud has usable normals throughout or none.
 void tidy_normals(PointCloud& cloud);
+// One finite normal as tidy_normals leaves it.
+vec3 tidy_normal(vec3 n);
 
 }  // namespace pss

@@ -1,0 +1,62 @@
+// A cloud file cut into cubic tiles on disk (issue 28): the first step of processing a
+// cloud larger than memory, tile by tile, each with a halo of its neighbours' points. Two
+// passes over the file (a PointStream): the first finds the count, the box and so the
+// origin the whole-file readers choose (cloud.hpp), and whether every normal is usable; the
+// second writes each point, with its input index and tidied normal, to its tile's bucket of
+// a BucketFile. A tile's points then come back as the in-core cloud holds them: the same
+// float positions about the same origin, the same normals.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <vector>
+
+#include <glm/ext/vector_double3.hpp>
+
+#include "pss/core/types.hpp"
+#include "pss/io/bucket_file.hpp"
+
+namespace pss {
+
+// The points of a tile and of its halo: the tile's own first (`own` of them), then the
+// others, each group in input order.
+struct TilePoints {
+  std::vector<vec3> positions;
+  std::vector<vec3> normals;  // empty when the cloud has none
+  std::vector<std::uint64_t> index;
+  std::size_t own = 0;
+};
+
+class TiledCloud {
+ public:
+  // Reads `input` (.ply, .xyz, .las: open_point_stream) into tiles of about
+  // `points_per_tile` points each where the points cover a surface, in a scratch file in
+  // `folder`, buffering at most `buffer_bytes`.
+  TiledCloud(const std::filesystem::path& input, const std::filesystem::path& folder, std::uint64_t points_per_tile,
+             std::size_t buffer_bytes);
+
+  std::uint64_t size() const { return points_; }
+  glm::dvec3 origin() const { return origin_; }
+  const Aabb& bounds() const { return bounds_; }  // of the positions about the origin
+  bool has_normals() const { return normals_; }
+  int tiles() const { return int(counts_.x) * counts_.y * counts_.z; }
+  std::uint64_t tile_size(int tile) const { return store_->records(tile); }
+  Aabb tile_box(int tile) const;  // its cube of the box (its points lie within it)
+
+  // The tile's points and, after them, every other point within `halo` of its box.
+  TilePoints load(int tile, float halo) const;
+
+ private:
+  int tile_of(vec3 p) const;
+
+  std::uint64_t points_ = 0;
+  glm::dvec3 origin_{0.0};
+  Aabb bounds_;
+  bool normals_ = false;
+  float side_ = 1;
+  ivec3 counts_{1};
+  std::unique_ptr<BucketFile> store_;
+};
+
+}  // namespace pss

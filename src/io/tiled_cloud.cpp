@@ -1,0 +1,146 @@
+#include "pss/io/tiled_cloud.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <numeric>
+
+#include "pss/core/error.hpp"
+#include "pss/io/point_cloud_file.hpp"
+#include "pss/io/point_stream.hpp"
+#include "pss/points/cloud.hpp"
+
+namespace pss {
+
+namespace {
+
+constexpr std::size_t kPart = std::size_t(1) << 16;
+constexpr int kMostTiles = 1 << 16;  // a bucket costs some words of memory and a buffer
+
+struct Record {  // a point as its tile holds it
+  std::uint64_t index;
+  vec3 position, normal;
+};
+static_assert(sizeof(Record) == 32);
+
+float distance_to_box(vec3 p, const Aabb& box) { return glm::length(glm::max(glm::max(box.lo - p, p - box.hi), vec3(0.0f))); }
+
+}  // namespace
+
+TiledCloud::TiledCloud(const std::filesystem::path& input, const std::filesystem::path& folder,
+                       std::uint64_t points_per_tile, std::size_t buffer_bytes) {
+  // Pass 1: the count, the box, whether the normals are usable (tidy_normals).
+  glm::dvec3 lo(0.0), hi(0.0);
+  bool any_normals = false, finite_normals = true;
+  {
+    const auto stream = open_point_stream(input);
+    PointPart part;
+    while (stream->read(part, kPart) > 0) {
+      for (const glm::dvec3& w : part.world) {
+        if (points_ == 0) lo = hi = w;
+        lo = glm::min(lo, w);
+        hi = glm::max(hi, w);
+        ++points_;
+      }
+      any_normals = any_normals || !part.normals.empty();
+      for (const vec3& n : part.normals) finite_normals = finite_normals && is_finite(n);
+      part.clear();
+    }
+  }
+  origin_ = local_origin(lo, hi);
+  normals_ = any_normals && finite_normals;
+  // Rounding to float keeps order: the box of the rounded positions is the rounded box.
+  bounds_.lo = vec3(lo - origin_);
+  bounds_.hi = vec3(hi - origin_);
+
+  // Tiles as wide as a surface across the box's longest side needs for points_per_tile
+  // points a tile (a surface's points grow with its area, the square of the side).
+  const vec3 extent = bounds_.extent();
+  const float longest = std::max({extent.x, extent.y, extent.z});
+  double across = std::max(1.0, std::ceil(std::sqrt(double(points_) / double(std::max<std::uint64_t>(points_per_tile, 1)))));
+  for (;; across = std::max(1.0, std::floor(across * 0.8))) {
+    side_ = longest > 0 ? float(double(longest) / across) : 1.0f;
+    counts_ = glm::max(ivec3(glm::ceil(extent / side_)), ivec3(1));
+    if (std::int64_t(counts_.x) * counts_.y * counts_.z <= kMostTiles || across == 1) break;
+  }
+  store_ = std::make_unique<BucketFile>(folder, tiles(), sizeof(Record), buffer_bytes);
+
+  // Pass 2: each point to its tile, as the in-core cloud would hold it.
+  const auto stream = open_point_stream(input);
+  PointPart part;
+  std::uint64_t index = 0;
+  while (stream->read(part, kPart) > 0) {
+    for (std::size_t k = 0; k < part.size(); ++k, ++index) {
+      Record r{index, vec3(part.world[k] - origin_), vec3(0.0f)};
+      if (normals_) r.normal = tidy_normal(part.normals[k]);
+      if (index >= points_ || !is_finite(r.position))
+        throw file_error(input, "changed while it was read: its points differ between two readings");
+      store_->append(tile_of(r.position), &r);
+    }
+    part.clear();
+  }
+  if (index != points_) throw file_error(input, "changed while it was read: its points differ between two readings");
+  store_->flush();
+}
+
+// In double, where a float's difference is exact: a point's tile and the tile's box agree.
+int TiledCloud::tile_of(vec3 p) const {
+  const glm::dvec3 at = glm::floor((glm::dvec3(p) - glm::dvec3(bounds_.lo)) / double(side_));
+  const ivec3 c = glm::clamp(ivec3(glm::clamp(at, glm::dvec3(-1.0), glm::dvec3(counts_))), ivec3(0), counts_ - 1);
+  return (c.z * counts_.y + c.y) * counts_.x + c.x;
+}
+
+Aabb TiledCloud::tile_box(int tile) const {
+  const ivec3 c(tile % counts_.x, tile / counts_.x % counts_.y, tile / counts_.x / counts_.y);
+  const glm::dvec3 lo = glm::dvec3(bounds_.lo) + glm::dvec3(c) * double(side_), hi = lo + double(side_);
+  Aabb box;  // its float bounds a step outward: every point of the tile lies within them
+  for (int k = 0; k < 3; ++k) {
+    box.lo[k] = std::nextafter(float(lo[k]), -kInfinity);
+    box.hi[k] = std::nextafter(float(hi[k]), kInfinity);
+  }
+  return box;
+}
+
+TilePoints TiledCloud::load(int tile, float halo) const {
+  TilePoints out;
+  const Aabb box = tile_box(tile);
+  auto take = [&](int from, bool all) {
+    store_->read(from, [&](std::span<const char> block) {
+      for (std::size_t k = 0; k < block.size(); k += sizeof(Record)) {
+        Record r;
+        std::memcpy(&r, block.data() + k, sizeof r);
+        if (!all && !(distance_to_box(r.position, box) <= halo)) continue;
+        out.positions.push_back(r.position);
+        if (normals_) out.normals.push_back(r.normal);
+        out.index.push_back(r.index);
+      }
+    });
+  };
+  take(tile, true);
+  out.own = out.positions.size();
+  const ivec3 c(tile % counts_.x, tile / counts_.x % counts_.y, tile / counts_.x / counts_.y);
+  const int rings = int(std::ceil(halo / side_));
+  for (int z = std::max(0, c.z - rings); z <= std::min(counts_.z - 1, c.z + rings); ++z)
+    for (int y = std::max(0, c.y - rings); y <= std::min(counts_.y - 1, c.y + rings); ++y)
+      for (int x = std::max(0, c.x - rings); x <= std::min(counts_.x - 1, c.x + rings); ++x) {
+        const int other = (z * counts_.y + y) * counts_.x + x;
+        if (other != tile) take(other, false);
+      }
+  // The halo in input order, as the tile's own points are.
+  std::vector<std::size_t> order(out.positions.size() - out.own);
+  std::iota(order.begin(), order.end(), out.own);
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return out.index[a] < out.index[b]; });
+  TilePoints sorted;
+  sorted.own = out.own;
+  sorted.positions.assign(out.positions.begin(), out.positions.begin() + std::ptrdiff_t(out.own));
+  sorted.index.assign(out.index.begin(), out.index.begin() + std::ptrdiff_t(out.own));
+  if (normals_) sorted.normals.assign(out.normals.begin(), out.normals.begin() + std::ptrdiff_t(out.own));
+  for (const std::size_t k : order) {
+    sorted.positions.push_back(out.positions[k]);
+    sorted.index.push_back(out.index[k]);
+    if (normals_) sorted.normals.push_back(out.normals[k]);
+  }
+  return sorted;
+}
+
+}  // namespace pss
