@@ -77,6 +77,15 @@ TEST_F(TiledCloudTest, EveryPointInOneTileAsTheCloudHoldsItAndEachHaloExact) {
     EXPECT_EQ(in_halo, expected) << "tile " << t;
   }
   for (std::size_t i = 0; i < seen.size(); ++i) ASSERT_EQ(seen[i], 1) << "point " << i;
+  // A halo wider than a tile reaches the tiles beyond the next.
+  const Aabb first = tiles.tile_box(0);
+  const float wide = 1.5f * (first.hi.x - first.lo.x);
+  for (int t = 0; t < tiles.tiles(); t += 5) {
+    const TilePoints p = tiles.load(t, wide);
+    std::size_t expected = 0;
+    for (const vec3& q : cloud.positions) expected += distance_to_box(q, tiles.tile_box(t)) <= wide;
+    EXPECT_EQ(p.index.size(), expected) << "tile " << t;
+  }
 }
 
 TEST_F(TiledCloudTest, TheScratchFileGoesWithTheTilesAndACloudWithoutNormalsHasNone) {
