@@ -25,33 +25,45 @@ SpacingEstimate estimate_spacing(std::span<const vec3> input, int k, std::size_t
   const GridView view = grid.view();
   const float cell = 1.0f / view.inv_cell;
 
-  const std::size_t stride = std::max<std::size_t>(1, points.size() / max_samples);
+  const std::size_t stride = spacing_stride(points.size(), max_samples);
   const std::size_t queries = (points.size() + stride - 1) / stride;
   std::vector<double> kth(queries), nearest(queries);
   cpu::parallel_for(std::int64_t(queries), [&](std::int64_t q) {
-    const vec3 c = points[std::size_t(q) * stride];
-    thread_local std::vector<float> d2;
-    // A ball that doubles until it holds k + 1 points (the query's own among them, at
-    // distance 0): the k nearest of those are the k nearest of all.
-    for (float r = cell;; r *= 2) {
-      d2.clear();
-      view.for_each_in_radius(c, r, [&](vec3, float d, int) { d2.push_back(d); });
-      if (d2.size() > std::size_t(k)) break;
-    }
-    std::partial_sort(d2.begin(), d2.begin() + k + 1, d2.end());
-    nearest[std::size_t(q)] = std::sqrt(double(d2[std::min(1, k)]));
-    kth[std::size_t(q)] = std::sqrt(double(d2[std::size_t(k)]));
+    const QuerySpacing s = query_spacing(view, cell, points[std::size_t(q) * stride], k);
+    nearest[std::size_t(q)] = s.nearest;
+    kth[std::size_t(q)] = s.kth;
   });
+  return spacing_of(std::move(kth), nearest, k, frame.scale);
+}
+
+std::size_t spacing_stride(std::size_t points, std::size_t max_samples) {
+  return std::max<std::size_t>(1, points / max_samples);
+}
+
+QuerySpacing query_spacing(const GridView& view, float cell, vec3 c, int k) {
+  thread_local std::vector<float> d2;
+  // A ball that doubles until it holds k + 1 points (the query's own among them, at
+  // distance 0): the k nearest of those are the k nearest of all.
+  for (float r = cell;; r *= 2) {
+    d2.clear();
+    view.for_each_in_radius(c, r, [&](vec3, float d, int) { d2.push_back(d); });
+    if (d2.size() > std::size_t(k)) break;
+  }
+  std::partial_sort(d2.begin(), d2.begin() + k + 1, d2.end());
+  return {std::sqrt(double(d2[std::size_t(std::min(1, k))])), std::sqrt(double(d2[std::size_t(k)]))};
+}
+
+SpacingEstimate spacing_of(std::vector<double> kth, const std::vector<double>& nearest, int k, double scale) {
   double nearest_sum = 0;
   for (double d : nearest) nearest_sum += d;
-  std::nth_element(kth.begin(), kth.begin() + kth.size() / 2, kth.end());
+  std::nth_element(kth.begin(), kth.begin() + std::ptrdiff_t(kth.size() / 2), kth.end());
   SpacingEstimate e;
   e.k = k;
-  e.mean_nearest = nearest_sum / double(kth.size()) * frame.scale;
-  e.median_kth = kth[kth.size() / 2] * frame.scale;
+  e.mean_nearest = nearest_sum / double(kth.size()) * scale;
+  e.median_kth = kth[kth.size() / 2] * scale;
   const auto [least, largest] = std::minmax_element(kth.begin(), kth.end());
-  e.min_kth = *least * frame.scale;
-  e.max_kth = *largest * frame.scale;
+  e.min_kth = *least * scale;
+  e.max_kth = *largest * scale;
   e.suggested_h = e.median_kth;
   if (!(e.suggested_h > 0))
     throw Error("cannot estimate the sample spacing: the points coincide (pass --h explicitly)");

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <span>
+#include <vector>
 
 #include "pss/core/types.hpp"
 
@@ -23,6 +24,21 @@ struct SpacingEstimate {
 // Uses at most `max_samples` query points (evenly strided) so that huge clouds stay fast.
 // Throws Error for fewer than two points.
 SpacingEstimate estimate_spacing(std::span<const vec3> points, int k = 15, std::size_t max_samples = 20000);
+
+// The parts of estimate_spacing, for a cloud read tile by tile (tiles/spacing.hpp):
+// every stride-th point is a query (spacing_stride);
+std::size_t spacing_stride(std::size_t points, std::size_t max_samples);
+// a query's distances to its nearest and k-th nearest other points, in a grid of points in
+// the cloud's unit frame with cells of `cell` (exact wherever the grid holds every point
+// within the k-th distance of c);
+struct QuerySpacing {
+  double nearest, kth;
+};
+struct GridView;
+QuerySpacing query_spacing(const GridView& view, float cell, vec3 c, int k);
+// and the estimate from the queries' distances, in query order, scaled back by the unit
+// frame's `scale`.
+SpacingEstimate spacing_of(std::vector<double> kth, const std::vector<double>& nearest, int k, double scale);
 
 // The h a renderer uses when none is given: the suggested h, or 1 for fewer than two samples
 // (a single sample has no spacing, and no surface whatever h is: fewer than three neighbours).

@@ -1,0 +1,57 @@
+#include "pss/tiles/spacing.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "pss/backend/cpu/parallel_for.hpp"
+#include "pss/core/error.hpp"
+#include "pss/spatial/uniform_grid.hpp"
+
+namespace pss {
+
+SpacingEstimate estimate_spacing(const TiledCloud& cloud, int k, std::size_t max_samples) {
+  const std::uint64_t n = cloud.size();
+  if (n < 2) throw Error("cannot estimate the sample spacing of fewer than two points");
+  k = int(std::min<std::uint64_t>(std::uint64_t(k), n - 1));
+  // The cloud's unit frame, as points/unit_frame.hpp makes it from the same floats.
+  const glm::dvec3 lo(cloud.bounds().lo), hi(cloud.bounds().hi), extent = hi - lo;
+  const glm::dvec3 centre = 0.5 * (lo + hi);
+  const double largest = std::max({extent.x, extent.y, extent.z});
+  const double scale = largest > 0 && std::isfinite(largest) ? largest : 1.0;
+
+  const std::size_t stride = spacing_stride(std::size_t(n), max_samples);
+  const std::size_t queries = std::size_t((n + stride - 1) / stride);
+  std::vector<double> kth(queries), nearest(queries);
+  for (int t = 0; t < cloud.tiles(); ++t) {
+    if (cloud.tile_size(t) == 0) continue;
+    const Aabb box = cloud.tile_box(t);
+    // A query's k nearest lie within its k-th distance of it, so within that of the tile's
+    // box: a halo that wide holds them all.
+    for (float halo = 0.125f * (box.hi.x - box.lo.x);; halo *= 2) {
+      const TilePoints tile = cloud.load(t, halo);
+      if (tile.positions.size() <= std::size_t(k)) continue;  // no query's k nearest here yet
+      std::vector<vec3> unit(tile.positions.size());
+      for (std::size_t i = 0; i < unit.size(); ++i) unit[i] = vec3((glm::dvec3(tile.positions[i]) - centre) / scale);
+      const UniformGrid grid(unit, 1e-7f, std::max<long long>(4096, (long long)unit.size()));
+      const GridView view = grid.view();
+      const float cell = 1.0f / view.inv_cell;
+      std::vector<std::size_t> mine;
+      for (std::size_t i = 0; i < tile.own; ++i)
+        if (tile.index[i] % stride == 0) mine.push_back(i);
+      std::vector<char> held(mine.size(), 1);
+      cpu::parallel_for(std::int64_t(mine.size()), [&](std::int64_t m) {
+        const std::size_t i = mine[std::size_t(m)];
+        const QuerySpacing s = query_spacing(view, cell, unit[i], k);
+        const std::size_t q = std::size_t(tile.index[i] / stride);
+        nearest[q] = s.nearest;
+        kth[q] = s.kth;
+        held[std::size_t(m)] = s.kth * scale * (1 + 1e-6) <= double(halo) || tile.positions.size() == n;
+      });
+      if (std::all_of(held.begin(), held.end(), [](char h) { return h != 0; })) break;
+    }
+  }
+  return spacing_of(std::move(kth), nearest, k, scale);
+}
+
+}  // namespace pss
