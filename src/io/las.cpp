@@ -13,7 +13,6 @@
 #include "file_window.hpp"
 #include "point_streams.hpp"
 #include "pss/core/error.hpp"
-#include "pss/io/output_file.hpp"
 
 namespace pss {
 namespace {

@@ -14,7 +14,6 @@
 #include <vector>
 
 #include "pss/core/error.hpp"
-#include "pss/io/output_file.hpp"
 #include "pss/io/point_cloud_file.hpp"
 #include "pss/io/point_stream.hpp"
 #include "bytes.hpp"
