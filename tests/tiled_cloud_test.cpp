@@ -96,6 +96,7 @@ TEST_F(TiledCloudTest, TheScratchFileGoesWithTheTilesAndACloudWithoutNormalsHasN
     EXPECT_EQ(tiles.size(), 4u);
     const TilePoints all = tiles.load(0, 10);
     EXPECT_EQ(all.index.size(), 4u) << "a halo wider than the box holds every point";
+    EXPECT_EQ(tiles.load(0, 1e30f).index.size(), 4u);
     EXPECT_TRUE(all.normals.empty());
   }
   for (const auto& entry : std::filesystem::directory_iterator(dir_ / ".."))

@@ -119,7 +119,9 @@ TilePoints TiledCloud::load(int tile, float halo) const {
   take(tile, true);
   out.own = out.positions.size();
   const ivec3 c(tile % counts_.x, tile / counts_.x % counts_.y, tile / counts_.x / counts_.y);
-  const int rings = int(std::ceil(halo / side_));
+  // Rings of neighbours as wide as the halo, at most the whole grid (a halo of 10^30 is no
+  // integer's worth of tiles).
+  const int rings = int(std::min(std::ceil(double(halo) / side_), double(std::max({counts_.x, counts_.y, counts_.z}))));
   for (int z = std::max(0, c.z - rings); z <= std::min(counts_.z - 1, c.z + rings); ++z)
     for (int y = std::max(0, c.y - rings); y <= std::min(counts_.y - 1, c.y + rings); ++y)
       for (int x = std::max(0, c.x - rings); x <= std::min(counts_.x - 1, c.x + rings); ++x) {
