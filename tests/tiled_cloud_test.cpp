@@ -12,34 +12,19 @@
 #include "pss/io/point_cloud_file.hpp"
 #include "pss/io/tiled_cloud.hpp"
 #include "support/cli.hpp"
+#include "support/file_bytes.hpp"
 
 namespace pss {
 namespace {
 
 using TiledCloudTest = test::CliTest;
 
-// A torus of n points far from the world's origin (an origin is chosen), with normals of
-// every length, as text: the positions are doubles.
-std::string torus_xyz(int n) {
-  std::string text;
-  char line[200];
-  for (int i = 0; i < n; ++i) {
-    const double u = 0.7 * i, v = 2.3 * i;
-    const double x = (1 + 0.35 * std::cos(v)) * std::cos(u), y = (1 + 0.35 * std::cos(v)) * std::sin(u),
-                 z = 0.35 * std::sin(v);
-    std::snprintf(line, sizeof line, "%.12f %.12f %.12f %g %g %g\n", 596700 + x, 4000000 + y, z,
-                  3 * std::cos(v) * std::cos(u), 3 * std::cos(v) * std::sin(u), 3 * std::sin(v));
-    text += line;
-  }
-  return text;
-}
-
 float distance_to_box(vec3 p, const Aabb& box) {
   return glm::length(glm::max(glm::max(box.lo - p, p - box.hi), vec3(0.0f)));
 }
 
 TEST_F(TiledCloudTest, EveryPointInOneTileAsTheCloudHoldsItAndEachHaloExact) {
-  const std::string file = write("t.xyz", torus_xyz(5000));
+  const std::string file = write("t.xyz", test::torus_xyz(5000, false, 3));
   const PointCloud cloud = read_point_cloud(file);
   const TiledCloud tiles(file, dir_, 300, 1 << 16);
   EXPECT_EQ(tiles.size(), cloud.size());

@@ -1,48 +1,31 @@
 // A cloud's spacing estimated tile by tile (include/pss/tiles/spacing.hpp, issue 28): the
-// in-core estimate to the last bit, whatever the tiles.
+// in-core estimate to the last bit, whatever the tiles, on a torus sampled eight times
+// denser on one side (the k-th distances vary, and queries near a tile's edge need its
+// neighbours).
 #include <gtest/gtest.h>
 
-#include <cmath>
-#include <cstdio>
 #include <string>
+#include <tuple>
 
 #include "pss/io/point_cloud_file.hpp"
 #include "pss/points/spacing.hpp"
 #include "pss/tiles/spacing.hpp"
 #include "support/cli.hpp"
+#include "support/file_bytes.hpp"
 
 namespace pss {
 namespace {
 
 using TiledSpacingTest = test::CliTest;
 
-// A torus far from the world's origin whose sampling is eight times denser on one side
-// (x > 0): the k-th distances vary, and queries near a tile's edge need its neighbours.
-std::string uneven_torus(int n) {
-  std::string text;
-  char line[160];
-  for (int i = 0; i < n; ++i) {
-    const double u = 2 * M_PI * std::fmod(0.6180339887 * i, 1.0), v = 2 * M_PI * std::fmod(0.7548776662 * i, 1.0);
-    const double x = (1 + 0.35 * std::cos(v)) * std::cos(u);
-    if (x < 0 && i % 8 != 0) continue;
-    std::snprintf(line, sizeof line, "%.12f %.12f %.12f\n", 596700 + x, 4000000 + (1 + 0.35 * std::cos(v)) * std::sin(u),
-                  0.35 * std::sin(v));
-    text += line;
-  }
-  return text;
-}
-
+// Every field of the estimate, to the last bit.
 void expect_same(const SpacingEstimate& a, const SpacingEstimate& b) {
-  EXPECT_EQ(a.k, b.k);
-  EXPECT_EQ(a.mean_nearest, b.mean_nearest);
-  EXPECT_EQ(a.median_kth, b.median_kth);
-  EXPECT_EQ(a.min_kth, b.min_kth);
-  EXPECT_EQ(a.max_kth, b.max_kth);
-  EXPECT_EQ(a.suggested_h, b.suggested_h);
+  EXPECT_EQ(std::tie(a.k, a.mean_nearest, a.median_kth, a.min_kth, a.max_kth, a.suggested_h),
+            std::tie(b.k, b.mean_nearest, b.median_kth, b.min_kth, b.max_kth, b.suggested_h));
 }
 
 TEST_F(TiledSpacingTest, TheTilesGiveTheInCoreEstimateToTheLastBit) {
-  const std::string file = write("t.xyz", uneven_torus(40000));
+  const std::string file = write("t.xyz", test::torus_xyz(40000, true, 0));
   const PointCloud cloud = read_point_cloud(file);
   ASSERT_GT(cloud.size(), 20000u);
   for (const std::uint64_t per_tile : {300u, 5000u}) {

@@ -1,13 +1,18 @@
-// Files written byte by byte for the readers' tests: values in either byte order, and a LAS
-// 1.2 file of point format 2.
+// Files written byte by byte for the readers' tests: values in either byte order, a LAS 1.2
+// file of point format 2, and a torus as XYZ text.
 #pragma once
 
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <string>
 #include <vector>
+
+#include <glm/ext/vector_double3.hpp>
+#include <glm/geometric.hpp>
 
 namespace pss::test {
 
@@ -38,6 +43,27 @@ inline std::string las_12_format_2(int points, int gap) {
     for (const int c : {255 * i, 300, i}) h += bytes_of(std::uint16_t(c));
   }
   return h;
+}
+
+// A torus (R = 1, r = 0.35) of up to n points spread evenly over it, at (596700, 4000000, 0)
+// so that a reader chooses an origin, as XYZ text in 12 decimals (doubles). `sparse_side`:
+// only every 8th point where x < 0. `normal_length`: its normals that long (0: none).
+inline std::string torus_xyz(int n, bool sparse_side, double normal_length) {
+  std::string text;
+  char line[240];
+  for (int i = 0; i < n; ++i) {
+    const double u = 2 * M_PI * std::fmod(0.6180339887 * i, 1.0), v = 2 * M_PI * std::fmod(0.7548776662 * i, 1.0);
+    const glm::dvec3 n_(std::cos(v) * std::cos(u), std::cos(v) * std::sin(u), std::sin(v));
+    const glm::dvec3 p = glm::dvec3(std::cos(u), std::sin(u), 0) + 0.35 * n_;
+    if (sparse_side && p.x < 0 && i % 8 != 0) continue;
+    int length = std::snprintf(line, sizeof line, "%.12f %.12f %.12f", 596700 + p.x, 4000000 + p.y, p.z);
+    if (normal_length != 0)
+      length += std::snprintf(line + length, sizeof line - std::size_t(length), " %g %g %g", normal_length * n_.x,
+                              normal_length * n_.y, normal_length * n_.z);
+    text.append(line, std::size_t(length));
+    text += '\n';
+  }
+  return text;
 }
 
 }  // namespace pss::test
