@@ -20,15 +20,17 @@ std::string system_message() { return std::strerror(errno ? errno : EIO); }
 std::size_t FileWindow::default_window() { return window_bytes; }
 void FileWindow::set_default_window(std::size_t bytes) { window_bytes = std::max<std::size_t>(bytes, 1); }
 
-FileWindow::FileWindow(const std::filesystem::path& path, std::size_t window) : path_(path) {
-  // A directory opens fine on Linux and then reports a nonsense size, a FIFO blocks the open
-  // until a writer comes, a device has no size: refused up front, as read_file does. What
-  // does not exist is left to the open, which says so.
+void refuse_irregular_file(const std::filesystem::path& path) {
   std::error_code ec;
   const std::filesystem::file_status status = std::filesystem::status(path, ec);
   if (std::filesystem::is_directory(status)) throw file_error(path, "cannot open: " + std::string(std::strerror(EISDIR)));
   if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
     throw file_error(path, "cannot open: not a regular file");
+}
+
+FileWindow::FileWindow(const std::filesystem::path& path, std::size_t window) : path_(path) {
+  refuse_irregular_file(path);
+  std::error_code ec;
   errno = 0;
   file_ = std::fopen(path.c_str(), "rb");
   if (!file_) throw file_error(path, "cannot open: " + system_message());

@@ -12,6 +12,12 @@
 
 namespace pss::io {
 
+// Throws file_error(path, "cannot open: ...") for a directory, a FIFO or a device: a
+// directory opens fine on Linux and then reports a nonsense size, a FIFO blocks the open
+// until a writer comes, a device has no size. What does not exist is left to the open,
+// which says so. (read_file and FileWindow.)
+void refuse_irregular_file(const std::filesystem::path& path);
+
 class FileWindow {
  public:
   // Opens `path` (a regular file; directories, FIFOs and devices are refused as read_file

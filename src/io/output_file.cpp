@@ -11,6 +11,7 @@
 #include <system_error>
 
 #include "pss/core/error.hpp"
+#include "file_window.hpp"
 
 namespace pss {
 namespace {
@@ -275,15 +276,7 @@ void write_text_file(const std::filesystem::path& path, std::string_view text) {
 }
 
 std::string read_file(const std::filesystem::path& path) {
-  // A directory opens fine on Linux and then reports a nonsense size, a FIFO blocks the open
-  // until a writer comes (a header's detached data file may name one), a device has no size:
-  // refuse them up front. What does not exist is left to the open, which says so.
-  std::error_code ec;
-  const std::filesystem::file_status status = std::filesystem::status(path, ec);
-  if (std::filesystem::is_directory(status))
-    throw file_error(path, "cannot open: " + std::string(std::strerror(EISDIR)));
-  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
-    throw file_error(path, "cannot open: not a regular file");
+  io::refuse_irregular_file(path);  // a header's detached data file may name a FIFO
   errno = 0;
   std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) throw file_error(path, "cannot open: " + system_message());
