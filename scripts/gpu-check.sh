@@ -18,8 +18,10 @@
 #     -DPSS_BUILD_VIEWER=OFF -DPSS_BUILD_PYTHON=OFF -DPSS_BUILD_FUZZ=OFF
 #   ninja -C build-gpu pss_cli pss_gpu_tests bench_paper_tables bench_project
 # Other knobs: PSS_GPU_CHECK_STAGE_SECONDS (each stage's limit, default 900),
-# PSS_GPU_CHECK_BENCH (the benchmarks: "tables project", or fewer), PSS_GPU_CHECK_PROJECT_RUNS
-# (runs of each projection, default 5), PSS_GPU_CHECK_PROFILE=0 (no ncu),
+# PSS_GPU_CHECK_BENCH (the benchmarks: "tables project mesh", or fewer), PSS_GPU_CHECK_PROJECT_RUNS
+# (runs of each projection, default 5), PSS_GPU_CHECK_MESH_POINTS (the meshed tori's sizes,
+# default "1000000 10000000"), PSS_GPU_CHECK_MESH_CPU_SECONDS (the CPU's limit for each),
+# PSS_GPU_CHECK_PROFILE=0 (no ncu),
 # PSS_GPU_CHECK_SANITIZERS (the compute-sanitizer tools to run, default "memcheck racecheck
 # initcheck"; "" for none), PSS_GPU_CHECK_ARCHIVE=FILE (OUT_DIR packed into FILE after each
 # stage, so that a run cut short still leaves its results).
@@ -148,9 +150,9 @@ profile() {
 [[ ${PSS_GPU_CHECK_PROFILE:-1} == 0 ]] || stage profile profile
 
 # 6. Benchmarks, both backends of the same build side by side (PSS_GPU_CHECK_BENCH names the
-#    parts: "tables project" by default, "" for none). The CPU runs one frame per run: a rough
+#    parts: "tables project mesh" by default, "" for none). The CPU runs one frame per run: a rough
 #    guide beside the GPU's median of ten.
-bench=" ${PSS_GPU_CHECK_BENCH-tables project} "
+bench=" ${PSS_GPU_CHECK_BENCH-tables project mesh} "
 if [[ $bench == *" tables "* ]]; then
   for part in table2 table1 scaling; do
     stage "bench-$part-cuda" "$build/bench/bench_paper_tables" --backend cuda --runs 3 --frames 10 --only $part \
@@ -161,6 +163,25 @@ if [[ $bench == *" tables "* ]]; then
       --json "$out/paper_${part}_cpu.json"
   done
 fi
+# pss mesh of noisy tori (bench/noisy_torus.py, noise 0.003 R), the whole process timed on
+# both backends one after the other (PSS_GPU_CHECK_MESH_POINTS: the sizes; the CPU's run of
+# each is stopped after PSS_GPU_CHECK_MESH_CPU_SECONDS, default the stage's limit).
+mesh_bench() {
+  local n b tmp
+  tmp=$(mktemp -d)
+  for n in ${PSS_GPU_CHECK_MESH_POINTS:-1000000 10000000}; do
+    python3 -c "import sys; sys.path.insert(0, 'bench'); from noisy_torus import *
+write_ply('$tmp/torus-$n.ply', torus_cloud($n, 0.003))" || return 1
+    for b in cuda cpu; do
+      local limit=${PSS_GPU_CHECK_STAGE_SECONDS:-900}
+      [[ $b == cuda ]] || limit=${PSS_GPU_CHECK_MESH_CPU_SECONDS:-$limit}
+      timeout "$limit" "$build/pss" mesh "$tmp/torus-$n.ply" -o "$tmp/torus-mesh.ply" --backend $b \
+        --stats "$out/mesh-$n-$b.json" || echo "| mesh $n | $b | stopped after $limit s |"
+    done
+  done
+  rm -rf "$tmp"
+}
+[[ $bench != *" mesh "* ]] || stage bench-mesh mesh_bench
 [[ $bench != *" project "* ]] || stage bench-project "$build/bench/bench_project" \
   --runs "${PSS_GPU_CHECK_PROJECT_RUNS:-5}" --large --json "$out/project.json"
 
@@ -183,6 +204,10 @@ main_jobs() {
   "${wrap[@]}" "$build/pss" render data/bun_zipper.ply -o "$out/sanitized.png" --size 96x96 --surface rimls \
     --shadows --reflections --backend cuda || return 1
   "${wrap[@]}" "$build/pss" project data/bun_zipper.ply -o "$out/sanitized.ply" --surface apss --backend cuda || return 1
+  "${wrap[@]}" "$build/pss" mesh data/bun_zipper.ply -o "$out/sanitized.ply" --backend cuda || return 1
+  "${wrap[@]}" "$build/pss" mesh data/bun_zipper.ply -o "$out/sanitized.ply" --surface rimls --backend cuda || return 1
+  "${wrap[@]}" "$build/pss" mesh data/bucky_32x32x32_uint8.raw --dims 32x32x32 --type uint8 --iso 100 \
+    -o "$out/sanitized.ply" --backend cuda || return 1
   # The viewer, headless: reduced frames without their hits, a volume's fields kept between frames.
   printf 'wait\nview 40 10\nset shadows on\nset reflections on\nscreenshot a\nset debug on\nwait\nset iso 90\nwait\n' \
     >"$out/view-steps.txt"
@@ -196,7 +221,7 @@ done
 for f in "$out"/bench-*.log; do
   [[ -e $f ]] || continue
   echo "== $(basename "$f" .log)"
-  grep '^|' "$f"
+  grep -E '^\||^meshed' "$f"
 done
 echo "== GPU tests"
 grep -E '^\S.*: [0-9]+ (hits|points)|^\[  (FAILED|PASSED|SKIPPED)' "$out/gpu-tests.log" | head -n 80
