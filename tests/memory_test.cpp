@@ -1,11 +1,13 @@
 // The peak resident memory of each phase that --stats records (issue 28): a phase's own peak,
 // not the process's so far; an outer phase's holds its inner phases'; the whole run's is
 // "total"; every phase a command times has one; and without --stats nothing is watched.
+// And the memory the process may take (physical_memory_bytes).
 #include <gtest/gtest.h>
 
 #include <sys/mman.h>
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <fstream>
 #include <string>
@@ -47,6 +49,19 @@ std::int64_t high_water_mark() {
   for (std::string line; std::getline(status, line);)
     if (line.rfind("VmHWM:", 0) == 0) return std::stoll(line.substr(6)) * 1024;
   return -1;
+}
+
+// /proc/meminfo's MemTotal, or the control group's memory.max where lower, read here.
+TEST(PhysicalMemory, IsTheMachinesOrItsGroupsLimitWhereLower) {
+  std::int64_t expected = -1;
+  std::ifstream meminfo("/proc/meminfo");
+  for (std::string line; std::getline(meminfo, line);)
+    if (line.rfind("MemTotal:", 0) == 0) expected = std::stoll(line.substr(9)) * 1024;
+  if (expected < 0) GTEST_SKIP() << "no /proc/meminfo";
+  std::ifstream group("/sys/fs/cgroup/memory.max");
+  std::string limit;
+  if (group >> limit && limit != "max") expected = std::min(expected, std::int64_t(std::stoll(limit)));
+  EXPECT_EQ(physical_memory_bytes(), expected);
 }
 
 TEST(PeakMemory, EachPhaseHasItsOwnPeakAndAnOuterPhaseHoldsItsInners) {

@@ -7,6 +7,7 @@
 #include <functional>
 
 #include "pss/backend/cpu/parallel_for.hpp"
+#include "pss/core/memory.hpp"
 #include "pss/io/point_cloud_file.hpp"
 #include "pss/mesh/marching_tetrahedra.hpp"
 #include "pss/mesh/mesh_cloud.hpp"
@@ -200,6 +201,27 @@ TEST(MarchingTetrahedra, TheMeshIsTheSameForAnyThreadCount) {
 TEST(MarchingTetrahedra, ALatticeTooFineForTheBoxIsRefused) {
   const std::string error = test::error_of([] { lattice_over(vec3(0), vec3(1), 0, 1e-7, "--cell"); });
   EXPECT_NE(error.find("--cell 1e-07 is too small"), std::string::npos) << error;
+}
+
+// The band may take three quarters of the memory at kBandBytesPerCube: on this project's
+// 24 GiB machine that holds the band of a 10^7-point cloud at the default cell, h/2 (the
+// estimate's Σ (h_i/cell)²/3: 4/3 a sample), which a fixed 2^23 refused (2026-11-28).
+TEST(MarchingTetrahedra, TheBandsLimitIsAShareOfTheMemory) {
+  const std::int64_t gib = std::int64_t(1) << 30;
+  const double default_band = 1e7 * (2.0 * 2.0) / 3;
+  EXPECT_GT(double(band_cube_limit(24 * gib)), default_band);
+  EXPECT_LT(double(band_cube_limit(8 * gib)), default_band);
+  EXPECT_LE(double(band_cube_limit(24 * gib)) * kBandBytesPerCube, 0.75 * double(24 * gib));
+  EXPECT_GT(double(band_cube_limit(24 * gib)) * kBandBytesPerCube, 0.74 * double(24 * gib));
+  EXPECT_EQ(band_cube_limit(-1), kBandCubesWithoutMemory);
+  EXPECT_EQ(band_cube_limit(0), kBandCubesWithoutMemory);
+
+  ASSERT_GT(physical_memory_bytes(), 0);  // Linux: sysconf and /proc
+  const double over = double(band_cube_limit(physical_memory_bytes())) + 1e3;
+  const std::string error = test::error_of([&] { check_band(over, 0.01, "cloud"); });
+  EXPECT_NE(error.find("the cell size 0.01 is too small for this cloud"), std::string::npos) << error;
+  EXPECT_NE(error.find("of this machine's"), std::string::npos) << error;
+  EXPECT_NO_THROW(check_band(over - 2e3, 0.01, "cloud"));
 }
 
 // Meshes made by hand: what each count means.

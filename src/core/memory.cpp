@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include <unistd.h>
+
 namespace pss {
 namespace {
 
@@ -94,6 +96,18 @@ std::int64_t process_peak_bytes() {
   if (!w.on) return -1;
   w.fold();
   return w.process;
+}
+
+std::int64_t physical_memory_bytes() {
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+  std::int64_t bytes = pages > 0 && page > 0 ? std::int64_t(pages) * page : -1;
+  // cgroup v2's limit: a number of bytes, or "max" for none.
+  if (std::FILE* f = std::fopen("/sys/fs/cgroup/memory.max", "r")) {
+    long long limit = 0;
+    if (std::fscanf(f, "%lld", &limit) == 1 && limit > 0 && (bytes < 0 || limit < bytes)) bytes = limit;
+    std::fclose(f);
+  }
+  return bytes;
 }
 
 }  // namespace pss

@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <utility>
 
 #include "creases.hpp"
@@ -149,14 +150,25 @@ ivec3 Lattice::cube_of(vec3 p) const {
   return ivec3(glm::clamp(x, glm::dvec3(-1.0), limit));
 }
 
+std::int64_t band_cube_limit(std::int64_t memory) {
+  if (memory <= 0) return kBandCubesWithoutMemory;
+  return std::int64_t(0.75 * double(memory) / kBandBytesPerCube);
+}
+
 void check_band(double expected_cubes, double cell, const char* data) {
-  if (expected_cubes <= double(kMaxBandCubes)) return;
-  char message[300];
-  std::snprintf(message, sizeof message,
-                "the cell size %g is too small for this %s: about %.3g cubes near its surface, more than the %lld "
-                "a mesh may take; use a larger cell",
-                cell, data, expected_cubes, (long long)kMaxBandCubes);
-  throw Error(message);
+  const std::int64_t memory = physical_memory_bytes();
+  const std::int64_t limit = band_cube_limit(memory);
+  if (expected_cubes <= double(limit)) return;
+  char message[400];
+  const int written = std::snprintf(message, sizeof message,
+                                    "the cell size %g is too small for this %s: about %.3g cubes near its surface, "
+                                    "more than the %lld a mesh may take",
+                                    cell, data, expected_cubes, (long long)limit);
+  if (memory > 0)
+    std::snprintf(message + written, sizeof message - std::size_t(written),
+                  " (%.3g GB at %g bytes a cube in three quarters of this machine's %.3g GB)",
+                  double(limit) * kBandBytesPerCube * 1e-9, kBandBytesPerCube, double(memory) * 1e-9);
+  throw Error(std::string(message) + "; use a larger cell");
 }
 
 Lattice lattice_over(vec3 lo, vec3 hi, double margin, double cell, const char* what) {

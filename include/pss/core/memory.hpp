@@ -22,6 +22,10 @@ std::int64_t end_peak_watch(int id);
 // The peak resident bytes of the whole process so far; -1 where unknown or not watched.
 std::int64_t process_peak_bytes();
 
+// The memory this process may take in all: the machine's RAM, or its control group's limit
+// where that is lower (a container's); -1 where neither is known.
+std::int64_t physical_memory_bytes();
+
 // Frees a vector's buffer now (clear() keeps it): a long run hands back what each step is
 // done with before the next allocates.
 template <class T>

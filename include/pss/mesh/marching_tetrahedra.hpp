@@ -43,14 +43,22 @@ struct Lattice {
   }
 };
 
-// The most cubes a mesh's band may hold: 2^23, some 12 GiB at the peak (about 1.5 KB a cube
-// with its corners, keys, vertices and triangles, measured on the engine CT) and as many
-// projections; a cell that fine for the surface is refused by its estimate before any work
-// (check_band).
-inline constexpr std::int64_t kMaxBandCubes = std::int64_t(1) << 23;
+// A band's cost: the whole run's peak over the cubes the band's estimate gives (mesh_cloud,
+// mesh_volume), measured on 2026-11-28: 650-740 bytes on noisy tori of 10^6 and 10^7 points
+// (their clouds included), about 950 on the engine CT (the band's own share, its cubes
+// crossed by six triangles each).
+inline constexpr double kBandBytesPerCube = 1024;
+// Where the machine's memory is unknown: 2^23 cubes, some 8 GiB.
+inline constexpr std::int64_t kBandCubesWithoutMemory = std::int64_t(1) << 23;
+
+// The most cubes a mesh's band may hold where the process may take `memory` bytes: those
+// that three quarters of it hold at kBandBytesPerCube (the rest for the data and the
+// system); kBandCubesWithoutMemory where `memory` is unknown (not positive).
+std::int64_t band_cube_limit(std::int64_t memory);
 
 // Throws a one-line Error when `expected_cubes`, a mesh's estimate of its band at the cell
-// size `cell`, exceeds kMaxBandCubes; `data` names what is meshed ("cloud", "volume").
+// size `cell`, exceeds band_cube_limit of this process's memory (core/memory.hpp), before
+// any work; `data` names what is meshed ("cloud", "volume").
 void check_band(double expected_cubes, double cell, const char* data);
 
 // The lattice over the box [lo, hi] grown by `margin` on every side; `what` names the

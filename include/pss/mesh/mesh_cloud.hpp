@@ -57,7 +57,7 @@ struct CloudMesh {
 // turned), the mesh faces out: its closed components enclose a positive volume. The file's
 // normals that agree are taken as they say.
 // Throws Error for invalid parameters (as project_cloud), a cell that is not a positive
-// number or too small for the cloud's extent or surface (kMaxBandCubes), a cloud of
+// number or too small for the cloud's extent or surface (band_cube_limit), a cloud of
 // fewer than three points or on a line, and a cloud that gives no triangle.
 CloudMesh mesh_cloud(const PointCloud& cloud, const MeshParams& params, Backend backend, Stats& stats);
 

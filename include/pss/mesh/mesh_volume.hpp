@@ -24,7 +24,7 @@ struct VolumeMesh {
 
 // `cell` in world units, 0 for kDefaultCellVoxels. Faces outward: towards lower values.
 // Throws Error for a cell that is not a positive number or too small for the surface
-// (kMaxBandCubes), and where the surface gives no triangle.
+// (band_cube_limit), and where the surface gives no triangle.
 VolumeMesh mesh_volume(const PreparedVolume& volume, float cell, Backend backend, Stats& stats);
 
 }  // namespace pss
