@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <numeric>
 
 #include "pss/core/error.hpp"
 #include "pss/io/point_cloud_file.hpp"
@@ -90,8 +89,12 @@ int TiledCloud::tile_of(vec3 p) const {
   return (c.z * counts_.y + c.y) * counts_.x + c.x;
 }
 
+ivec3 TiledCloud::tile_cell(int tile) const {
+  return ivec3(tile % counts_.x, tile / counts_.x % counts_.y, tile / counts_.x / counts_.y);
+}
+
 Aabb TiledCloud::tile_box(int tile) const {
-  const ivec3 c(tile % counts_.x, tile / counts_.x % counts_.y, tile / counts_.x / counts_.y);
+  const ivec3 c = tile_cell(tile);
   const glm::dvec3 lo = glm::dvec3(bounds_.lo) + glm::dvec3(c) * double(side_), hi = lo + double(side_);
   Aabb box;  // its float bounds a step outward: every point of the tile lies within them
   for (int k = 0; k < 3; ++k) {
@@ -103,22 +106,26 @@ Aabb TiledCloud::tile_box(int tile) const {
 
 TilePoints TiledCloud::load(int tile, float halo) const {
   TilePoints out;
+  auto add = [&](const Record& r) {
+    out.positions.push_back(r.position);
+    if (normals_) out.normals.push_back(r.normal);
+    out.index.push_back(r.index);
+  };
+  std::vector<Record> near;  // the halo's points, put in input order below
   const Aabb box = tile_box(tile);
-  auto take = [&](int from, bool all) {
+  auto take = [&](int from, bool own) {
     store_->read(from, [&](std::span<const char> block) {
       for (std::size_t k = 0; k < block.size(); k += sizeof(Record)) {
         Record r;
         std::memcpy(&r, block.data() + k, sizeof r);
-        if (!all && !(distance_to_box(r.position, box) <= halo)) continue;
-        out.positions.push_back(r.position);
-        if (normals_) out.normals.push_back(r.normal);
-        out.index.push_back(r.index);
+        if (own) add(r);
+        else if (distance_to_box(r.position, box) <= halo) near.push_back(r);
       }
     });
   };
   take(tile, true);
   out.own = out.positions.size();
-  const ivec3 c(tile % counts_.x, tile / counts_.x % counts_.y, tile / counts_.x / counts_.y);
+  const ivec3 c = tile_cell(tile);
   // Rings of neighbours as wide as the halo, at most the whole grid (a halo of 10^30 is no
   // integer's worth of tiles).
   const int rings = int(std::min(std::ceil(double(halo) / side_), double(std::max({counts_.x, counts_.y, counts_.z}))));
@@ -128,21 +135,9 @@ TilePoints TiledCloud::load(int tile, float halo) const {
         const int other = (z * counts_.y + y) * counts_.x + x;
         if (other != tile) take(other, false);
       }
-  // The halo in input order, as the tile's own points are.
-  std::vector<std::size_t> order(out.positions.size() - out.own);
-  std::iota(order.begin(), order.end(), out.own);
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return out.index[a] < out.index[b]; });
-  TilePoints sorted;
-  sorted.own = out.own;
-  sorted.positions.assign(out.positions.begin(), out.positions.begin() + std::ptrdiff_t(out.own));
-  sorted.index.assign(out.index.begin(), out.index.begin() + std::ptrdiff_t(out.own));
-  if (normals_) sorted.normals.assign(out.normals.begin(), out.normals.begin() + std::ptrdiff_t(out.own));
-  for (const std::size_t k : order) {
-    sorted.positions.push_back(out.positions[k]);
-    sorted.index.push_back(out.index[k]);
-    if (normals_) sorted.normals.push_back(out.normals[k]);
-  }
-  return sorted;
+  std::sort(near.begin(), near.end(), [](const Record& a, const Record& b) { return a.index < b.index; });
+  for (const Record& r : near) add(r);
+  return out;
 }
 
 }  // namespace pss

@@ -18,7 +18,7 @@
 #include "pss/points/sample_normals.hpp"
 #include "pss/points/support.hpp"
 #include "pss/spatial/grid_mirror.hpp"
-#include "unit_frame.hpp"
+#include "pss/points/unit_frame.hpp"
 
 namespace pss {
 
@@ -76,7 +76,7 @@ CloudProjection project_cloud(PointCloud input, const ProjectionParams& params, 
   const std::size_t n = input.size();
   // Projection runs in the cloud's unit frame (unit_frame.hpp): h, ρ and the tolerance are
   // lengths, so they scale with the points; the results are mapped back at the end.
-  const points_detail::UnitFrame frame = points_detail::unit_frame(input.positions);
+  const UnitFrame frame = unit_frame(input.positions);
   check_neighbourhood(params, frame.diagonal);
   ProjectionParams unit_params = params;
   unit_params.h = float(double(params.h) / frame.scale);

@@ -14,7 +14,7 @@
 #include "pss/render/image.hpp"
 #include "pss/render/render_frame.hpp"
 #include "pss/spatial/grid_mirror.hpp"
-#include "unit_frame.hpp"
+#include "pss/points/unit_frame.hpp"
 
 namespace pss {
 
@@ -54,7 +54,7 @@ std::vector<LocalFit> fit_all(const SupportGrid& grid, const FileNormals& file, 
 // neighbourhood texture).
 SupportGrid timed_grid(const PointCloud& cloud, const ProjectionParams& projection, Backend backend, Stats& stats,
                        SupportWidths& widths, OutlierReport& outliers) {
-  check_neighbourhood(projection, points_detail::unit_frame(cloud.positions).diagonal);
+  check_neighbourhood(projection, unit_frame(cloud.positions).diagonal);
   {
     ScopedPhase phase(stats, "support widths", projection.support == Support::global);  // else its Progress shows it
     widths = support_widths(cloud.positions, projection);

@@ -7,7 +7,7 @@
 #include "pss/backend/cpu/parallel_for.hpp"
 #include "pss/core/error.hpp"
 #include "pss/spatial/uniform_grid.hpp"
-#include "unit_frame.hpp"
+#include "pss/points/unit_frame.hpp"
 
 namespace pss {
 
@@ -15,8 +15,8 @@ SpacingEstimate estimate_spacing(std::span<const vec3> input, int k, std::size_t
   if (input.size() < 2) throw Error("cannot estimate the sample spacing of fewer than two points");
   // In the unit frame, so that squared distances neither overflow (1e30) nor underflow
   // (1e-30) in float; the distances are scaled back below.
-  const points_detail::UnitFrame frame = points_detail::unit_frame(input);
-  const std::vector<vec3> unit = points_detail::to_unit(input, frame);
+  const UnitFrame frame = unit_frame(input);
+  const std::vector<vec3> unit = to_unit(input, frame);
   const std::span<const vec3> points(unit);
   k = std::min<int>(k, int(points.size()) - 1);
   // A uniform grid of about one cell per point, built in one counting sort: a k-d tree of

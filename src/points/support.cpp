@@ -9,7 +9,7 @@
 #include "pss/core/progress.hpp"
 #include "kd_tree.hpp"
 #include "rows.hpp"
-#include "unit_frame.hpp"
+#include "pss/points/unit_frame.hpp"
 
 namespace pss {
 
@@ -116,8 +116,8 @@ SupportWidths support_widths(std::span<const vec3> points, const ProjectionParam
   const int k = std::min<int>(kSupportNeighbour, int(points.size()) - 1);
   if (params.support == Support::global || k < 1) return out;
 
-  const points_detail::UnitFrame frame = points_detail::unit_frame(points);
-  const std::vector<vec3> unit = points_detail::to_unit(points, frame);
+  const UnitFrame frame = unit_frame(points);
+  const std::vector<vec3> unit = to_unit(points, frame);
   const points_detail::CloudAdaptor adaptor{unit};
   points_detail::KdTree tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(16));
   tree.buildIndex();

@@ -6,6 +6,7 @@
 
 #include "pss/backend/cpu/parallel_for.hpp"
 #include "pss/core/error.hpp"
+#include "pss/points/unit_frame.hpp"
 #include "pss/spatial/uniform_grid.hpp"
 
 namespace pss {
@@ -14,11 +15,9 @@ SpacingEstimate estimate_spacing(const TiledCloud& cloud, int k, std::size_t max
   const std::uint64_t n = cloud.size();
   if (n < 2) throw Error("cannot estimate the sample spacing of fewer than two points");
   k = int(std::min<std::uint64_t>(std::uint64_t(k), n - 1));
-  // The cloud's unit frame, as points/unit_frame.hpp makes it from the same floats.
-  const glm::dvec3 lo(cloud.bounds().lo), hi(cloud.bounds().hi), extent = hi - lo;
-  const glm::dvec3 centre = 0.5 * (lo + hi);
-  const double largest = std::max({extent.x, extent.y, extent.z});
-  const double scale = largest > 0 && std::isfinite(largest) ? largest : 1.0;
+  // The in-core frame: the box of the same floats.
+  const UnitFrame frame = unit_frame_of_box(glm::dvec3(cloud.bounds().lo), glm::dvec3(cloud.bounds().hi));
+  const double scale = frame.scale;
 
   const std::size_t stride = spacing_stride(std::size_t(n), max_samples);
   const std::size_t queries = std::size_t((n + stride - 1) / stride);
@@ -32,7 +31,7 @@ SpacingEstimate estimate_spacing(const TiledCloud& cloud, int k, std::size_t max
       const TilePoints tile = cloud.load(t, halo);
       if (tile.positions.size() <= std::size_t(k)) continue;  // no query's k nearest here yet
       std::vector<vec3> unit(tile.positions.size());
-      for (std::size_t i = 0; i < unit.size(); ++i) unit[i] = vec3((glm::dvec3(tile.positions[i]) - centre) / scale);
+      for (std::size_t i = 0; i < unit.size(); ++i) unit[i] = frame.to_unit(tile.positions[i]);
       const UniformGrid grid(unit, 1e-7f, std::max<long long>(4096, (long long)unit.size()));
       const GridView view = grid.view();
       const float cell = 1.0f / view.inv_cell;

@@ -49,6 +49,7 @@ class TiledCloud {
 
  private:
   int tile_of(vec3 p) const;
+  ivec3 tile_cell(int tile) const;  // its place in the grid of tiles
 
   std::uint64_t points_ = 0;
   glm::dvec3 origin_{0.0};

@@ -1,7 +1,8 @@
 // Coordinates relative to a cloud's bounding-box centre, in units of its largest extent:
 // the float arithmetic of projection (squared distances, Gaussian weights) then sees
 // numbers near 1 whatever the data's units, so a cloud at 1e30 or 1e-30 gives the same
-// surface, up to the scale, as the same cloud at 1. Internal to src/points.
+// surface, up to the scale, as the same cloud at 1. The steps run tile by tile (src/tiles)
+// take the whole cloud's frame from its box, so that they see the in-core floats.
 #pragma once
 
 #include <algorithm>
@@ -13,7 +14,7 @@
 
 #include "pss/core/types.hpp"
 
-namespace pss::points_detail {
+namespace pss {
 
 struct UnitFrame {
   glm::dvec3 centre{0.0};
@@ -24,14 +25,9 @@ struct UnitFrame {
   vec3 from_unit(vec3 p) const { return vec3(glm::dvec3(p) * scale + centre); }
 };
 
-inline UnitFrame unit_frame(std::span<const vec3> points) {
+// The frame of the box [lo, hi].
+inline UnitFrame unit_frame_of_box(glm::dvec3 lo, glm::dvec3 hi) {
   UnitFrame f;
-  if (points.empty()) return f;
-  glm::dvec3 lo(points[0]), hi(points[0]);
-  for (const vec3& p : points) {
-    lo = glm::min(lo, glm::dvec3(p));
-    hi = glm::max(hi, glm::dvec3(p));
-  }
   const glm::dvec3 extent = hi - lo;
   f.centre = 0.5 * (lo + hi);
   const double largest = std::max({extent.x, extent.y, extent.z});
@@ -40,10 +36,20 @@ inline UnitFrame unit_frame(std::span<const vec3> points) {
   return f;
 }
 
+inline UnitFrame unit_frame(std::span<const vec3> points) {
+  if (points.empty()) return {};
+  glm::dvec3 lo(points[0]), hi(points[0]);
+  for (const vec3& p : points) {
+    lo = glm::min(lo, glm::dvec3(p));
+    hi = glm::max(hi, glm::dvec3(p));
+  }
+  return unit_frame_of_box(lo, hi);
+}
+
 inline std::vector<vec3> to_unit(std::span<const vec3> points, const UnitFrame& f) {
   std::vector<vec3> out(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) out[i] = f.to_unit(points[i]);
   return out;
 }
 
-}  // namespace pss::points_detail
+}  // namespace pss
