@@ -5,6 +5,7 @@
 #include <glm/geometric.hpp>
 
 #include "incidence.hpp"
+#include "pss/backend/cpu/parallel_for.hpp"
 #include "pss/core/error.hpp"
 #include "pss/mesh/triangle_mesh.hpp"
 
@@ -44,10 +45,10 @@ Incidence incidence(const std::vector<std::array<int, 3>>& triangles) {
       const Side s = side(i, k);
       in.sides[std::size_t(next[std::size_t(s.low)]++)] = s;
     }
-  for (std::size_t v = 0; v < std::size_t(vertices); ++v)
-    std::sort(in.sides.begin() + start[v], in.sides.begin() + start[v + 1], [](const Side& x, const Side& y) {
-      return x.high != y.high ? x.high < y.high : x.triangle < y.triangle;
-    });
+  cpu::parallel_for(std::int64_t(vertices), [&](std::int64_t v) {
+    std::sort(in.sides.begin() + start[std::size_t(v)], in.sides.begin() + start[std::size_t(v) + 1],
+              [](const Side& x, const Side& y) { return x.high != y.high ? x.high < y.high : x.triangle < y.triangle; });
+  });
   auto corner = [&](std::int64_t triangle, int vertex) -> std::int64_t {
     const auto& v = triangles[std::size_t(triangle)];
     return 3 * triangle + (v[0] == vertex ? 0 : v[1] == vertex ? 1 : 2);
