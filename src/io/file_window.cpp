@@ -13,9 +13,9 @@ namespace {
 
 std::atomic<std::size_t> window_bytes{std::size_t(1) << 20};
 
-std::string system_message() { return std::strerror(errno ? errno : EIO); }
-
 }  // namespace
+
+std::string system_message() { return std::strerror(errno ? errno : EIO); }
 
 std::size_t FileWindow::default_window() { return window_bytes; }
 void FileWindow::set_default_window(std::size_t bytes) { window_bytes = std::max<std::size_t>(bytes, 1); }

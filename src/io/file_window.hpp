@@ -12,6 +12,10 @@
 
 namespace pss::io {
 
+// The system's message for errno: a failed stream does not always set it, and EIO stands in
+// for "something went wrong". (FileWindow and output_file.cpp.)
+std::string system_message();
+
 // Throws file_error(path, "cannot open: ...") for a directory, a FIFO or a device: a
 // directory opens fine on Linux and then reports a nonsense size, a FIFO blocks the open
 // until a writer comes, a device has no size. What does not exist is left to the open,

@@ -17,9 +17,7 @@ namespace pss {
 namespace {
 
 namespace fs = std::filesystem;
-
-// A failed stream does not always set errno; EIO stands in for "something went wrong".
-std::string system_message() { return std::strerror(errno ? errno : EIO); }
+using io::system_message;
 
 Error write_error(const fs::path& destination, const std::string& why) {
   return file_error(destination, "cannot write: " + why);
