@@ -121,6 +121,34 @@ TEST_F(CliProject, InfoReportsTheSpreadOfTheSpacing) {
   EXPECT_GT(widest, 1.5 * narrowest);
 }
 
+// A cloud whose noise is over a third of its spacing's h: pss info reports the noise and the
+// h it sets, and pss mesh uses that h without --h.
+TEST_F(CliProject, InfoReportsTheNoiseAndTheHItSets) {
+  test::SampleOptions o;
+  o.count = 8000;
+  o.noise = 0.06f;
+  write_ply(path("noisy.ply"), test::sample(test::Sphere{}, o));
+  const SpacingEstimate e = estimate_spacing(read_ply(path("noisy.ply")).positions);
+  ASSERT_GT(e.suggested_h, e.median_kth);
+  const test::CliResult r = test::run_pss("info " + path("noisy.ply"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  double h = 0, noise = 0;
+  const std::size_t at = r.out.find("suggested h     "), n = r.out.find("noise           ");
+  ASSERT_TRUE(at != std::string::npos && n != std::string::npos) << r.out;
+  ASSERT_EQ(std::sscanf(r.out.c_str() + at, "suggested h     %lf", &h), 1);
+  ASSERT_EQ(std::sscanf(r.out.c_str() + n, "noise           %lf", &noise), 1);
+  EXPECT_NEAR(h, e.suggested_h, 1e-5 * h);
+  EXPECT_NEAR(noise, e.noise, 1e-5 * noise);
+  EXPECT_NEAR(noise, 0.06, 0.006);
+  EXPECT_NE(r.out.find("3 times the noise"), std::string::npos) << r.out;
+  const test::CliResult m = test::run_pss("mesh " + path("noisy.ply") + " -o " + path("noisy_mesh.ply"));
+  ASSERT_EQ(m.exit_code, 0) << m.err;
+  const std::size_t used = m.out.find(", h = ");
+  ASSERT_NE(used, std::string::npos) << m.out;
+  EXPECT_NEAR(std::stod(m.out.substr(used + 6)), e.suggested_h, 1e-5 * h);
+  EXPECT_NE(m.out.find("1 component, watertight"), std::string::npos) << m.out;
+}
+
 // The bounds carry the file's digits, not a float's binary expansion (-0.09468989819).
 TEST_F(CliProject, InfoPrintsTheBoundsWithTheFilesDigits) {
   write("b.xyz", "-0.0946899 0.0329874 -0.0618736\n0.0610091 0.187321 0.0587997\n1e-3 0.1 0\n");

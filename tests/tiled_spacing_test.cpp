@@ -12,6 +12,7 @@
 #include "pss/tiles/spacing.hpp"
 #include "support/cli.hpp"
 #include "support/file_bytes.hpp"
+#include "support/shapes.hpp"
 
 namespace pss {
 namespace {
@@ -20,8 +21,8 @@ using TiledSpacingTest = test::CliTest;
 
 // Every field of the estimate, to the last bit.
 void expect_same(const SpacingEstimate& a, const SpacingEstimate& b) {
-  EXPECT_EQ(std::tie(a.k, a.mean_nearest, a.median_kth, a.min_kth, a.max_kth, a.suggested_h),
-            std::tie(b.k, b.mean_nearest, b.median_kth, b.min_kth, b.max_kth, b.suggested_h));
+  EXPECT_EQ(std::tie(a.k, a.mean_nearest, a.median_kth, a.min_kth, a.max_kth, a.noise, a.suggested_h),
+            std::tie(b.k, b.mean_nearest, b.median_kth, b.min_kth, b.max_kth, b.noise, b.suggested_h));
 }
 
 TEST_F(TiledSpacingTest, TheTilesGiveTheInCoreEstimateToTheLastBit) {
@@ -38,6 +39,25 @@ TEST_F(TiledSpacingTest, TheTilesGiveTheInCoreEstimateToTheLastBit) {
   }
   const SpacingEstimate e = estimate_spacing(cloud.positions);
   EXPECT_GT(e.max_kth, 2 * e.min_kth) << "the sampling is uneven";
+}
+
+// A noisy torus, whose noise sets h: each query's noise is fitted to the points within a
+// reach of several times the noise, beyond its k-th neighbour, and the tiles' halos hold them.
+TEST_F(TiledSpacingTest, TheNoiseIsTheInCoreNoiseToTheLastBit) {
+  test::SampleOptions o;
+  o.count = 8000;
+  o.noise = 0.05f;
+  std::string text;
+  for (const vec3& p : test::sample(test::Torus{}, o).positions)
+    text += std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z) + "\n";
+  const std::string file = write("noisy.xyz", text);
+  const PointCloud cloud = read_point_cloud(file);
+  const SpacingEstimate e = estimate_spacing(cloud.positions);
+  ASSERT_GT(e.suggested_h, e.median_kth) << "the noise sets h";
+  for (const std::uint64_t per_tile : {300u, 3000u}) {
+    SCOPED_TRACE(per_tile);
+    expect_same(estimate_spacing(TiledCloud(file, dir_, per_tile, 1 << 16)), e);
+  }
 }
 
 TEST_F(TiledSpacingTest, TwoPointsAreTheLeastAndCoincidentPointsHaveNoSpacing) {

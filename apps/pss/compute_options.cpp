@@ -135,7 +135,7 @@ void print_normals_turned(std::size_t turned, std::size_t points) {
 }
 
 void add_cloud_surface_flags(CLI::App& command, CloudSurfaceFlags& flags) {
-  command.add_option("--h", flags.h, "Gaussian width h (default: estimated from the spacing, see pss info)")
+  command.add_option("--h", flags.h, "Gaussian width h (default: estimated from the spacing and the noise, see pss info)")
       ->check(finite_positive());
   command.add_option("--rho", flags.rho, "range-query radius (default 2h; with adaptive support, at h)")
       ->check(finite_positive());

@@ -63,8 +63,16 @@ void print_cloud(const std::string& path) {
   if (cloud.size() >= 2) {
     const SpacingEstimate s = estimate_spacing_of(cloud, path);
     std::printf("spacing         %g mean nearest-neighbour distance\n", s.mean_nearest);
-    std::printf("suggested h     %g (median distance to the %dth nearest neighbour; rho = 2h = %g)\n", s.suggested_h,
-                s.k, 2 * s.suggested_h);
+    if (s.suggested_h > s.median_kth)
+      std::printf("suggested h     %g (%g times the noise, over the median distance to the %dth nearest neighbour, %g; "
+                  "rho = 2h = %g)\n",
+                  s.suggested_h, kNoiseWidths, s.k, s.median_kth, 2 * s.suggested_h);
+    else
+      std::printf("suggested h     %g (median distance to the %dth nearest neighbour; rho = 2h = %g)\n", s.suggested_h,
+                  s.k, 2 * s.suggested_h);
+    // The scatter about the surface (points/noise.hpp): h stays over kNoiseWidths times it.
+    std::printf("noise           %g (sigma of the samples about a quadric fitted to their neighbours; median)\n",
+                s.noise);
     // Where the spacing varies, one h cannot serve the whole cloud: the spread says by how much.
     std::printf("%dth neighbour  min %g, median %g, max %g (max/min %.3g)\n", s.k, s.min_kth, s.median_kth, s.max_kth,
                 s.max_kth / s.min_kth);

@@ -233,7 +233,7 @@ void add_mesh_command(CLI::App& app, Action action) {
   for (const char* flag : kCloudFlags)  // those of project's; the mesh's own are added to the group below
     if (CLI::Option* option = command->get_option_no_throw(flag)) clouds->add_option(option);
   command->get_option("--h")->description(
-      "Gaussian width h: a cloud's in its units (default: estimated from the spacing, see pss info); a volume's "
+      "Gaussian width h: a cloud's in its units (default: estimated from the spacing and the noise, see pss info); a volume's "
       "theta3 width in voxels u = (sx*sy*sz)^(1/3), at least 0.5 (default 2)");
   command->add_option("--cell", o->cell,
                       "side of the cubes the surface is meshed in: smaller gives more, smaller triangles (default: "

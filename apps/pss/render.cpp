@@ -138,7 +138,7 @@ void add_render_command(CLI::App& app, Action action) {
   auto* command = app.add_subcommand("render", "Ray trace the point set surface of a point cloud to an image: .png, .jpg, .exr (paper 5.2)");
   auto o = std::make_shared<RenderCloudOptions>();
   command->add_option("file", o->input, "point cloud (.ply, .xyz/.txt/.pts, .obj, .stl, .pcd, .las)")->required();
-  command->add_option("--h", o->h, "Gaussian width h (default: estimated from the spacing, see pss info)")
+  command->add_option("--h", o->h, "Gaussian width h (default: estimated from the spacing and the noise, see pss info)")
       ->check(finite_positive());
   command->add_option("--rho", o->rho, "range-query radius of the projection (default 2h; with adaptive support, at h)")
       ->check(finite_positive());

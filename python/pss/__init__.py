@@ -101,7 +101,8 @@ _FRAME_DOC = """
 
 def estimate_h(points):
     """The Gaussian width h that `pss info` suggests for these (N, 3) points: the median
-    distance to the 15th nearest sample (a ball of radius 2h then holds about 60)."""
+    distance to the 15th nearest sample (a ball of radius 2h then holds about 60), or three
+    times the samples' noise about their surface where that is larger."""
     return _pss.estimate_h(points)
 
 

@@ -7,6 +7,7 @@
 #include "pss/backend/cpu/parallel_for.hpp"
 #include "pss/core/error.hpp"
 #include "pss/spatial/uniform_grid.hpp"
+#include "pss/points/noise.hpp"
 #include "pss/points/unit_frame.hpp"
 
 namespace pss {
@@ -27,13 +28,11 @@ SpacingEstimate estimate_spacing(std::span<const vec3> input, int k, std::size_t
 
   const std::size_t stride = spacing_stride(points.size(), max_samples);
   const std::size_t queries = (points.size() + stride - 1) / stride;
-  std::vector<double> kth(queries), nearest(queries);
+  std::vector<QuerySpacing> results(queries);
   cpu::parallel_for(std::int64_t(queries), [&](std::int64_t q) {
-    const QuerySpacing s = query_spacing(view, cell, points[std::size_t(q) * stride], k);
-    nearest[std::size_t(q)] = s.nearest;
-    kth[std::size_t(q)] = s.kth;
+    results[std::size_t(q)] = query_spacing(view, cell, points[std::size_t(q) * stride], k);
   });
-  return spacing_of(std::move(kth), nearest, k, frame.scale);
+  return spacing_of(results, k, frame.scale);
 }
 
 std::size_t spacing_stride(std::size_t points, std::size_t max_samples) {
@@ -50,21 +49,39 @@ QuerySpacing query_spacing(const GridView& view, float cell, vec3 c, int k) {
     if (d2.size() > std::size_t(k)) break;
   }
   std::partial_sort(d2.begin(), d2.begin() + k + 1, d2.end());
-  return {std::sqrt(double(d2[std::size_t(std::min(1, k))])), std::sqrt(double(d2[std::size_t(k)]))};
+  const double kth = std::sqrt(double(d2[std::size_t(k)]));
+  const QueryNoise noise = noise_near(view, c, kth);
+  return {std::sqrt(double(d2[std::size_t(std::min(1, k))])), kth, noise.sigma, std::max(kth, noise.reach)};
 }
 
-SpacingEstimate spacing_of(std::vector<double> kth, const std::vector<double>& nearest, int k, double scale) {
+namespace {
+
+double median_of(std::vector<double> values) {
+  if (values.empty()) return 0;
+  std::nth_element(values.begin(), values.begin() + std::ptrdiff_t(values.size() / 2), values.end());
+  return values[values.size() / 2];
+}
+
+}  // namespace
+
+SpacingEstimate spacing_of(const std::vector<QuerySpacing>& queries, int k, double scale) {
   double nearest_sum = 0;
-  for (double d : nearest) nearest_sum += d;
-  std::nth_element(kth.begin(), kth.begin() + std::ptrdiff_t(kth.size() / 2), kth.end());
+  std::vector<double> kth, noise;
+  kth.reserve(queries.size());
+  for (const QuerySpacing& q : queries) {
+    nearest_sum += q.nearest;
+    kth.push_back(q.kth);
+    if (std::isfinite(q.noise)) noise.push_back(q.noise);
+  }
   SpacingEstimate e;
   e.k = k;
   e.mean_nearest = nearest_sum / double(kth.size()) * scale;
-  e.median_kth = kth[kth.size() / 2] * scale;
+  e.median_kth = median_of(kth) * scale;
   const auto [least, largest] = std::minmax_element(kth.begin(), kth.end());
   e.min_kth = *least * scale;
   e.max_kth = *largest * scale;
-  e.suggested_h = e.median_kth;
+  e.noise = median_of(noise) * scale;
+  e.suggested_h = std::max(e.median_kth, kNoiseWidths * e.noise);
   if (!(e.suggested_h > 0))
     throw Error("cannot estimate the sample spacing: the points coincide (pass --h explicitly)");
   return e;

@@ -21,12 +21,13 @@ SpacingEstimate estimate_spacing(const TiledCloud& cloud, int k, std::size_t max
 
   const std::size_t stride = spacing_stride(std::size_t(n), max_samples);
   const std::size_t queries = std::size_t((n + stride - 1) / stride);
-  std::vector<double> kth(queries), nearest(queries);
+  std::vector<QuerySpacing> results(queries);
   for (int t = 0; t < cloud.tiles(); ++t) {
     if (cloud.tile_size(t) == 0) continue;
     const Aabb box = cloud.tile_box(t);
-    // A query's k nearest lie within its k-th distance of it, so within that of the tile's
-    // box: a halo that wide holds them all.
+    // A query's k nearest lie within its k-th distance of it, and the points its noise is
+    // fitted to within its reach, so within that of the tile's box: a halo that wide holds
+    // them all.
     for (float halo = 0.125f * (box.hi.x - box.lo.x);; halo *= 2) {
       const TilePoints tile = cloud.load(t, halo);
       if (tile.positions.size() <= std::size_t(k)) continue;  // no query's k nearest here yet
@@ -42,15 +43,13 @@ SpacingEstimate estimate_spacing(const TiledCloud& cloud, int k, std::size_t max
       cpu::parallel_for(std::int64_t(mine.size()), [&](std::int64_t m) {
         const std::size_t i = mine[std::size_t(m)];
         const QuerySpacing s = query_spacing(view, cell, unit[i], k);
-        const std::size_t q = std::size_t(tile.index[i] / stride);
-        nearest[q] = s.nearest;
-        kth[q] = s.kth;
-        held[std::size_t(m)] = s.kth * scale * (1 + 1e-6) <= double(halo) || tile.positions.size() == n;
+        results[std::size_t(tile.index[i] / stride)] = s;
+        held[std::size_t(m)] = s.reach * scale * (1 + 1e-6) <= double(halo) || tile.positions.size() == n;
       });
       if (std::all_of(held.begin(), held.end(), [](char h) { return h != 0; })) break;
     }
   }
-  return spacing_of(std::move(kth), nearest, k, scale);
+  return spacing_of(results, k, scale);
 }
 
 }  // namespace pss

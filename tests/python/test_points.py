@@ -21,6 +21,16 @@ def test_estimate_h_is_the_h_pss_info_suggests(bunny):
     assert pss.estimate_h(bunny) == pytest.approx(float(line.split()[2]), rel=1e-5)
 
 
+def test_estimate_h_is_three_times_the_noise_where_that_is_wider_than_the_spacing():
+    rng = np.random.default_rng(4)
+    directions = rng.normal(size=(8000, 3))
+    sphere = directions / np.linalg.norm(directions, axis=1)[:, None]
+    sigma = 0.06
+    noisy = sphere * (1 + sigma * rng.normal(size=(8000, 1)))
+    assert pss.estimate_h(noisy) == pytest.approx(3 * sigma, rel=0.1)
+    assert pss.estimate_h(sphere) < 0.7 * 3 * sigma
+
+
 @pytest.mark.parametrize("method", ["mls", "wls"])
 def test_project_gives_the_cli_s_points_normals_and_status(bunny, tmp_path, method):
     out = tmp_path / "projected.ply"

@@ -15,9 +15,13 @@ struct SpacingEstimate {
   // varies (a scan's near and far parts, a locally refined mesh) shows it here.
   double min_kth = 0, max_kth = 0;
   int k = 0;
+  // The samples' scatter about their surface (points/noise.hpp): the median σ over the
+  // queries, 0 where none could fit one.
+  double noise = 0;
   // h = median_kth with k = 15: a ball of radius ρ = 2h on a surface then holds about
   // 4·k = 60 samples, ~20 of them with weight above e⁻¹: enough to average noise down to
-  // about a third (tests/projection_test.cpp) with a curvature bias of order κ³h⁴.
+  // about a third (tests/projection_test.cpp) with a curvature bias of order κ³h⁴. Where the
+  // noise asks for more, kNoiseWidths·noise (docs/paper-notes.md, issue 26).
   double suggested_h = 0;
 };
 
@@ -33,12 +37,18 @@ std::size_t spacing_stride(std::size_t points, std::size_t max_samples);
 // within the k-th distance of c);
 struct QuerySpacing {
   double nearest, kth;
+  double noise;  // noise_near at that k-th distance (points/noise.hpp)
+  double reach;  // the farthest a point it used lies: exact wherever the grid holds that
 };
 struct GridView;
 QuerySpacing query_spacing(const GridView& view, float cell, vec3 c, int k);
-// and the estimate from the queries' distances, in query order, scaled back by the unit
+// and the estimate from the queries' results, in query order, scaled back by the unit
 // frame's `scale`.
-SpacingEstimate spacing_of(std::vector<double> kth, const std::vector<double>& nearest, int k, double scale);
+SpacingEstimate spacing_of(const std::vector<QuerySpacing>& queries, int k, double scale);
+
+// h is at least this many times the noise: on a noisy torus the mesh held together from
+// h ≈ 2σ (docs/paper-notes.md).
+inline constexpr double kNoiseWidths = 3.0;
 
 // The h a renderer uses when none is given: the suggested h, or 1 for fewer than two samples
 // (a single sample has no spacing, and no surface whatever h is: fewer than three neighbours).
