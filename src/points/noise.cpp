@@ -86,19 +86,23 @@ double query_noise(const GridView& view, vec3 c, float reach) {
   const double median = *middle;
   const auto quarter = residual.begin() + std::ptrdiff_t(residual.size() / 4);
   std::nth_element(residual.begin(), quarter, middle);
-  if (*quarter > kSheetsQuartile * median) return kNaN;  // two sheets, not one noisy one
   const double count = double(residual.size());
+  if (*quarter > sheets_quartile(count) * median) return kNaN;  // two sheets, not one noisy one
   return 1.4826 * median * std::sqrt(count / (count - 6)) * reach;
 }
 
 QueryNoise noise_near(const GridView& view, vec3 c, double kth) {
   QueryNoise out{kNaN, kth};
-  for (int growth = 0;; ++growth) {
+  const double farthest = kNoiseReachMost * kth;
+  for (;;) {
     out.sigma = query_noise(view, c, float(out.reach));
-    const double wanted = kNoiseReach * out.sigma;
-    if (!(wanted > out.reach * 1.1) || growth == kNoiseReachGrowth) return out;
+    if (!std::isfinite(out.sigma)) return out;  // two sheets, a line: whatever the reach seen before
+    const double wanted = std::min(kNoiseReach * out.sigma, farthest);
+    if (!(wanted > out.reach * 1.1)) break;
     out.reach = wanted;
   }
+  if (kNoiseReach * out.sigma > 1.1 * out.reach) out.sigma = kNaN;  // no slab within reach: a volume
+  return out;
 }
 
 }  // namespace pss

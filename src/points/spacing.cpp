@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "pss/backend/cpu/parallel_for.hpp"
@@ -29,8 +30,10 @@ SpacingEstimate estimate_spacing(std::span<const vec3> input, int k, std::size_t
   const std::size_t stride = spacing_stride(points.size(), max_samples);
   const std::size_t queries = (points.size() + stride - 1) / stride;
   std::vector<QuerySpacing> results(queries);
+  const std::size_t noise_stride = noise_query_stride(queries);
   cpu::parallel_for(std::int64_t(queries), [&](std::int64_t q) {
-    results[std::size_t(q)] = query_spacing(view, cell, points[std::size_t(q) * stride], k);
+    const auto query = std::size_t(q);
+    results[query] = query_spacing(view, cell, points[query * stride], k, query % noise_stride == 0);
   });
   return spacing_of(results, k, frame.scale);
 }
@@ -39,7 +42,11 @@ std::size_t spacing_stride(std::size_t points, std::size_t max_samples) {
   return std::max<std::size_t>(1, points / max_samples);
 }
 
-QuerySpacing query_spacing(const GridView& view, float cell, vec3 c, int k) {
+std::size_t noise_query_stride(std::size_t queries) {
+  return std::max<std::size_t>(1, queries / kNoiseQueries);
+}
+
+QuerySpacing query_spacing(const GridView& view, float cell, vec3 c, int k, bool noise) {
   thread_local std::vector<float> d2;
   // A ball that doubles until it holds k + 1 points (the query's own among them, at
   // distance 0): the k nearest of those are the k nearest of all.
@@ -50,8 +57,10 @@ QuerySpacing query_spacing(const GridView& view, float cell, vec3 c, int k) {
   }
   std::partial_sort(d2.begin(), d2.begin() + k + 1, d2.end());
   const double kth = std::sqrt(double(d2[std::size_t(k)]));
-  const QueryNoise noise = noise_near(view, c, kth);
-  return {std::sqrt(double(d2[std::size_t(std::min(1, k))])), kth, noise.sigma, std::max(kth, noise.reach)};
+  const double nearest = std::sqrt(double(d2[std::size_t(std::min(1, k))]));
+  if (!noise) return {nearest, kth, std::numeric_limits<double>::quiet_NaN(), kth};
+  const QueryNoise n = noise_near(view, c, kth);
+  return {nearest, kth, n.sigma, std::max(kth, n.reach)};
 }
 
 namespace {

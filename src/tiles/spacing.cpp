@@ -22,6 +22,7 @@ SpacingEstimate estimate_spacing(const TiledCloud& cloud, int k, std::size_t max
   const std::size_t stride = spacing_stride(std::size_t(n), max_samples);
   const std::size_t queries = std::size_t((n + stride - 1) / stride);
   std::vector<QuerySpacing> results(queries);
+  const std::size_t noise_stride = noise_query_stride(queries);
   for (int t = 0; t < cloud.tiles(); ++t) {
     if (cloud.tile_size(t) == 0) continue;
     const Aabb box = cloud.tile_box(t);
@@ -42,8 +43,9 @@ SpacingEstimate estimate_spacing(const TiledCloud& cloud, int k, std::size_t max
       std::vector<char> held(mine.size(), 1);
       cpu::parallel_for(std::int64_t(mine.size()), [&](std::int64_t m) {
         const std::size_t i = mine[std::size_t(m)];
-        const QuerySpacing s = query_spacing(view, cell, unit[i], k);
-        results[std::size_t(tile.index[i] / stride)] = s;
+        const auto query = std::size_t(tile.index[i] / stride);
+        const QuerySpacing s = query_spacing(view, cell, unit[i], k, query % noise_stride == 0);
+        results[query] = s;
         held[std::size_t(m)] = s.reach * scale * (1 + 1e-6) <= double(halo) || tile.positions.size() == n;
       });
       if (std::all_of(held.begin(), held.end(), [](char h) { return h != 0; })) break;

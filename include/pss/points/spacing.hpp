@@ -1,6 +1,7 @@
 // How densely a cloud is sampled, and the h that follows from it.
 #pragma once
 
+#include <cstddef>
 #include <span>
 #include <vector>
 
@@ -37,11 +38,15 @@ std::size_t spacing_stride(std::size_t points, std::size_t max_samples);
 // within the k-th distance of c);
 struct QuerySpacing {
   double nearest, kth;
-  double noise;  // noise_near at that k-th distance (points/noise.hpp)
+  double noise;  // noise_near at that k-th distance (points/noise.hpp), or NaN
   double reach;  // the farthest a point it used lies: exact wherever the grid holds that
 };
 struct GridView;
-QuerySpacing query_spacing(const GridView& view, float cell, vec3 c, int k);
+QuerySpacing query_spacing(const GridView& view, float cell, vec3 c, int k, bool noise);
+// the noise measured at every noise_query_stride-th query only: at most ~kNoiseQueries of
+// them, plenty for a median, since a noisy cloud's wider reach costs more per query;
+inline constexpr std::size_t kNoiseQueries = 5000;
+std::size_t noise_query_stride(std::size_t queries);
 // and the estimate from the queries' results, in query order, scaled back by the unit
 // frame's `scale`.
 SpacingEstimate spacing_of(const std::vector<QuerySpacing>& queries, int k, double scale);
