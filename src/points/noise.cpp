@@ -1,11 +1,13 @@
 #include "pss/points/noise.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <tuple>
 #include <vector>
 
+#include "pss/core/frame.hpp"
 #include "pss/fit/inverse_power.hpp"
 #include "pss/spatial/uniform_grid.hpp"
 
@@ -41,6 +43,10 @@ bool solve6(double a[6][6], double b[6]) {
   return true;
 }
 
+// The quadric height field's terms at local (x, y): z ≈ Σ cᵢ·termᵢ.
+using Monomials = std::array<double, 6>;
+Monomials monomials(glm::dvec3 l) { return {l.x * l.x, l.x * l.y, l.y * l.y, l.x, l.y, 1}; }
+
 }  // namespace
 
 double query_noise(const GridView& view, vec3 c, float reach) {
@@ -58,18 +64,15 @@ double query_noise(const GridView& view, vec3 c, float reach) {
   const Sym3 covariance = m.covariance_about_mean();
   const EigenResult normal = smallest_eigenvector(covariance, vec3(0.0f));
   if (normal.status == EigenStatus::invalid) return kNaN;
-  const vec3 n = normal.vector, mean = m.mean();
-  const vec3 u = glm::normalize(std::abs(n.x) < 0.9f ? glm::cross(n, vec3(1, 0, 0)) : glm::cross(n, vec3(0, 1, 0)));
-  const vec3 v = glm::cross(n, u);
+  const Frame frame = Frame::from_normal(m.mean(), normal.vector);
   // In units of the reach, so that the normal equations' entries are of order one.
   double a[6][6] = {}, b[6] = {};
   thread_local std::vector<glm::dvec3> local;
   local.clear();
   for (const vec3& d : near) {
-    const vec3 q = (d - mean) / reach;
-    const glm::dvec3 l(glm::dot(q, u), glm::dot(q, v), glm::dot(q, n));
+    const glm::dvec3 l = glm::dvec3(frame.to_local(d) / reach);
     local.push_back(l);
-    const double phi[6] = {l.x * l.x, l.x * l.y, l.y * l.y, l.x, l.y, 1};
+    const Monomials phi = monomials(l);
     for (int i = 0; i < 6; ++i) {
       for (int j = 0; j < 6; ++j) a[i][j] += phi[i] * phi[j];
       b[i] += phi[i] * l.z;
@@ -78,9 +81,12 @@ double query_noise(const GridView& view, vec3 c, float reach) {
   if (!solve6(a, b)) return kNaN;
   thread_local std::vector<double> residual;
   residual.clear();
-  for (const glm::dvec3& l : local)
-    residual.push_back(std::abs(l.z - (b[0] * l.x * l.x + b[1] * l.x * l.y + b[2] * l.y * l.y + b[3] * l.x +
-                                       b[4] * l.y + b[5])));
+  for (const glm::dvec3& l : local) {
+    const Monomials phi = monomials(l);
+    double height = 0;
+    for (int i = 0; i < 6; ++i) height += b[i] * phi[i];
+    residual.push_back(std::abs(l.z - height));
+  }
   const auto middle = residual.begin() + std::ptrdiff_t(residual.size() / 2);
   std::nth_element(residual.begin(), middle, residual.end());
   const double median = *middle;

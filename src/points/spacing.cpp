@@ -7,6 +7,7 @@
 
 #include "pss/backend/cpu/parallel_for.hpp"
 #include "pss/core/error.hpp"
+#include "pss/core/median.hpp"
 #include "pss/spatial/uniform_grid.hpp"
 #include "pss/points/noise.hpp"
 #include "pss/points/unit_frame.hpp"
@@ -62,16 +63,6 @@ QuerySpacing query_spacing(const GridView& view, float cell, vec3 c, int k, bool
   const QueryNoise n = noise_near(view, c, kth);
   return {nearest, kth, n.sigma, std::max(kth, n.reach)};
 }
-
-namespace {
-
-double median_of(std::vector<double> values) {
-  if (values.empty()) return 0;
-  std::nth_element(values.begin(), values.begin() + std::ptrdiff_t(values.size() / 2), values.end());
-  return values[values.size() / 2];
-}
-
-}  // namespace
 
 SpacingEstimate spacing_of(const std::vector<QuerySpacing>& queries, int k, double scale) {
   double nearest_sum = 0;

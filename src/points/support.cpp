@@ -6,6 +6,7 @@
 
 #include "pss/backend/cpu/parallel_for.hpp"
 #include "pss/core/error.hpp"
+#include "pss/core/median.hpp"
 #include "pss/core/progress.hpp"
 #include "kd_tree.hpp"
 #include "rows.hpp"
@@ -45,10 +46,6 @@ struct NeighbourhoodSpacing {
   float rows_median = 0;       // in a cloud of rows, the median of the plain d_k (input units); else 0
 };
 
-float median_of(std::vector<float> values) {
-  std::nth_element(values.begin(), values.begin() + std::ptrdiff_t(values.size() / 2), values.end());
-  return values[values.size() / 2];
-}
 NeighbourhoodSpacing neighbourhood_spacing(std::span<const vec3> unit, double scale, const points_detail::KdTree& tree,
                                            int k) {
   const auto n = std::int64_t(unit.size());
