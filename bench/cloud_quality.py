@@ -3,7 +3,7 @@
 
 Usage (Debian python3 with python3-numpy, python3-scipy):
   cloud_quality.py --pss PSS [--out results.json] [--clouds a,b,...] [--label NAME]
-                   [--scan-holes scan_holes.py] [-- EXTRA_PSS_FLAGS...]
+                   [--scan-holes scan_holes.py] [--truth MESH] [-- EXTRA_PSS_FLAGS...]
 Each cloud is rendered at 384x384 from two views (the default and --view 60,30) with
   pss render CLOUD --size 384x384 [--view 60,30] --hits hits.ply --stats stats.json EXTRA_PSS_FLAGS
 in a temporary folder that is removed afterwards. --clouds takes paths or names of the default set
@@ -23,6 +23,8 @@ What the numbers mean (all per view, in pixels of the 384x384 image):
     normal °  mean angle between pss's normal and the hit face's normal, up to sign, over the pixels
               where both hit within TOL of each other.
     >10° %    share of those pixels with a normal error over 10 degrees.
+  --truth MESH (an OFF, or a PLY with faces) takes that mesh as every cloud's truth: clouds made
+  from a mesh's vertices (thinned, made uneven, noisy) measured against the surface they came from.
   (JSON only: 'front_pct', mesh pixels where pss's hit lies more than TOL in front of the mesh.)
   TOL is 1 % of the diagonal of the mesh's bounding box.
   frame s     the frame time pss reports (stats 'frame_seconds'); hits: pss's primary hits.
@@ -50,6 +52,52 @@ def read_off(path):
         n = int(tok[i]); f = [int(t) for t in tok[i + 1:i + 1 + n]]; i += 1 + n
         tris += [(f[0], f[k], f[k + 1]) for k in range(1, n - 1)]
     return v, np.array(tris, np.int64)
+
+
+def read_ply_mesh(path):
+    """Vertices and triangles (polygons split as fans) of a PLY mesh, ASCII or binary
+    little-endian, with any vertex properties (x, y, z taken) and a face list of indices."""
+    b = open(path, 'rb').read(); end = b.index(b'end_header') + len(b'end_header')
+    end += 2 if b[end:end + 2] == b'\r\n' else 1
+    elements = []  # (name, count, [(property, type, list count type or None)])
+    for line in b[:end].decode('ascii', 'replace').splitlines():
+        w = line.split()
+        if w[:1] == ['element']: elements.append((w[1], int(w[2]), []))
+        elif w[:2] == ['property', 'list']: elements[-1][2].append((w[4], w[3], w[2]))
+        elif w[:1] == ['property']: elements[-1][2].append((w[2], w[1], None))
+    tm = {'char': 'i1', 'int8': 'i1', 'uchar': 'u1', 'uint8': 'u1', 'short': 'i2', 'int16': 'i2', 'ushort': 'u2',
+          'uint16': 'u2', 'int': 'i4', 'int32': 'i4', 'uint': 'u4', 'uint32': 'u4', 'float': 'f4',
+          'float32': 'f4', 'double': 'f8', 'float64': 'f8'}
+    ascii = b'format ascii' in b[:end]
+    tok = b[end:].split() if ascii else None; at = end; ti = 0; v = None; polys = []
+    for name, count, props in elements:
+        if not ascii and all(lt is None for _, _, lt in props):  # fixed-size records
+            dt = np.dtype([(pn, '<' + tm[t]) for pn, t, _ in props])
+            rec = np.frombuffer(b, dt, count, at); at += dt.itemsize * count
+            if name == 'vertex': v = np.stack([rec[c].astype(float) for c in 'xyz'], 1)
+            continue
+        rows = []
+        for _ in range(count):
+            row = {}
+            for pn, t, lt in props:
+                if ascii:
+                    if lt is None: row[pn] = float(tok[ti]); ti += 1
+                    else: n = int(tok[ti]); row[pn] = [int(x) for x in tok[ti + 1:ti + 1 + n]]; ti += 1 + n
+                else:
+                    if lt is None: row[pn] = np.frombuffer(b, '<' + tm[t], 1, at)[0]; at += int(tm[t][1])
+                    else:
+                        n = int(np.frombuffer(b, '<' + tm[lt], 1, at)[0]); at += int(tm[lt][1])
+                        row[pn] = np.frombuffer(b, '<' + tm[t], n, at).tolist(); at += n * int(tm[t][1])
+            rows.append(row)
+        if name == 'vertex': v = np.array([[r['x'], r['y'], r['z']] for r in rows], float)
+        if name == 'face': polys = [r.get('vertex_indices', r.get('vertex_index')) for r in rows]
+    tris = [(f[0], f[k], f[k + 1]) for f in polys for k in range(1, len(f) - 1)]
+    assert v is not None and tris, f'{path}: no vertices or no faces'
+    return v, np.array(tris, np.int64)
+
+
+def read_mesh(path):
+    return read_ply_mesh(path) if path.lower().endswith('.ply') else read_off(path)
 
 
 def camera(st):
@@ -101,9 +149,9 @@ def read_hits(path, W, H):
     return pos, nrm, mask
 
 
-def mesh_quality(off, st, hits):
+def mesh_quality(mesh, st, hits):
     org = np.array(st.get('origin', [0, 0, 0]), float)  # compare in pss's shifted frame
-    v, tris = read_off(off); v = v - org
+    v, tris = read_mesh(mesh); v = v - org
     st = dict(st, camera=dict(st['camera'], eye=list(np.array(st['camera']['eye']) - org)))
     eye, tm, nm = cast_mesh(v, tris, st)
     pos, npss, hp = read_hits(hits, st['width'], st['height'])
@@ -134,6 +182,7 @@ def main():
     ap.add_argument('--pss', required=True); ap.add_argument('--out', default='cloud_quality.json')
     ap.add_argument('--clouds'); ap.add_argument('--label', default=' '.join(extra) or 'default')
     ap.add_argument('--scan-holes', default=os.path.join(SHARED, 'tools/scan_holes.py'))
+    ap.add_argument('--truth', help='a mesh (OFF or PLY with faces) that every cloud is compared with')
     a = ap.parse_args(argv[:argv.index('--')] if '--' in argv else argv)
     clouds = CLOUDS
     if a.clouds:
@@ -153,8 +202,8 @@ def main():
                     print(f'{row["cloud"]} {view}: pss failed: {row["error"]}', file=sys.stderr); continue
                 st = json.load(open(stats))
                 row.update(frame_seconds=st['frame_seconds'], hits=st['hits'], h=st['params']['h'])
-                row.update(mesh_quality(cloud, st, hits) if cloud.lower().endswith('.off')
-                           else scan_quality(cloud, stats, hits, a.scan_holes))
+                truth = a.truth or (cloud if cloud.lower().endswith('.off') else None)
+                row.update(mesh_quality(truth, st, hits) if truth else scan_quality(cloud, stats, hits, a.scan_holes))
                 rows.append(row)
     fmt = lambda x, f: '-' if x is None else format(x, f)
     print(f'# {a.label}: {a.pss} render --size {SIZE}x{SIZE} {" ".join(extra)}')
