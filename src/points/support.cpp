@@ -2,14 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <string>
 
 #include "pss/backend/cpu/parallel_for.hpp"
 #include "pss/core/error.hpp"
 #include "pss/core/median.hpp"
 #include "pss/core/progress.hpp"
+#include "pss/spatial/uniform_grid.hpp"
 #include "kd_tree.hpp"
 #include "rows.hpp"
+#include "pss/points/spacing.hpp"
 #include "pss/points/unit_frame.hpp"
 
 namespace pss {
@@ -102,6 +105,55 @@ bool fills_a_volume(std::span<const vec3> unit, const points_detail::KdTree& tre
   return surface_variation(c) > kVolumeVariation;
 }
 
+// The noise about each sample (support.hpp, kRegionQueries), in the unit frame.
+std::vector<float> regional_noise(std::span<const vec3> unit, int k) {
+  // σ at every stride-th sample, as the estimate of h measures it (spacing.hpp); none (0)
+  // where a query measured none: two sheets, a volume, too few neighbours.
+  const UniformGrid grid(unit, 1e-7f, std::max<long long>(4096, (long long)unit.size()));
+  const GridView view = grid.view();
+  const float cell = 1.0f / view.inv_cell;
+  const std::size_t stride = std::max<std::size_t>(1, unit.size() / kNoiseQueries);
+  std::vector<vec3> at((unit.size() + stride - 1) / stride);
+  std::vector<float> measured(at.size());
+  cpu::parallel_for(std::int64_t(at.size()), [&](std::int64_t q) {
+    at[std::size_t(q)] = unit[std::size_t(q) * stride];
+    const double sigma = query_spacing(view, cell, at[std::size_t(q)], k, true).noise;
+    measured[std::size_t(q)] = std::isfinite(sigma) ? float(sigma) : 0.0f;
+  });
+  const points_detail::CloudAdaptor adaptor{at};
+  points_detail::KdTree tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+  tree.buildIndex();
+  // A query's σ stands where kRegionShare of the queries within the support it asks for
+  // (ρ = 2·kNoiseWidths·σ), and at least its kRegionQueries nearest, measured at least half
+  // as much.
+  std::vector<float> regional(at.size(), 0.0f);
+  cpu::parallel_for(std::int64_t(at.size()), [&](std::int64_t q) {
+    const float sigma = measured[std::size_t(q)];
+    if (!(sigma > 0)) return;
+    unsigned index[kRegionQueries];
+    float d2[kRegionQueries];
+    const std::size_t found = tree.knnSearch(&at[std::size_t(q)].x, kRegionQueries, index, d2);
+    const float reach = std::max(float(2 * kNoiseWidths) * sigma, std::sqrt(d2[found - 1]));
+    thread_local std::vector<std::pair<unsigned, float>> around;
+    around.clear();
+    tree.radiusSearch(&at[std::size_t(q)].x, reach * reach * (1 + 1e-5f), around, nanoflann::SearchParams());
+    std::size_t alike = 0;
+    for (const auto& other : around) alike += measured[other.first] >= 0.5f * sigma;
+    if (double(alike) >= kRegionShare * double(around.size())) regional[std::size_t(q)] = sigma;
+  });
+  std::vector<float> out(unit.size());
+  cpu::parallel_for(std::int64_t(unit.size()), [&](std::int64_t i) {
+    unsigned index[kRegionQueries];
+    float d2[kRegionQueries], sigma[kRegionQueries];
+    const std::size_t found = tree.knnSearch(&unit[std::size_t(i)].x, kRegionQueries, index, d2);
+    for (std::size_t j = 0; j < found; ++j) sigma[j] = regional[index[j]];
+    const std::size_t agree = std::min<std::size_t>(kRegionAgree, found) - 1;
+    std::nth_element(sigma, sigma + agree, sigma + found, std::greater<float>());
+    out[std::size_t(i)] = sigma[agree];
+  });
+  return out;
+}
+
 }  // namespace
 
 SupportWidths support_widths(std::span<const vec3> points, const ProjectionParams& params) {
@@ -146,10 +198,13 @@ SupportWidths support_widths(std::span<const vec3> points, const ProjectionParam
     for (std::size_t j = 0; j < found; ++j) alike += index[j] != unsigned(i) && sparse[index[j]];
     wide[std::size_t(i)] = alike >= kSparseNeighbours;
   });
+  const std::vector<float> noise = regional_noise(unit, k);
   out.least = kInfinity;
   out.largest = 0;
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (wide[i]) out.h[i] = std::clamp(kSupportWidening * h * (d[i] / median_d), h, widest);
+    if (d[i] <= kNoisySpacing * median_d)  // not a stray among strays
+      out.h[i] = std::max(out.h[i], std::min(widest, float(kNoiseWidths * double(noise[i]) * frame.scale)));
     out.least = std::min(out.least, out.h[i]);
     out.largest = std::max(out.largest, out.h[i]);
   }
