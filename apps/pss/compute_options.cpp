@@ -77,7 +77,8 @@ void add_support_option(CLI::App& command, std::string& choice) {
   command
       .add_option("--support", choice,
                   "each sample's Gaussian width h_i: adaptive (h, or wider where the distance to the 15th nearest "
-                  "neighbour is over 4/3 of its median) or global (h for every sample, as the paper); default adaptive, "
+                  "neighbour is over 4/3 of its median, and at least 3 times the samples' noise where they are "
+                  "noisy) or global (h for every sample, as the paper); default adaptive, "
                   "global when --h is given")
       ->check(CLI::IsMember({"adaptive", "global"}));
 }

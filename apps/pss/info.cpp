@@ -80,8 +80,8 @@ void print_cloud(const std::string& path) {
     ProjectionParams params = ProjectionParams::from_h(float(s.suggested_h));
     params.support = Support::adaptive;
     const SupportWidths w = support_widths(cloud.positions, params);
-    std::printf("adaptive h_i    from %g to %g, median %g (wider where the spacing is, or across the gaps of a cloud "
-                "sampled in rows; --support global uses h everywhere)\n",
+    std::printf("adaptive h_i    from %g to %g, median %g (wider where the spacing is, across the gaps of a cloud "
+                "sampled in rows, or where the noise is; --support global uses h everywhere)\n",
                 double(w.least), double(w.largest), double(w.median));
     if (cloud.has_normals()) print_file_normals(cloud, w, params);
   }

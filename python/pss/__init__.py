@@ -112,8 +112,8 @@ def project(points, h=None, *, normals=None, surface="mls", outliers="set-aside"
 
     points: (N, 3). h: the Gaussian width (default: estimate_h(points)); rho: the
     neighbourhood radius (default 2h); support: 'adaptive' (each sample's width h, or wider
-    where the distance to its 15th nearest neighbour is over 4/3 of the median; lengths given
-    at h scale with it) or 'global' (h for every sample, as the paper); default adaptive,
+    where the distance to its 15th nearest neighbour is over 4/3 of the median, and at least
+    3 times the samples' noise where they are noisy; lengths given at h scale with it) or 'global' (h for every sample, as the paper); default adaptive,
     global when h is given; method: 'mls' (the paper's Eq. 2) or 'wls' (Eq. 1);
     iterations: the most MLS alternations; normals: (N, 3) hints of the side each point's
     normal faces (without them the normals are oriented consistently over the cloud).

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <string>
 
 #include "pss/backend/cpu/parallel_for.hpp"
@@ -141,15 +140,23 @@ std::vector<float> regional_noise(std::span<const vec3> unit, int k) {
     for (const auto& other : around) alike += measured[other.first] >= 0.5f * sigma;
     if (double(alike) >= kRegionShare * double(around.size())) regional[std::size_t(q)] = sigma;
   });
-  std::vector<float> out(unit.size());
+  // Each region's σ spreads over the support it asks for, so that the region's edge, whose
+  // queries fall short of the share, is widened too.
+  std::vector<float> spread = regional;
+  for (std::size_t q = 0; q < at.size(); ++q) {
+    if (!(regional[q] > 0)) continue;
+    const float reach = float(2 * kNoiseWidths) * regional[q];
+    thread_local std::vector<std::pair<unsigned, float>> around;
+    around.clear();
+    tree.radiusSearch(&at[q].x, reach * reach, around, nanoflann::SearchParams());
+    for (const auto& other : around) spread[other.first] = std::max(spread[other.first], regional[q]);
+  }
+  std::vector<float> out(unit.size(), 0.0f);
   cpu::parallel_for(std::int64_t(unit.size()), [&](std::int64_t i) {
     unsigned index[kRegionQueries];
-    float d2[kRegionQueries], sigma[kRegionQueries];
+    float d2[kRegionQueries];
     const std::size_t found = tree.knnSearch(&unit[std::size_t(i)].x, kRegionQueries, index, d2);
-    for (std::size_t j = 0; j < found; ++j) sigma[j] = regional[index[j]];
-    const std::size_t agree = std::min<std::size_t>(kRegionAgree, found) - 1;
-    std::nth_element(sigma, sigma + agree, sigma + found, std::greater<float>());
-    out[std::size_t(i)] = sigma[agree];
+    for (std::size_t j = 0; j < found; ++j) out[std::size_t(i)] = std::max(out[std::size_t(i)], spread[index[j]]);
   });
   return out;
 }

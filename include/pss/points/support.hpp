@@ -41,8 +41,8 @@ inline constexpr int kSparseNeighbours = 4;
 // Where the samples about p_i scatter by σ_i about their surface, h_i is at least
 // kNoiseWidths·σ_i: the rule of the global h (spacing.hpp, h over the noise) kept where the
 // noise is, so that a cloud noisy in part is smoothed there and not elsewhere. σ_i is the
-// kRegionAgree-th largest σ of the kRegionQueries noise queries nearest p_i (two must agree,
-// and a sample at the edge of a noisy region still takes its noise). A query's σ counts where
+// largest σ of the kRegionQueries noise queries nearest p_i (a sample at the edge of a noisy
+// region, whose nearest queries are half clean, still takes its noise). A query's σ counts where
 // kRegionShare of the queries within the support it asks for (2·kNoiseWidths·σ), and at least
 // its kRegionQueries nearest, measured at least half of it: a noisy region is as wide as that
 // support, while a tree crown in a LiDAR tile (its returns scatter as noise) or strays strewn
@@ -50,7 +50,6 @@ inline constexpr int kSparseNeighbours = 4;
 // takes none (strays among strays). Without the share, 6.6 % of urban.las widened, up to 6 h,
 // and its trees merged into sheets (docs/paper-notes.md).
 inline constexpr std::size_t kRegionQueries = 5;
-inline constexpr std::size_t kRegionAgree = 2;
 inline constexpr double kRegionShare = 0.67;
 inline constexpr float kNoisySpacing = 2.0f;
 
