@@ -152,8 +152,8 @@ TEST(Noise, ANoisySurfaceMeshesWholeWithTheDefaultH) {
 
 // A cloud noisy in part: a unit sphere whose cap above z = 0.3 (35 % of it) has noise 0.06,
 // 0.55 of the spacing's h. The median noise is the clean part's, so h is the spacing's, and
-// one h meshes the cap into bubbles; the adaptive widths are 3σ on the cap and h on the
-// clean half, and the sphere meshes whole.
+// one h meshes the cap into bubbles; the adaptive widths are 3σ on the cap, to its edge, and
+// h on the clean half, and the sphere meshes whole.
 TEST(Noise, ACloudNoisyInPartIsWidenedWhereTheNoiseIs) {
   constexpr float sigma = 0.06f;
   PointCloud cloud = noisy(test::Sphere{}, 8000, 0);
@@ -170,7 +170,7 @@ TEST(Noise, ACloudNoisyInPartIsWidenedWhereTheNoiseIs) {
   const SupportWidths w = support_widths(cloud.positions, params);
   int cap = 0, cap_off = 0, far = 0, far_off = 0;
   for (std::size_t i = 0; i < clean.size(); ++i) {
-    if (clean[i].z > 0.5f) ++cap, cap_off += std::abs(w.h[i] / (kNoiseWidths * sigma) - 1) > 0.25;
+    if (clean[i].z > 0.3f) ++cap, cap_off += std::abs(w.h[i] / (kNoiseWidths * sigma) - 1) > 0.25;
     if (clean[i].z < 0.0f) ++far, far_off += w.h[i] != params.h;
   }
   EXPECT_LT(cap_off, cap / 50) << "of " << cap << " samples on the noisy cap have a width off 3 sigma by over 25 %";

@@ -210,8 +210,7 @@ SupportWidths support_widths(std::span<const vec3> points, const ProjectionParam
   out.largest = 0;
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (wide[i]) out.h[i] = std::clamp(kSupportWidening * h * (d[i] / median_d), h, widest);
-    if (d[i] <= kNoisySpacing * median_d)  // not a stray among strays
-      out.h[i] = std::max(out.h[i], std::min(widest, float(kNoiseWidths * double(noise[i]) * frame.scale)));
+    out.h[i] = std::max(out.h[i], std::min(widest, float(kNoiseWidths * double(noise[i]) * frame.scale)));
     out.least = std::min(out.least, out.h[i]);
     out.largest = std::max(out.largest, out.h[i]);
   }

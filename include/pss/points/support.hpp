@@ -41,17 +41,17 @@ inline constexpr int kSparseNeighbours = 4;
 // Where the samples about p_i scatter by σ_i about their surface, h_i is at least
 // kNoiseWidths·σ_i: the rule of the global h (spacing.hpp, h over the noise) kept where the
 // noise is, so that a cloud noisy in part is smoothed there and not elsewhere. σ_i is the
-// largest σ of the kRegionQueries noise queries nearest p_i (a sample at the edge of a noisy
-// region, whose nearest queries are half clean, still takes its noise). A query's σ counts where
+// largest σ of the kRegionQueries noise queries nearest p_i, as the regions below leave it
+// (one query's low estimate left bubbles: the σ of the nearest query alone gave a torus noisy
+// on a quarter 135 boundary edges). A query's σ counts where
 // kRegionShare of the queries within the support it asks for (2·kNoiseWidths·σ), and at least
 // its kRegionQueries nearest, measured at least half of it: a noisy region is as wide as that
 // support, while a tree crown in a LiDAR tile (its returns scatter as noise) or strays strewn
-// around a surface are not. A sample whose spacing s_i is over kNoisySpacing times the median
-// takes none (strays among strays). Without the share, 6.6 % of urban.las widened, up to 6 h,
-// and its trees merged into sheets (docs/paper-notes.md).
+// around a surface are not; each region's σ then spreads over the queries within the support
+// it asks for, so that its edge, short of the share, widens too. Without the share, 6.6 % of
+// urban.las widened, up to 6 h, and its trees merged into sheets (docs/paper-notes.md).
 inline constexpr std::size_t kRegionQueries = 5;
 inline constexpr double kRegionShare = 0.67;
-inline constexpr float kNoisySpacing = 2.0f;
 
 // What the command line and the Python module choose when the support is not named: adaptive,
 // unless an h was given, which fixes one width for every sample (the paper).
