@@ -111,7 +111,7 @@ std::vector<float> regional_noise(std::span<const vec3> unit, int k) {
   const UniformGrid grid(unit, 1e-7f, std::max<long long>(4096, (long long)unit.size()));
   const GridView view = grid.view();
   const float cell = 1.0f / view.inv_cell;
-  const std::size_t stride = std::max<std::size_t>(1, unit.size() / kNoiseQueries);
+  const std::size_t stride = noise_query_stride(unit.size());
   std::vector<vec3> at((unit.size() + stride - 1) / stride);
   std::vector<float> measured(at.size());
   cpu::parallel_for(std::int64_t(at.size()), [&](std::int64_t q) {
