@@ -19,7 +19,7 @@ namespace {
 
 using TiledCloudTest = test::CliTest;
 
-float distance_to_box(vec3 p, const Aabb& box) {
+float distance_outside(vec3 p, const Aabb& box) {
   return glm::length(glm::max(glm::max(box.lo - p, p - box.hi), vec3(0.0f)));
 }
 
@@ -48,7 +48,7 @@ TEST_F(TiledCloudTest, EveryPointInOneTileAsTheCloudHoldsItAndEachHaloExact) {
       EXPECT_EQ(p.normals[k], cloud.normals[i]) << "point " << i;
       if (k < p.own) {
         ++seen[i];
-        EXPECT_LE(distance_to_box(p.positions[k], box), 0.0f) << "a tile's own point lies in its box";
+        EXPECT_LE(distance_outside(p.positions[k], box), 0.0f) << "a tile's own point lies in its box";
       } else {
         in_halo.insert(i);
       }
@@ -57,7 +57,7 @@ TEST_F(TiledCloudTest, EveryPointInOneTileAsTheCloudHoldsItAndEachHaloExact) {
     // The halo: exactly the others within `halo` of the box, by brute force.
     std::set<std::uint64_t> expected;
     for (std::size_t i = 0; i < cloud.size(); ++i)
-      if (distance_to_box(cloud.positions[i], box) <= halo) expected.insert(i);
+      if (distance_outside(cloud.positions[i], box) <= halo) expected.insert(i);
     for (std::size_t k = 0; k < p.own; ++k) expected.erase(p.index[k]);
     EXPECT_EQ(in_halo, expected) << "tile " << t;
   }
@@ -68,7 +68,7 @@ TEST_F(TiledCloudTest, EveryPointInOneTileAsTheCloudHoldsItAndEachHaloExact) {
   for (int t = 0; t < tiles.tiles(); t += 5) {
     const TilePoints p = tiles.load(t, wide);
     std::size_t expected = 0;
-    for (const vec3& q : cloud.positions) expected += distance_to_box(q, tiles.tile_box(t)) <= wide;
+    for (const vec3& q : cloud.positions) expected += distance_outside(q, tiles.tile_box(t)) <= wide;
     EXPECT_EQ(p.index.size(), expected) << "tile " << t;
   }
 }

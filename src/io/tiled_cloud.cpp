@@ -22,9 +22,9 @@ struct Record {  // a point as its tile holds it
 };
 static_assert(sizeof(Record) == 32);
 
-float distance_to_box(vec3 p, const Aabb& box) { return glm::length(glm::max(glm::max(box.lo - p, p - box.hi), vec3(0.0f))); }
-
 }  // namespace
+
+float distance_to_box(vec3 p, const Aabb& box) { return glm::length(glm::max(glm::max(box.lo - p, p - box.hi), vec3(0.0f))); }
 
 TiledCloud::TiledCloud(const std::filesystem::path& input, const std::filesystem::path& folder,
                        std::uint64_t points_per_tile, std::size_t buffer_bytes) {

@@ -2,6 +2,9 @@
 // estimate and the adaptive support read (host only). Internal to src/points.
 #pragma once
 
+#include <cmath>
+#include <cstdint>
+#include <limits>
 #include <nanoflann.hpp>
 #include <span>
 
@@ -21,6 +24,38 @@ struct CloudAdaptor {
 };
 
 using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, CloudAdaptor>, CloudAdaptor, 3>;
+
+// The `count` nearest points to `at`, nearest first, those at equal distances in the order of
+// their ids (`id[i]` the id of the tree's point i; empty: i itself); returns how many. The
+// tree's own order breaks ties by how it was built, so a tile and its halo would keep other
+// points than the whole cloud does (issue 28: the tiles' widths are the in-core ones).
+inline std::size_t nearest_by_id(const KdTree& tree, const vec3& at, std::size_t count, unsigned* index, float* d2,
+                                 std::span<const std::uint64_t> id = {}) {
+  struct ById {
+    unsigned* index;
+    float* d2;
+    std::size_t capacity, count = 0;
+    std::span<const std::uint64_t> id;
+    std::uint64_t key(unsigned i) const { return id.empty() ? i : id[i]; }
+    std::size_t size() const { return count; }
+    bool full() const { return count == capacity; }
+    // nanoflann adds a point only when nearer than this: a point at the last one's distance
+    // may still come before it.
+    float worstDist() const { return full() ? std::nextafter(d2[capacity - 1], kInfinity) : kInfinity; }
+    bool addPoint(float d, unsigned i) {
+      std::size_t at = count;
+      while (at > 0 && (d2[at - 1] > d || (d2[at - 1] == d && key(index[at - 1]) > key(i)))) --at;
+      if (at == capacity) return true;
+      for (std::size_t j = std::min(count, capacity - 1); j > at; --j) index[j] = index[j - 1], d2[j] = d2[j - 1];
+      index[at] = i, d2[at] = d;
+      count = std::min(count + 1, capacity);
+      return true;
+    }
+  } result{index, d2, count, 0, id};
+  if (count == 0) return 0;
+  tree.findNeighbors(result, &at.x, nanoflann::SearchParams());
+  return result.count;
+}
 
 // f(i) for every point of the tree, on all cores, in the order of its leaves: queries one
 // after another then walk the same nodes and read the same points, from the cache. In a

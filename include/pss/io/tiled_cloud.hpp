@@ -28,6 +28,9 @@ struct TilePoints {
   std::size_t own = 0;
 };
 
+// How far p lies outside the box (0 within it): a halo holds the points within its width.
+float distance_to_box(vec3 p, const Aabb& box);
+
 class TiledCloud {
  public:
   // Reads `input` (.ply, .xyz, .las: open_point_stream) into tiles of about
