@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "pss/core/error.hpp"
 #include "pss/core/text.hpp"
 
 namespace pss::app {
@@ -29,6 +30,33 @@ CLI::Validator finite_range(double lo, double hi, bool lo_open) {
         return {};
       },
       lo_open && hi == double(FLT_MAX) ? "POSITIVE" : "NUMBER", "finite range");
+}
+
+std::uint64_t parse_memory_size(const std::string& text) {
+  const auto refuse = [&text](const std::string& why) {
+    return Error("--memory " + quote(text) + ": " + why);
+  };
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  errno = 0;
+  const double number = std::strtod(begin, &end);
+  if (end == begin || std::isspace(static_cast<unsigned char>(*begin)) || !std::isfinite(number) || errno == ERANGE)
+    throw refuse("expected a size such as 512M or 8G");
+  std::string unit(end);
+  for (char& c : unit) c = char(std::toupper(static_cast<unsigned char>(c)));
+  double scale = 1;
+  if (!unit.empty() && unit != "B") {
+    const std::string units = "KMGT";
+    const std::size_t power = units.find(unit[0]);
+    const std::string rest = unit.substr(1);
+    if (power == std::string::npos || !(rest.empty() || rest == "B" || rest == "IB"))
+      throw refuse("expected a size such as 512M or 8G");
+    scale = std::ldexp(1.0, 10 * int(power + 1));
+  }
+  const double bytes = number * scale;
+  if (!(bytes >= double(1 << 20)) || bytes > std::ldexp(1.0, 60))
+    throw refuse("expected at least 1M and at most 2^60 bytes");
+  return std::uint64_t(bytes);
 }
 
 CLI::Validator finite_positive() { return finite_range(0, double(FLT_MAX), true); }

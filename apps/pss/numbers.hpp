@@ -6,6 +6,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <cstdint>
 #include <string>
 
 namespace pss::app {
@@ -19,6 +20,11 @@ CLI::Validator finite_number();
 
 // A finite number > 0 that fits a float.
 CLI::Validator finite_positive();
+
+// A size in bytes: a number with an optional K, M, G or T (powers of 1024; KB, KiB and the
+// like too), such as 512M or 1.5G. Throws pss::Error naming --memory for anything else, and
+// for less than 1 MiB or more than 2^60 bytes.
+std::uint64_t parse_memory_size(const std::string& text);
 
 // A flag whose text is parsed by `parse` (which throws pss::Error, e.g. parse_dims):
 // checked while parsing, so a bad value is a usage error before any work.

@@ -32,6 +32,13 @@ std::string format_number(double x) {
   return text;
 }
 
+std::string byte_size(double bytes) {
+  char text[32];
+  const bool gib = bytes >= double(1 << 30);
+  std::snprintf(text, sizeof text, "%.4g %s", bytes / double(gib ? 1 << 30 : 1 << 20), gib ? "GiB" : "MiB");
+  return text;
+}
+
 std::string range_text(double lo, double hi, bool lo_open) {
   const bool no_lo = lo == -double(FLT_MAX), no_hi = hi == double(FLT_MAX);
   if (no_lo && no_hi) return "a finite number";

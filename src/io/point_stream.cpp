@@ -16,6 +16,11 @@ void PointPart::clear() {
   for (ScalarProperty& s : scalars) s.values.clear();
 }
 
+bool has_point_stream(const std::filesystem::path& path) {
+  const std::string ext = io::lowercase_extension(path);
+  return ext == ".ply" || ext == ".xyz" || ext == ".txt" || ext == ".pts" || ext == ".pwn" || ext == ".las";
+}
+
 std::unique_ptr<PointStream> open_point_stream(const std::filesystem::path& path) {
   const std::string ext = io::lowercase_extension(path);
   if (ext == ".ply") return open_ply_stream(path);

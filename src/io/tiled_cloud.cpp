@@ -42,6 +42,7 @@ TiledCloud::TiledCloud(const std::filesystem::path& input, const std::filesystem
         ++points_;
       }
       any_normals = any_normals || !part.normals.empty();
+      colors_ = colors_ || !part.colors.empty();
       for (const vec3& n : part.normals) finite_normals = finite_normals && is_finite(n);
       part.clear();
     }

@@ -20,6 +20,9 @@ std::string printable(std::string_view text, std::size_t max_bytes = kQuotedByte
 // x as messages print it (%g).
 std::string format_number(double x);
 
+// A number of bytes in MiB, or GiB from 1 GiB, four digits at most: "3.291 MiB", "12 GiB".
+std::string byte_size(double bytes);
+
 // The numbers a value must be, as messages name them ("a finite number > 0"): from lo (or
 // above it, lo_open) to hi, where ±FLT_MAX leaves that side unbounded. The CLI's flags and
 // the Python module's arguments say it the same way.

@@ -43,7 +43,10 @@ class PointStream {
   virtual bool mesh_vertices() const { return false; }
 };
 
-// .ply, .xyz (.txt, .pts) or .las, by extension in any case; a file_error for other formats.
+// Whether open_point_stream reads the file's format.
+bool has_point_stream(const std::filesystem::path& path);
+
+// .ply, .xyz (.txt, .pts, .pwn) or .las, by extension in any case; a file_error for other formats.
 std::unique_ptr<PointStream> open_point_stream(const std::filesystem::path& path);
 
 // Every point of `stream` in one cloud (the whole-file readers): positions about the origin

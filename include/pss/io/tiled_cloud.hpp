@@ -43,6 +43,7 @@ class TiledCloud {
   glm::dvec3 origin() const { return origin_; }
   const Aabb& bounds() const { return bounds_; }  // of the positions about the origin
   bool has_normals() const { return normals_; }
+  bool has_colors() const { return colors_; }  // the file's (a tile does not carry them)
   int tiles() const { return int(counts_.x) * counts_.y * counts_.z; }
   std::uint64_t tile_size(int tile) const { return store_->records(tile); }
   Aabb tile_box(int tile) const;  // its cube of the box (its points lie within it)
@@ -58,6 +59,7 @@ class TiledCloud {
   glm::dvec3 origin_{0.0};
   Aabb bounds_;
   bool normals_ = false;
+  bool colors_ = false;
   float side_ = 1;
   ivec3 counts_{1};
   std::unique_ptr<BucketFile> store_;

@@ -1,0 +1,58 @@
+#include "pss/tiles/memory_plan.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <vector>
+
+#include "pss/core/error.hpp"
+#include "pss/core/memory.hpp"
+#include "pss/core/text.hpp"
+#include "pss/io/point_stream.hpp"
+
+namespace pss {
+
+namespace {
+
+// Fewer points a tile and its halo cost more in halo than they hold.
+constexpr std::uint64_t kLeastTilePoints = 4096;
+
+}  // namespace
+
+std::uint64_t default_memory_budget() {
+  const std::int64_t memory = physical_memory_bytes();
+  return memory > 0 ? std::uint64_t(memory) / 2 : std::uint64_t(4) << 30;
+}
+
+std::uint64_t point_count_at_most(const std::filesystem::path& file) {
+  if (const std::uint64_t declared = open_point_stream(file)->declared_count(); declared > 0) return declared;
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw file_error(file, "cannot be opened");
+  std::vector<char> block(std::size_t(1) << 20);
+  std::uint64_t lines = 0;
+  char last = '\n';
+  while (in.read(block.data(), std::streamsize(block.size())) || in.gcount() > 0) {
+    const auto got = std::size_t(in.gcount());
+    lines += std::uint64_t(std::count(block.begin(), block.begin() + std::ptrdiff_t(got), '\n'));
+    last = block[got - 1];
+  }
+  return lines + (last != '\n');
+}
+
+MemoryPlan plan_memory(const std::filesystem::path& file, std::uint64_t budget, const MemoryCosts& costs) {
+  MemoryPlan plan;
+  plan.budget = budget;
+  plan.points = point_count_at_most(file);
+  if (plan.points * costs.in_core <= budget) return plan;
+  plan.tiled = true;
+  plan.buffer_bytes = std::size_t(std::clamp<std::uint64_t>(budget / 8, 1 << 16, std::uint64_t(64) << 20));
+  const std::uint64_t held = plan.points * costs.held + plan.buffer_bytes;
+  // A tile's halo may hold as many points again on each side: four times its own.
+  const std::uint64_t tile_bytes = 4 * costs.tile;
+  if (held + kLeastTilePoints * tile_bytes > budget)
+    throw Error("--memory " + byte_size(double(budget)) + " is too small for " + file.string() + "'s " + std::to_string(plan.points) +
+                " points: it needs at least " + byte_size(double(held + kLeastTilePoints * tile_bytes)));
+  plan.points_per_tile = (budget - held) / tile_bytes;
+  return plan;
+}
+
+}  // namespace pss

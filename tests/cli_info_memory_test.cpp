@@ -1,0 +1,110 @@
+// pss info --memory (issue 28): a cloud that needs more than the budget is read into tiles
+// in $TMPDIR and gives the figures it gives in core, line for line; the tiles' scratch file
+// goes with the run; budgets too small or not sizes are refused with one line.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "support/cli.hpp"
+#include "support/file_bytes.hpp"
+
+namespace pss {
+namespace {
+
+using InfoMemory = test::CliTest;
+
+// The lines of `text` but those starting with one of `except`.
+std::vector<std::string> lines_but(const std::string& text, std::initializer_list<std::string> except) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    bool keep = true;
+    for (const std::string& prefix : except) keep = keep && line.rfind(prefix, 0) != 0;
+    if (keep) out.push_back(line);
+  }
+  return out;
+}
+
+// $TMPDIR set to a folder of the test's while it lives.
+class ScratchFolder {
+ public:
+  explicit ScratchFolder(const std::filesystem::path& path) : path_(path) {
+    std::filesystem::create_directories(path);
+    if (const char* old = std::getenv("TMPDIR")) old_ = old;
+    setenv("TMPDIR", path.c_str(), 1);
+  }
+  ~ScratchFolder() { old_.empty() ? unsetenv("TMPDIR") : setenv("TMPDIR", old_.c_str(), 1); }
+  bool empty() const { return std::filesystem::is_empty(path_); }
+
+ private:
+  std::filesystem::path path_;
+  std::string old_;
+};
+
+// About 34,000 points of a torus with normals, sparser on one side: 3.1 MiB in core.
+TEST_F(InfoMemory, ACloudLargerThanTheBudgetGivesTheInCoreFiguresTileByTile) {
+  const std::string file = write("torus.xyz", test::torus_xyz(60000, true, 1.0));
+  const test::CliResult in_core = test::run_pss("info " + file);
+  ASSERT_EQ(in_core.exit_code, 0) << in_core.err;
+  EXPECT_NE(in_core.out.find("memory          in core"), std::string::npos) << in_core.out;
+  const ScratchFolder scratch(dir_ / "scratch");
+  const test::CliResult tiled = test::run_pss("info " + file + " --memory 3M");
+  ASSERT_EQ(tiled.exit_code, 0) << tiled.err;
+  int tiles = 0;
+  const std::size_t at = tiled.out.find("memory          tile by tile: ");
+  ASSERT_NE(at, std::string::npos) << tiled.out;
+  ASSERT_EQ(std::sscanf(tiled.out.c_str() + at, "memory          tile by tile: %d tiles", &tiles), 1);
+  EXPECT_GT(tiles, 4);
+  EXPECT_EQ(lines_but(tiled.out, {"memory", "normals"}), lines_but(in_core.out, {"memory", "normals"}));
+  EXPECT_NE(tiled.out.find("adaptive h_i    from "), std::string::npos) << tiled.out;
+  EXPECT_NE(tiled.out.find("(with normals)"), std::string::npos) << tiled.out;
+  EXPECT_NE(tiled.out.find("normals         the file's (whether they agree"), std::string::npos) << tiled.out;
+  EXPECT_TRUE(scratch.empty()) << "the tiles' scratch file is left behind";
+}
+
+// Rows 2 apart, each sampled every 0.1: in core the rows' gaps widen the widths; tile by tile
+// the widths are not given, and say why.
+TEST_F(InfoMemory, ACloudOfRowsTileByTileSaysWhyItsWidthsAreNotGiven) {
+  std::string text;
+  for (int r = 0; r < 100; ++r)
+    for (int s = 0; s < 400; ++s) text += std::to_string(0.1 * s) + " " + std::to_string(2.0 * r) + " 0\n";
+  const std::string file = write("rows.xyz", text);
+  const ScratchFolder scratch(dir_ / "scratch");
+  const test::CliResult tiled = test::run_pss("info " + file + " --memory 3M");
+  ASSERT_EQ(tiled.exit_code, 0) << tiled.err;
+  EXPECT_NE(tiled.out.find("adaptive h_i    not given: the cloud is sampled in rows"), std::string::npos) << tiled.out;
+  EXPECT_NE(tiled.out.find("suggested h"), std::string::npos) << tiled.out;
+  EXPECT_TRUE(scratch.empty());
+}
+
+TEST_F(InfoMemory, BudgetsThatAreNoSizeOrTooSmallAreRefused) {
+  const std::string file = write("torus.xyz", test::torus_xyz(60000, true, 0));
+  for (const char* bad : {"2x", "nan", "-5M", "1K", "inf", "M", "3MM", "1e300G"}) {
+    SCOPED_TRACE(bad);
+    const test::CliResult r = test::run_pss("info " + file + " --memory " + bad);
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_EQ(test::line_count(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("--memory"), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+  }
+  const test::CliResult small = test::run_pss("info " + file + " --memory 1M");
+  EXPECT_NE(small.exit_code, 0);
+  EXPECT_EQ(test::line_count(small.err), 1) << small.err;
+  EXPECT_NE(small.err.find("--memory 1 MiB is too small for " + file), std::string::npos) << small.err;
+  EXPECT_TRUE(small.out.empty()) << small.out;
+  // Sizes in every unit read the same: 4096K, 4M and 4MiB are one budget.
+  for (const char* same : {"4096K", "4M", "4MiB", "4mb", "0.00390625G"}) {
+    SCOPED_TRACE(same);
+    const test::CliResult r = test::run_pss("info " + file + " --memory " + same);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("--memory 4 MiB)"), std::string::npos) << r.out;
+  }
+}
+
+}  // namespace
+}  // namespace pss
