@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <sys/wait.h>
 #include <filesystem>
 #include <sstream>
 #include <string>
@@ -104,6 +105,34 @@ TEST_F(InfoMemory, BudgetsThatAreNoSizeOrTooSmallAreRefused) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("--memory 4 MiB)"), std::string::npos) << r.out;
   }
+}
+
+// A temporary folder that is none, and a disk that fills (a file-size limit): one line, no
+// figures, and no scratch file left.
+TEST_F(InfoMemory, NoScratchFolderOrAFullDiskIsOneLineAndLeavesNothing) {
+  const std::string file = write("torus.xyz", test::torus_xyz(60000, true, 0));
+  const std::string out = path("out.txt"), err = path("err.txt");
+  // pss run through the shell with `before` ahead of it: its exit status, or -1 if a signal
+  // ended it.
+  const auto run = [&](const std::string& before) {
+    const int status = std::system((before + std::string(PSS_CLI) + " info " + file + " --memory 3M >" + out +
+                                    " 2>" + err).c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  };
+  EXPECT_EQ(run("TMPDIR=" + (dir_ / "none").string() + " "), 1);
+  EXPECT_EQ(test::line_count(read(err)), 1) << read(err);
+  EXPECT_NE(read(err).find("the temporary folder '" + (dir_ / "none").string() + "'"), std::string::npos) << read(err);
+  EXPECT_TRUE(read(out).empty()) << read(out);
+
+  const ScratchFolder scratch(dir_ / "scratch");
+  // 256 KiB at most a file (the tiles' store needs 1 MiB): writing past it fails, an error
+  // and not the signal that would kill pss and leave the file.
+  EXPECT_EQ(run("ulimit -f 256; "), 1);
+  const std::string message = read(err);
+  EXPECT_EQ(test::line_count(message), 1) << message;
+  EXPECT_NE(message.find("File too large"), std::string::npos) << message;
+  EXPECT_TRUE(read(out).empty());
+  EXPECT_TRUE(scratch.empty()) << "the scratch file is left behind";
 }
 
 }  // namespace

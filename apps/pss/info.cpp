@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
 #include <string>
 
 #include "commands.hpp"
@@ -136,7 +135,7 @@ void print_cloud_in_core(const std::string& path, const MemoryPlan& plan) {
 
 // A cloud larger than the budget, tile by tile (issue 28): the same figures as in core.
 void print_cloud_in_tiles(const std::string& path, const MemoryPlan& plan) {
-  const TiledCloud tiles(path, std::filesystem::temp_directory_path(), plan.points_per_tile, plan.buffer_bytes);
+  const TiledCloud tiles(path, scratch_folder(), plan.points_per_tile, plan.buffer_bytes);
   CloudSummary c;
   c.points = tiles.size();
   c.normals = tiles.has_normals();

@@ -1,5 +1,6 @@
 // pss: extract and render point set surfaces (Hardware-accelerated Extraction and Rendering
 // of Point Set Surfaces, §3–§5) on CPUs and GPUs.
+#include <csignal>
 #include <cstdio>
 #if defined(__GLIBC__)
 #include <malloc.h>
@@ -18,6 +19,9 @@ int main(int argc, char** argv) {
   // keeps what one phase freed through the next: 60 MB more at 10^6 points (issue 28).
   mallopt(M_MMAP_THRESHOLD, 256 * 1024);
 #endif
+  // Past a file-size limit (ulimit -f) a write fails with EFBIG, an error that names the file
+  // and removes what was written, instead of a signal that kills pss with its files half written.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"pss: point set surfaces of point clouds and volumes, on CPUs and GPUs"};
   pss::app::configure_app(app, pss::app::Action::run);
   pss::app::add_view_command(app);

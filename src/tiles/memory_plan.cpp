@@ -1,6 +1,7 @@
 #include "pss/tiles/memory_plan.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <fstream>
 #include <vector>
 
@@ -21,6 +22,17 @@ constexpr std::uint64_t kLeastTilePoints = 4096;
 std::uint64_t default_memory_budget() {
   const std::int64_t memory = physical_memory_bytes();
   return memory > 0 ? std::uint64_t(memory) / 2 : std::uint64_t(4) << 30;
+}
+
+std::filesystem::path scratch_folder() {
+  std::error_code error;
+  const std::filesystem::path folder = std::filesystem::temp_directory_path(error);
+  if (error) {
+    const char* named = std::getenv("TMPDIR");
+    throw Error("the temporary folder " + quote(named ? named : "/tmp") + " for the tiles is no folder: " +
+                error.message());
+  }
+  return folder;
 }
 
 std::uint64_t point_count_at_most(const std::filesystem::path& file) {

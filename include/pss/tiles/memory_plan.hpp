@@ -27,6 +27,10 @@ struct MemoryPlan {
 // (physical_memory_bytes), or 4 GiB where that is unknown.
 std::uint64_t default_memory_budget();
 
+// The folder of the tiles' scratch files: $TMPDIR, else /tmp (temp_directory_path). Throws
+// Error naming it where it is no folder.
+std::filesystem::path scratch_folder();
+
 // The point count a file declares (PLY, LAS), or for a text file its number of lines.
 std::uint64_t point_count_at_most(const std::filesystem::path& file);
 
