@@ -54,8 +54,11 @@ TEST_F(InfoMemory, ACloudLargerThanTheBudgetGivesTheInCoreFiguresTileByTile) {
   ASSERT_EQ(in_core.exit_code, 0) << in_core.err;
   EXPECT_NE(in_core.out.find("memory          in core"), std::string::npos) << in_core.out;
   const ScratchFolder scratch(dir_ / "scratch");
-  const test::CliResult tiled = test::run_pss("info " + file + " --memory 3M");
+  const test::CliResult tiled = test::run_pss("info " + file + " --memory 3M --progress always");
   ASSERT_EQ(tiled.exit_code, 0) << tiled.err;
+  // Each long phase tells a log when it is done.
+  for (const char* phase : {"reading into tiles: done", "spacing: done", "support widths: done"})
+    EXPECT_NE(tiled.err.find(phase), std::string::npos) << tiled.err;
   int tiles = 0;
   const std::size_t at = tiled.out.find("memory          tile by tile: ");
   ASSERT_NE(at, std::string::npos) << tiled.out;

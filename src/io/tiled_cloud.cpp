@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <optional>
 
 #include "pss/core/error.hpp"
+#include "pss/core/progress.hpp"
 #include "pss/io/point_cloud_file.hpp"
 #include "pss/io/point_stream.hpp"
 #include "pss/points/cloud.hpp"
@@ -33,8 +35,12 @@ TiledCloud::TiledCloud(const std::filesystem::path& input, const std::filesystem
   bool any_normals = false, finite_normals = true;
   {
     const auto stream = open_point_stream(input);
+    // A text file declares no count: its first reading shows none.
+    std::optional<Progress> progress;
+    if (stream->declared_count() > 0) progress.emplace("reading (the box)", std::int64_t(stream->declared_count()));
     PointPart part;
     while (stream->read(part, kPart) > 0) {
+      if (progress) progress->advance(std::int64_t(part.size()));
       for (const glm::dvec3& w : part.world) {
         if (points_ == 0) lo = hi = w;
         lo = glm::min(lo, w);
@@ -67,9 +73,11 @@ TiledCloud::TiledCloud(const std::filesystem::path& input, const std::filesystem
 
   // Pass 2: each point to its tile, as the in-core cloud would hold it.
   const auto stream = open_point_stream(input);
+  Progress progress("reading into tiles", std::int64_t(points_));
   PointPart part;
   std::uint64_t index = 0;
   while (stream->read(part, kPart) > 0) {
+    progress.advance(std::int64_t(part.size()));
     for (std::size_t k = 0; k < part.size(); ++k, ++index) {
       Record r{index, vec3(part.world[k] - origin_), vec3(0.0f)};
       if (normals_) r.normal = tidy_normal(part.normals[k]);

@@ -6,6 +6,7 @@
 
 #include "pss/backend/cpu/parallel_for.hpp"
 #include "pss/core/error.hpp"
+#include "pss/core/progress.hpp"
 #include "pss/points/unit_frame.hpp"
 #include "pss/spatial/uniform_grid.hpp"
 
@@ -23,6 +24,7 @@ SpacingEstimate estimate_spacing(const TiledCloud& cloud, int k, std::size_t max
   const std::size_t queries = std::size_t((n + stride - 1) / stride);
   std::vector<QuerySpacing> results(queries);
   const std::size_t noise_stride = noise_query_stride(queries);
+  Progress progress("spacing", std::int64_t(n));
   for (int t = 0; t < cloud.tiles(); ++t) {
     if (cloud.tile_size(t) == 0) continue;
     const Aabb box = cloud.tile_box(t);
@@ -50,6 +52,7 @@ SpacingEstimate estimate_spacing(const TiledCloud& cloud, int k, std::size_t max
       });
       if (std::all_of(held.begin(), held.end(), [](char h) { return h != 0; })) break;
     }
+    progress.advance(std::int64_t(cloud.tile_size(t)));
   }
   return spacing_of(results, k, scale);
 }
