@@ -66,9 +66,9 @@ struct CloudSummary {
 };
 
 // Bytes a point (tiles/memory_plan.hpp): in core, measured at 88 on a 10^6-point torus; beside
-// the tiles, each point's spacing and width; a tile's point, its record, unit position,
+// the tiles, each point's spacing, its least neighbour's and its width; a tile's point, its record, unit position,
 // margin, the widths' steps and the trees over it.
-constexpr MemoryCosts kInfoCosts{96, 8, 128};
+constexpr MemoryCosts kInfoCosts{96, 12, 128};
 
 ProjectionParams adaptive_params(const SpacingEstimate& s) {
   ProjectionParams params = ProjectionParams::from_h(float(s.suggested_h));

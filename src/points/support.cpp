@@ -147,6 +147,12 @@ void SupportSteps::measure_spacing(bool rows, Progress* progress) {
   complete_ = std::move(complete);
 }
 
+void SupportSteps::use_spacing(std::vector<float> spacing, std::vector<float> least) {
+  spacing_ = std::move(spacing);
+  least_ = std::move(least);
+  complete_.assign(set_.unit.size(), 1);
+}
+
 // A sample widens where it lies on a sparse surface (support.hpp): sparse, with no denser
 // sample among its neighbours, flat, and kSparseNeighbours of its neighbours alike.
 void SupportSteps::find_wide(float median_spacing) {

@@ -71,7 +71,7 @@ SupportWidths support_widths(const TiledCloud& cloud, const ProjectionParams& pa
   const std::size_t queries = std::size_t((n + stride - 1) / stride);
 
   // The first pass: each sample's spacing, and σ at the noise queries.
-  std::vector<float> spacing(std::size_t(n), 0.0f);
+  std::vector<float> spacing(std::size_t(n), 0.0f), least(std::size_t(n), 0.0f);
   std::vector<vec3> at(queries);
   std::vector<float> measured(queries);
   std::uint64_t row_like = 0;
@@ -102,6 +102,7 @@ SupportWidths support_widths(const TiledCloud& cloud, const ProjectionParams& pa
       if (!std::all_of(held.begin(), held.end(), [](char c) { return c != 0; })) return false;
       for (std::size_t i = 0; i < own; ++i) {
         spacing[std::size_t(tile.points.index[i])] = steps.spacing()[i];
+        least[std::size_t(tile.points.index[i])] = steps.least()[i];
         row_like += steps.row_like(i);
       }
       return true;
@@ -111,16 +112,21 @@ SupportWidths support_widths(const TiledCloud& cloud, const ProjectionParams& pa
   if (2 * row_like >= n)
     throw Error("the cloud is sampled in rows (most samples' neighbours lie along a curve): its adaptive widths are "
                 "worked out in core only");
-  const float median_d = median_of(std::move(spacing));
+  const float median_d = median_of(spacing);
   if (!(median_d > 0)) return out;  // most samples coincide with k others: no spacing to follow
   const float widest = widest_width(h, params, frame.diagonal);
   const RegionalNoise noise(std::move(at), std::move(measured));
 
-  // The second pass: which samples widen, and each width.
+  // The second pass: which samples widen, and each width, from the first's spacings.
   Progress progress("support widths", std::int64_t(n));
   for_each_tile(cloud, frame, progress, [&](const UnitTile& tile) {
     SupportSteps steps(tile.set(n, frame.scale));
-    steps.measure_spacing(false);
+    std::vector<float> set_spacing(tile.unit.size()), set_least(tile.unit.size());
+    for (std::size_t i = 0; i < tile.unit.size(); ++i) {
+      set_spacing[i] = spacing[std::size_t(tile.points.index[i])];
+      set_least[i] = least[std::size_t(tile.points.index[i])];
+    }
+    steps.use_spacing(std::move(set_spacing), std::move(set_least));
     steps.find_wide(median_d);
     const std::size_t own = tile.points.own;
     for (std::size_t i = 0; i < own; ++i)

@@ -39,7 +39,10 @@ class SupportSteps {
   // s_i and the least d_k among p_i's neighbours over s_i (support.hpp), for every sample;
   // with `rows` (in core only), a cloud sampled in rows takes each row's gap (rows.hpp).
   void measure_spacing(bool rows, Progress* progress = nullptr);
+  // Or s_i and least_i as an earlier pass found them, one per sample of the set (tiles/support.hpp).
+  void use_spacing(std::vector<float> spacing, std::vector<float> least);
   std::span<const float> spacing() const { return spacing_; }  // s_i, in the input's units
+  std::span<const float> least() const { return least_; }
   float rows_median() const { return rows_median_; }          // in a cloud of rows, the plain d_k's median; else 0
   // Whether p_i's d_k grows along a curve (rows.hpp's first test).
   bool row_like(std::size_t i) const;
