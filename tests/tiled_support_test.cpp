@@ -98,6 +98,19 @@ TEST_F(TiledSupportTest, TheNoiseWidensInTilesAsInCore) {
   EXPECT_GT(widened(w, float(e.median_kth)), 2000u) << "the noise does not widen: no test";
 }
 
+// The same sphere 10^30 across (unit_frame.hpp takes any scale): a halo point's distance to
+// its tile, squared in float, overflowed there and the halo lost it.
+TEST_F(TiledSupportTest, ACloudOfHugeCoordinatesWidensInTilesAsInCore) {
+  test::SampleOptions o;
+  o.count = 6000;
+  PointCloud cloud = test::sample(test::Sphere{}, o);
+  for (std::size_t i = 0; i < cloud.size(); i += 5) cloud.positions[i] *= 1.0f + 0.03f * float(i % 7);  // some noise
+  for (vec3& p : cloud.positions) p *= 1e30f;
+  const std::string file = write("huge.xyz", xyz(cloud.positions));
+  const SpacingEstimate e = estimate_spacing(read_point_cloud(file).positions);
+  expect_tiles_as_in_core(file, dir_, float(e.suggested_h), {300});
+}
+
 // A square lattice, one corner 3 times sparser: every sample's k nearest end among ties,
 // which a tile's tree and the whole cloud's would break differently.
 TEST_F(TiledSupportTest, NeighboursAtEqualDistancesAreTheSameInTilesAsInCore) {

@@ -146,7 +146,7 @@ void print_cloud_in_tiles(const std::string& path, const MemoryPlan& plan) {
     c.spacing = estimate_spacing(tiles);
     try {
       c.widths = support_widths(tiles, adaptive_params(c.spacing));
-    } catch (const Error& e) {
+    } catch (const RowsNotTiled& e) {
       c.widths_refused = e.what();
     }
   }

@@ -22,6 +22,9 @@ int main(int argc, char** argv) {
   // Past a file-size limit (ulimit -f) a write fails with EFBIG, an error that names the file
   // and removes what was written, instead of a signal that kills pss with its files half written.
   std::signal(SIGXFSZ, SIG_IGN);
+  // A closed pipe (pss info … | head) makes a write fail instead of killing pss with its
+  // scratch files left behind.
+  std::signal(SIGPIPE, SIG_IGN);
   CLI::App app{"pss: point set surfaces of point clouds and volumes, on CPUs and GPUs"};
   pss::app::configure_app(app, pss::app::Action::run);
   pss::app::add_view_command(app);

@@ -26,7 +26,11 @@ static_assert(sizeof(Record) == 32);
 
 }  // namespace
 
-float distance_to_box(vec3 p, const Aabb& box) { return glm::length(glm::max(glm::max(box.lo - p, p - box.hi), vec3(0.0f))); }
+// In double: a float's square overflows past ~1.8e19, and a halo point 1e30 away would
+// read as infinitely far.
+double distance_to_box(vec3 p, const Aabb& box) {
+  return glm::length(glm::max(glm::max(glm::dvec3(box.lo) - glm::dvec3(p), glm::dvec3(p) - glm::dvec3(box.hi)), glm::dvec3(0.0)));
+}
 
 TiledCloud::TiledCloud(const std::filesystem::path& input, const std::filesystem::path& folder,
                        std::uint64_t points_per_tile, std::size_t buffer_bytes) {
@@ -128,7 +132,7 @@ TilePoints TiledCloud::load(int tile, float halo) const {
         Record r;
         std::memcpy(&r, block.data() + k, sizeof r);
         if (own) add(r);
-        else if (distance_to_box(r.position, box) <= halo) near.push_back(r);
+        else if (distance_to_box(r.position, box) <= double(halo)) near.push_back(r);
       }
     });
   };

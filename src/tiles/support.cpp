@@ -37,7 +37,7 @@ UnitTile load_unit(const TiledCloud& cloud, int tile, float halo, const UnitFram
     const Aabb box = cloud.tile_box(tile);
     t.margin.resize(t.unit.size());
     for (std::size_t i = 0; i < t.unit.size(); ++i)
-      t.margin[i] = float((double(halo) - double(distance_to_box(t.points.positions[i], box))) / frame.scale *
+      t.margin[i] = float((double(halo) - distance_to_box(t.points.positions[i], box)) / frame.scale *
                           (1 - 1e-5));
   }
   return t;
@@ -110,7 +110,7 @@ SupportWidths support_widths(const TiledCloud& cloud, const ProjectionParams& pa
   }
   // As rows.hpp's first test: the in-core widths look for rows only where it holds.
   if (2 * row_like >= n)
-    throw Error("the cloud is sampled in rows (most samples' neighbours lie along a curve): its adaptive widths are "
+    throw RowsNotTiled("the cloud is sampled in rows (most samples' neighbours lie along a curve): its adaptive widths are "
                 "worked out in core only");
   const float median_d = median_of(spacing);
   if (!(median_d > 0)) return out;  // most samples coincide with k others: no spacing to follow

@@ -29,7 +29,7 @@ struct TilePoints {
 };
 
 // How far p lies outside the box (0 within it): a halo holds the points within its width.
-float distance_to_box(vec3 p, const Aabb& box);
+double distance_to_box(vec3 p, const Aabb& box);
 
 class TiledCloud {
  public:
