@@ -83,6 +83,14 @@ SupportSteps::SupportSteps(const SampleSet& set)
 
 SupportSteps::~SupportSteps() = default;
 
+std::size_t SupportSteps::found_in_cloud(std::size_t count) const {
+  return std::size_t(std::min<std::uint64_t>(count, set_.cloud_size));
+}
+
+bool SupportSteps::within_margin(std::size_t i, float d2) const {
+  return set_.margin.empty() || std::sqrt(d2) <= set_.margin[i];
+}
+
 bool SupportSteps::row_like(std::size_t i) const { return farthest_[i] > points_detail::kRowGrowth * kth_[i]; }
 
 // For every sample, s_i: the median of d_k over it and its k nearest neighbours, d_k(j) the
@@ -99,8 +107,6 @@ void SupportSteps::measure_spacing(bool rows, Progress* progress) {
   const std::size_t n = unit.size();
   const auto k = std::size_t(k_);
   // How many neighbours a query finds when the set holds them all.
-  const auto found_in_cloud = [&](std::size_t count) { return std::size_t(std::min<std::uint64_t>(count, set_.cloud_size)); };
-  const auto within_margin = [&](std::size_t i, float d2) { return set_.margin.empty() || std::sqrt(d2) <= set_.margin[i]; };
   kth_.assign(n, 0.0f), farthest_.assign(n, 0.0f), complete_.assign(n, 0);
   // 2k + 1 below: each query finds its own point at distance 0; the 2k-th nearest tells a
   // row from a surface (rows.hpp).
@@ -160,8 +166,6 @@ void SupportSteps::find_wide(float median_spacing) {
   const points_detail::KdTree& tree = tree_->tree;
   const std::size_t n = unit.size();
   const auto k = std::size_t(k_);
-  const auto found_in_cloud = [&](std::size_t count) { return std::size_t(std::min<std::uint64_t>(count, set_.cloud_size)); };
-  const auto within_margin = [&](std::size_t i, float d2) { return set_.margin.empty() || std::sqrt(d2) <= set_.margin[i]; };
   std::vector<char> sparse(n, 0), sparse_known(complete_);
   points_detail::parallel_for_in_tree_order(tree, [&](std::int64_t s) {
     const auto i = std::size_t(s);

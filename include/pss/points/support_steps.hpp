@@ -55,6 +55,11 @@ class SupportSteps {
   bool complete(std::size_t i) const { return complete_[i] != 0; }
 
  private:
+  // How many neighbours a query for `count` finds where the set holds them all.
+  std::size_t found_in_cloud(std::size_t count) const;
+  // Whether the set holds every sample within √d2 of sample i.
+  bool within_margin(std::size_t i, float d2) const;
+
   struct Tree;
   SampleSet set_;
   int k_ = 0;
