@@ -277,8 +277,8 @@ SupportWidths support_widths(std::span<const vec3> points, const ProjectionParam
     Progress progress("support widths", 2 * std::int64_t(unit.size()));
     steps.measure_spacing(true, &progress);
   }
-  const std::vector<float> spacing(steps.spacing().begin(), steps.spacing().end());
-  const float median_d = steps.rows_median() > 0 ? steps.rows_median() : median_of(spacing);
+  std::vector<float> spacing(steps.spacing().begin(), steps.spacing().end());
+  const float median_d = steps.rows_median() > 0 ? steps.rows_median() : median_of(std::move(spacing));
   if (!(median_d > 0)) return out;  // most samples coincide with k others: no spacing to follow
   const float widest = widest_width(h, params, frame.diagonal);
   steps.find_wide(median_d);

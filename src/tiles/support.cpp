@@ -82,22 +82,22 @@ SupportWidths support_widths(const TiledCloud& cloud, const ProjectionParams& pa
       // query_spacing looks farther until it finds k neighbours: none here yet.
       if (tile.unit.size() <= std::size_t(steps.k())) return false;
       steps.measure_spacing(false);
+      const std::size_t own = tile.points.own;
+      for (std::size_t i = 0; i < own; ++i)
+        if (!steps.complete(i)) return false;  // before the noise's grid: this halo is too narrow anyway
       const UniformGrid grid(tile.unit, 1e-7f, std::max<long long>(4096, (long long)tile.unit.size()));
       const GridView view = grid.view();
       const float cell = 1.0f / view.inv_cell;
-      const std::size_t own = tile.points.own;
-      std::vector<char> held(own);
+      std::vector<char> held(own, 1);
       cpu::parallel_for(std::int64_t(own), [&](std::int64_t s) {
         const auto i = std::size_t(s);
-        bool complete = steps.complete(i);
         const std::uint64_t id = tile.points.index[i];
         if (id % stride == 0) {
           const QuerySpacing q = query_spacing(view, cell, tile.unit[i], steps.k(), true);
           at[std::size_t(id / stride)] = tile.unit[i];
           measured[std::size_t(id / stride)] = measured_noise(q);
-          complete = complete && (tile.margin.empty() || q.reach <= tile.margin[i]);
+          held[i] = tile.margin.empty() || q.reach <= tile.margin[i];
         }
-        held[i] = complete;
       });
       if (!std::all_of(held.begin(), held.end(), [](char c) { return c != 0; })) return false;
       for (std::size_t i = 0; i < own; ++i) {
