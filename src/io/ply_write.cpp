@@ -1,15 +1,18 @@
-// write_ply: binary little-endian, the layout Open3D, PCL and MeshLab read.
+// The PLY writer (write_ply, PointCloudWriter): binary little-endian, the layout Open3D, PCL
+// and MeshLab read.
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "pss/core/error.hpp"
-#include "pss/io/output_file.hpp"
 #include "pss/io/ply.hpp"
+#include "pss/io/point_cloud_writer.hpp"
 #include "ply_types.hpp"
+#include "point_encoders.hpp"
 #include "text.hpp"
 
 namespace pss {
@@ -43,16 +46,16 @@ char* store_scalar(char* out, double v, Scalar type) {
 // The names the scalars are written under. One that an extra property also has (an input's
 // own 'status' beside pss project's) becomes input_NAME, prefixed again while taken, so that
 // no reader has to choose between two properties of one name.
-std::vector<std::string> scalar_names(const PointCloud& cloud, std::span<const PlyIntProperty> extra) {
+std::vector<std::string> scalar_names(const PointsLayout& layout) {
   const auto in_extra = [&](const std::string& name) {
-    return std::any_of(extra.begin(), extra.end(), [&](const PlyIntProperty& p) { return p.name == name; });
+    return std::find(layout.extra.begin(), layout.extra.end(), name) != layout.extra.end();
   };
   const auto in_scalars = [&](const std::string& name) {
-    return std::any_of(cloud.scalars.begin(), cloud.scalars.end(),
+    return std::any_of(layout.scalars.begin(), layout.scalars.end(),
                        [&](const ScalarProperty& s) { return s.name == name; });
   };
   std::vector<std::string> names;
-  for (const ScalarProperty& s : cloud.scalars) {
+  for (const ScalarProperty& s : layout.scalars) {
     std::string name = s.name;
     if (in_extra(name)) {
       name = "input_" + name;
@@ -74,76 +77,79 @@ void check_names(const fs::path& path, const std::vector<std::string_view>& name
   }
 }
 
+class PlyEncoder final : public PointsEncoder {
+ public:
+  PlyEncoder(const fs::path& path, const PointsLayout& layout)
+      : layout_(layout), scalar_names_(scalar_names(layout)), recentred_(layout.has_origin()) {
+    std::vector<std::string_view> names = {"x", "y", "z"};
+    if (layout_.normals) names.insert(names.end(), {"nx", "ny", "nz"});
+    if (layout_.colors) names.insert(names.end(), {"red", "green", "blue"});
+    names.insert(names.end(), scalar_names_.begin(), scalar_names_.end());
+    names.insert(names.end(), layout_.extra.begin(), layout_.extra.end());
+    check_names(path, names);
+    stride_ = (recentred_ ? 24 : 12) + (layout_.normals ? 12 : 0) + (layout_.colors ? 3 : 0) + 4 * layout_.extra.size();
+    for (const ScalarProperty& s : layout_.scalars) stride_ += size_of(s.type);
+  }
+
+  void write_header(std::ostream& out) override {
+    out << "ply\nformat binary_little_endian 1.0\ncomment written by pss\nelement vertex " << layout_.count << "\n";
+    for (const char* axis : {"x", "y", "z"}) out << "property " << (recentred_ ? "double " : "float ") << axis << "\n";
+    if (layout_.normals) out << "property float nx\nproperty float ny\nproperty float nz\n";
+    if (layout_.colors) out << "property uchar red\nproperty uchar green\nproperty uchar blue\n";
+    for (std::size_t k = 0; k < scalar_names_.size(); ++k)
+      out << "property " << name_of(layout_.scalars[k].type) << " " << scalar_names_[k] << "\n";
+    for (const std::string& name : layout_.extra) out << "property int " << name << "\n";
+    out << "end_header\n";
+  }
+
+  // Records go out in chunks: one write per chunk, without a second copy of a large part.
+  void write(std::ostream& out, const PointCloud& part, std::span<const PlyIntProperty> extra) override {
+    const std::size_t n = part.size();
+    constexpr std::size_t kChunk = 1 << 16;
+    std::vector<char> buffer(std::min(n, kChunk) * stride_);
+    for (std::size_t begin = 0; begin < n; begin += kChunk) {
+      const std::size_t end = std::min(n, begin + kChunk);
+      char* o = buffer.data();
+      for (std::size_t i = begin; i < end; ++i) o = store_record(o, part, extra, i);
+      out.write(buffer.data(), o - buffer.data());
+    }
+  }
+
+ private:
+  char* store_record(char* o, const PointCloud& part, std::span<const PlyIntProperty> extra, std::size_t i) const {
+    if (recentred_) {
+      const glm::dvec3 p = part.world(i);
+      for (int k = 0; k < 3; ++k) o = store_little_endian(o, p[k]);
+    } else {
+      for (int k = 0; k < 3; ++k) o = store_little_endian(o, part.positions[i][k]);
+    }
+    if (layout_.normals)
+      for (int k = 0; k < 3; ++k) o = store_little_endian(o, part.normals[i][k]);
+    if (layout_.colors)
+      for (int k = 0; k < 3; ++k) o = store_little_endian(o, part.colors[i][k]);
+    for (std::size_t k = 0; k < layout_.scalars.size(); ++k)
+      o = store_scalar(o, part.scalars[k].values[i], layout_.scalars[k].type);
+    for (const PlyIntProperty& p : extra) o = store_little_endian(o, p.values[i]);
+    return o;
+  }
+
+  PointsLayout layout_;
+  std::vector<std::string> scalar_names_;
+  // A cloud away from the world's origin (cloud.hpp) is written in double, the origin added.
+  bool recentred_;
+  std::size_t stride_ = 0;  // bytes a record
+};
+
 }  // namespace
 
+std::unique_ptr<PointsEncoder> ply_encoder(const fs::path& path, const PointsLayout& layout) {
+  return std::make_unique<PlyEncoder>(path, layout);
+}
+
 void write_ply(const fs::path& path, const PointCloud& cloud, std::span<const PlyIntProperty> extra) {
-  const std::size_t n = cloud.size();
-  if (cloud.has_normals() && cloud.normals.size() != n)
-    throw file_error(path, "cannot write: " + std::to_string(n) + " positions but " +
-                               std::to_string(cloud.normals.size()) + " normals");
-  if (cloud.has_colors() && cloud.colors.size() != n)
-    throw file_error(path, "cannot write: " + std::to_string(n) + " positions but " +
-                               std::to_string(cloud.colors.size()) + " colours");
-  const auto check_size = [&](std::size_t values, const std::string& name) {
-    if (values != n)
-      throw file_error(path, "cannot write: " + std::to_string(n) + " positions but " + std::to_string(values) +
-                                 " values of " + quote(name));
-  };
-  for (const ScalarProperty& s : cloud.scalars) {
-    check_size(s.values.size(), s.name);
-    for (const double v : s.values)
-      if (!as_type(v, s.type))
-        throw file_error(path, "cannot write: value " + text_of(v) + " of " + quote(s.name) +
-                                   " does not fit its type " + std::string(name_of(s.type)));
-  }
-  for (const PlyIntProperty& p : extra) check_size(p.values.size(), p.name);
-  const std::vector<std::string> scalars = scalar_names(cloud, extra);
-  std::vector<std::string_view> names = {"x", "y", "z"};
-  if (cloud.has_normals()) names.insert(names.end(), {"nx", "ny", "nz"});
-  if (cloud.has_colors()) names.insert(names.end(), {"red", "green", "blue"});
-  names.insert(names.end(), scalars.begin(), scalars.end());
-  for (const PlyIntProperty& p : extra) names.push_back(p.name);
-  check_names(path, names);
-
-  // A cloud away from the world's origin (cloud.hpp) is written in double, the origin added.
-  const bool recentred = cloud.has_origin();
-  OutputFile file(path);
-  std::ostream& out = file.stream();
-  out << "ply\nformat binary_little_endian 1.0\ncomment written by pss\nelement vertex " << n << "\n";
-  for (const char* axis : {"x", "y", "z"}) out << "property " << (recentred ? "double " : "float ") << axis << "\n";
-  if (cloud.has_normals()) out << "property float nx\nproperty float ny\nproperty float nz\n";
-  if (cloud.has_colors()) out << "property uchar red\nproperty uchar green\nproperty uchar blue\n";
-  for (std::size_t k = 0; k < scalars.size(); ++k)
-    out << "property " << name_of(cloud.scalars[k].type) << " " << scalars[k] << "\n";
-  for (const PlyIntProperty& p : extra) out << "property int " << p.name << "\n";
-  out << "end_header\n";
-
-  // Records go out in chunks: one write per chunk, without a second copy of a large cloud.
-  std::size_t stride =
-      (recentred ? 24 : 12) + (cloud.has_normals() ? 12 : 0) + (cloud.has_colors() ? 3 : 0) + 4 * extra.size();
-  for (const ScalarProperty& s : cloud.scalars) stride += size_of(s.type);
-  constexpr std::size_t kChunk = 1 << 16;
-  std::vector<char> buffer(std::min(n, kChunk) * stride);
-  for (std::size_t begin = 0; begin < n; begin += kChunk) {
-    const std::size_t end = std::min(n, begin + kChunk);
-    char* o = buffer.data();
-    for (std::size_t i = begin; i < end; ++i) {
-      if (recentred) {
-        const glm::dvec3 p = cloud.world(i);
-        for (int k = 0; k < 3; ++k) o = store_little_endian(o, p[k]);
-      } else {
-        for (int k = 0; k < 3; ++k) o = store_little_endian(o, cloud.positions[i][k]);
-      }
-      if (cloud.has_normals())
-        for (int k = 0; k < 3; ++k) o = store_little_endian(o, cloud.normals[i][k]);
-      if (cloud.has_colors())
-        for (int k = 0; k < 3; ++k) o = store_little_endian(o, cloud.colors[i][k]);
-      for (const ScalarProperty& s : cloud.scalars) o = store_scalar(o, s.values[i], s.type);
-      for (const PlyIntProperty& p : extra) o = store_little_endian(o, p.values[i]);
-    }
-    out.write(buffer.data(), o - buffer.data());
-  }
-  file.commit();
+  PointCloudWriter writer(path, PointsFormat::ply, layout_of(cloud, extra));
+  writer.append(cloud, extra);
+  writer.commit();
 }
 
 }  // namespace pss

@@ -6,11 +6,13 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
 
 #include "pss/core/error.hpp"
-#include "pss/io/output_file.hpp"
 #include "pss/io/point_cloud_file.hpp"
+#include "pss/io/point_cloud_writer.hpp"
 #include "file_window.hpp"
+#include "point_encoders.hpp"
 #include "point_streams.hpp"
 
 namespace pss {
@@ -107,6 +109,42 @@ class XyzStream final : public PointStream {
   std::uint64_t points_ = 0;
 };
 
+// One point a line; XYZ has no header.
+class XyzEncoder final : public PointsEncoder {
+ public:
+  explicit XyzEncoder(const PointsLayout& layout) : normals_(layout.normals), recentred_(layout.has_origin()) {}
+
+  void write_header(std::ostream&) override {}
+
+  void write(std::ostream& out, const PointCloud& part, std::span<const PlyIntProperty>) override {
+    std::string lines;
+    // Floats in %.9g, which reads back exactly; a cloud away from the world's origin
+    // (cloud.hpp) in %.17g, its world positions being doubles.
+    const int digits = recentred_ ? 17 : 9;
+    char line[160];  // three %.17g and three %.9g numbers take at most 3 * 25 + 3 * 16 bytes
+    for (std::size_t i = 0; i < part.size(); ++i) {
+      const glm::dvec3 p = recentred_ ? part.world(i) : glm::dvec3(part.positions[i]);  // keeps −0
+      int length = 0;
+      if (normals_) {
+        const vec3 n = part.normals[i];
+        length = std::snprintf(line, sizeof line, "%.*g %.*g %.*g %.9g %.9g %.9g\n", digits, p.x, digits, p.y, digits,
+                               p.z, n.x, n.y, n.z);
+      } else {
+        length = std::snprintf(line, sizeof line, "%.*g %.*g %.*g\n", digits, p.x, digits, p.y, digits, p.z);
+      }
+      lines.append(line, std::size_t(length));
+      if (lines.size() > (1u << 20)) {  // one write a megabyte, without a copy of a large part
+        out.write(lines.data(), std::streamsize(lines.size()));
+        lines.clear();
+      }
+    }
+    out.write(lines.data(), std::streamsize(lines.size()));
+  }
+
+ private:
+  bool normals_, recentred_;
+};
+
 }  // namespace
 
 std::unique_ptr<PointStream> open_xyz_stream(const std::filesystem::path& path) {
@@ -115,35 +153,17 @@ std::unique_ptr<PointStream> open_xyz_stream(const std::filesystem::path& path) 
 
 PointCloud read_xyz(const std::filesystem::path& path) { return read_all(*open_xyz_stream(path)); }
 
+std::unique_ptr<PointsEncoder> xyz_encoder(const PointsLayout& layout) { return std::make_unique<XyzEncoder>(layout); }
+
 void write_xyz(const std::filesystem::path& path, const PointCloud& cloud) {
-  if (cloud.has_normals() && cloud.normals.size() != cloud.size())
-    throw file_error(path, "cannot write: " + std::to_string(cloud.size()) + " positions but " +
-                               std::to_string(cloud.normals.size()) + " normals");
-  OutputFile file(path);
-  std::string lines;
-  // Floats in %.9g, which reads back exactly; a cloud away from the world's origin
-  // (cloud.hpp) in %.17g, its world positions being doubles.
-  const bool recentred = cloud.has_origin();
-  const int digits = recentred ? 17 : 9;
-  char line[160];  // three %.17g and three %.9g numbers take at most 3 * 25 + 3 * 16 bytes
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    const glm::dvec3 p = recentred ? cloud.world(i) : glm::dvec3(cloud.positions[i]);  // keeps −0
-    int length = 0;
-    if (cloud.has_normals()) {
-      const vec3 n = cloud.normals[i];
-      length = std::snprintf(line, sizeof line, "%.*g %.*g %.*g %.9g %.9g %.9g\n", digits, p.x, digits, p.y, digits,
-                             p.z, n.x, n.y, n.z);
-    } else {
-      length = std::snprintf(line, sizeof line, "%.*g %.*g %.*g\n", digits, p.x, digits, p.y, digits, p.z);
-    }
-    lines.append(line, std::size_t(length));
-    if (lines.size() > (1u << 20)) {  // one write a megabyte, without a copy of a large cloud
-      file.stream().write(lines.data(), std::streamsize(lines.size()));
-      lines.clear();
-    }
-  }
-  file.stream().write(lines.data(), std::streamsize(lines.size()));
-  file.commit();
+  // XYZ has no room for colours or scalars: the layout leaves them out, so the cloud's are not
+  // looked at.
+  PointsLayout layout = layout_of(cloud);
+  layout.colors = false;
+  layout.scalars.clear();
+  PointCloudWriter writer(path, PointsFormat::xyz, std::move(layout));
+  writer.append(cloud);
+  writer.commit();
 }
 
 }  // namespace pss
