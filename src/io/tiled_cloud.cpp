@@ -138,19 +138,25 @@ TilePoints TiledCloud::load(int tile, float halo) const {
   };
   take(tile, true);
   out.own = out.positions.size();
+  for (const int other : tiles_near(tile, halo)) take(other, false);
+  std::sort(near.begin(), near.end(), [](const Record& a, const Record& b) { return a.index < b.index; });
+  for (const Record& r : near) add(r);
+  return out;
+}
+
+std::vector<int> TiledCloud::tiles_near(int tile, float reach) const {
   const ivec3 c = tile_cell(tile);
-  // Rings of neighbours as wide as the halo, at most the whole grid (a halo of 10^30 is no
+  // Rings of neighbours as wide as the reach, at most the whole grid (a reach of 10^30 is no
   // integer's worth of tiles).
-  const int rings = int(std::min(std::ceil(double(halo) / side_), double(std::max({counts_.x, counts_.y, counts_.z}))));
+  const int rings = int(std::min(std::ceil(double(reach) / side_), double(std::max({counts_.x, counts_.y, counts_.z}))));
+  std::vector<int> near;
   for (int z = std::max(0, c.z - rings); z <= std::min(counts_.z - 1, c.z + rings); ++z)
     for (int y = std::max(0, c.y - rings); y <= std::min(counts_.y - 1, c.y + rings); ++y)
       for (int x = std::max(0, c.x - rings); x <= std::min(counts_.x - 1, c.x + rings); ++x) {
         const int other = (z * counts_.y + y) * counts_.x + x;
-        if (other != tile) take(other, false);
+        if (other != tile) near.push_back(other);
       }
-  std::sort(near.begin(), near.end(), [](const Record& a, const Record& b) { return a.index < b.index; });
-  for (const Record& r : near) add(r);
-  return out;
+  return near;
 }
 
 }  // namespace pss

@@ -15,19 +15,22 @@ namespace pss {
 
 namespace {
 
-// Orients `sorted`, the normals of the grid's samples in its sorted order.
-void orient_sorted(const SupportGrid& grid, std::vector<vec3>& sorted) {
+// Orients `sorted`, the normals of the grid's samples in its sorted order; rank(k) is sorted
+// point k's place in the cloud. `parts`, when given, takes each sorted point's part and each
+// part's root, in sorted indices.
+template <class Rank>
+void orient_sorted(const SupportGrid& grid, std::vector<vec3>& sorted, Rank rank, Progress* progress,
+                   OrientedParts* parts = nullptr) {
   const SupportGridView view = grid.view();
-  const std::span<const int> original = grid.original_index();
   // The tree grows in the grid's order, where a point's neighbours lie near it in memory.
-  // Ties go by input order, so the tree is the one that order gives.
+  // Ties go by the cloud's order, so the tree is the one that order gives.
   const std::span<const vec3> at = grid.sorted_points();
   const std::size_t n = at.size();
 
   std::vector<int> by_height(n);
   std::iota(by_height.begin(), by_height.end(), 0);
   std::sort(by_height.begin(), by_height.end(),
-            [&](int a, int b) { return at[a].z > at[b].z || (at[a].z == at[b].z && original[a] < original[b]); });
+            [&](int a, int b) { return at[a].z > at[b].z || (at[a].z == at[b].z && rank(a) < rank(b)); });
 
   // Per point: whether the tree holds it, and whether its cheapest edge yet from the tree
   // reaches it from a normal facing the other way. That end is in the tree, so its normal is
@@ -38,13 +41,14 @@ void orient_sorted(const SupportGrid& grid, std::vector<vec3>& sorted) {
   // The points the tree may reach next, by their cheapest edge's cost, then input index.
   IndexedMinHeap frontier(n, [&](int a, int b) {
     const float ca = cheapest[std::size_t(a)], cb = cheapest[std::size_t(b)];
-    return ca < cb || (ca == cb && original[std::size_t(a)] < original[std::size_t(b)]);
+    return ca < cb || (ca == cb && rank(a) < rank(b));
   });
   // One thread: advancing once per 4096 points oriented keeps the atomic out of the inner loop.
-  Progress progress("orient normals", std::int64_t(n));
   std::size_t oriented = 0;
+  if (parts) parts->of_point.assign(n, -1);
   for (int seed : by_height) {
     if (state[std::size_t(seed)] & kDone) continue;
+    if (parts) parts->root.push_back(seed);
     if (sorted[seed].z < 0) sorted[seed] = -sorted[seed];
     cheapest[std::size_t(seed)] = 0;
     frontier.lowered(seed);
@@ -53,7 +57,8 @@ void orient_sorted(const SupportGrid& grid, std::vector<vec3>& sorted) {
       // Prim's order: the cheapest edge to i when it is reached is its tree edge.
       if (state[std::size_t(i)] & kAgainst) sorted[i] = -sorted[i];
       state[std::size_t(i)] = kDone;
-      if (++oriented % 4096 == 0) progress.advance(4096);
+      if (parts) parts->of_point[std::size_t(i)] = int(parts->root.size()) - 1;
+      if (++oriented % 4096 == 0 && progress) progress->advance(4096);
       view.for_each_covering(at[i], [&](vec3 q, float d2, int j) {
         if (state[std::size_t(j)] & kDone) return;
         // Along the surface, not across it: a neighbour stacked above or below (the other
@@ -87,9 +92,29 @@ void orient_normals_consistently(std::span<const vec3> points, std::span<vec3> n
   check_one_normal_per_point(points.size(), normals.size());
   const SupportGrid grid(points, radius, 1.0f);
   std::vector<vec3> sorted = sorted_normals(grid, normals);
-  orient_sorted(grid, sorted);
   const std::span<const int> original = grid.original_index();
+  Progress progress("orient normals", std::int64_t(points.size()));
+  orient_sorted(grid, sorted, [&](int k) { return original[std::size_t(k)]; }, &progress);
   for (std::size_t k = 0; k < sorted.size(); ++k) normals[std::size_t(original[k])] = sorted[k];
+}
+
+OrientedParts orient_normals_in_parts(std::span<const vec3> points, std::span<vec3> normals,
+                                      std::span<const float> radius, std::span<const std::uint64_t> id) {
+  check_one_normal_per_point(points.size(), normals.size());
+  if (id.size() != points.size()) throw Error("orient normals: one index per point is needed");
+  const SupportGrid grid(points, radius, 1.0f);
+  std::vector<vec3> sorted = sorted_normals(grid, normals);
+  const std::span<const int> original = grid.original_index();
+  OrientedParts sorted_parts;
+  orient_sorted(grid, sorted, [&](int k) { return id[std::size_t(original[std::size_t(k)])]; }, nullptr, &sorted_parts);
+  OrientedParts parts;
+  parts.of_point.resize(points.size());
+  for (std::size_t k = 0; k < sorted.size(); ++k) {
+    normals[std::size_t(original[k])] = sorted[k];
+    parts.of_point[std::size_t(original[k])] = sorted_parts.of_point[k];
+  }
+  for (const int root : sorted_parts.root) parts.root.push_back(original[std::size_t(root)]);
+  return parts;
 }
 
 void orient_normals_consistently(std::vector<vec3>& points, std::vector<vec3>& normals, std::vector<float>&& radius) {
@@ -101,8 +126,11 @@ void orient_normals_consistently(std::vector<vec3>& points, std::vector<vec3>& n
   release(points);
   std::vector<vec3> sorted = sorted_normals(grid, normals);
   release(normals);
-  orient_sorted(grid, sorted);
   const std::span<const int> original = grid.original_index();
+  {
+    Progress progress("orient normals", std::int64_t(original.size()));
+    orient_sorted(grid, sorted, [&](int k) { return original[std::size_t(k)]; }, &progress);
+  }
   const std::size_t n = original.size();
   normals.resize(n);
   for (std::size_t k = 0; k < n; ++k) normals[std::size_t(original[k])] = sorted[k];

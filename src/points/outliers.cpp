@@ -10,30 +10,27 @@
 
 namespace pss {
 
-namespace {
-
-std::vector<float> distances_to_neighbours_planes(const SupportGrid& grid, Backend backend, Stats& stats) {
+std::vector<float> distances_to_neighbours_planes(const SupportGrid& grid, Backend backend, Stats& stats,
+                                                  Progress* progress) {
   const std::size_t n = grid.sorted_points().size();
   const GridMirror g(backend, grid);
   Mirror<float> out(backend, n);
-  Progress progress("outliers", std::int64_t(n));
-  parallel_for(backend, "outliers", std::int64_t(n), OutlierDistanceKernel{g.view(), out.data()}, stats, &progress);
+  parallel_for(backend, "outliers", std::int64_t(n), OutlierDistanceKernel{g.view(), out.data()}, stats, progress);
   return out.take();
 }
 
 // The noise's scale, robustly: 1.4826 times the median distance is σ for Gaussian noise.
-float threshold_of(std::vector<float> distance) {
+float outlier_threshold(std::vector<float> distance) {
   std::erase_if(distance, [](float d) { return !std::isfinite(d); });
   if (distance.empty()) return kOutlierFloor;
   std::nth_element(distance.begin(), distance.begin() + distance.size() / 2, distance.end());
   return std::max(kOutlierFloor, kOutlierSigmas * 1.4826f * distance[distance.size() / 2]);
 }
 
-}  // namespace
-
 std::vector<char> samples_on_the_surface(const SupportGrid& grid, Backend backend, Stats& stats, OutlierReport& report) {
-  const std::vector<float> distance = distances_to_neighbours_planes(grid, backend, stats);
-  if (!(report.threshold > 0)) report.threshold = threshold_of(distance);
+  Progress progress("outliers", std::int64_t(grid.sorted_points().size()));
+  const std::vector<float> distance = distances_to_neighbours_planes(grid, backend, stats, &progress);
+  if (!(report.threshold > 0)) report.threshold = outlier_threshold(distance);
   std::vector<char> keep(distance.size());
   for (std::size_t i = 0; i < keep.size(); ++i) keep[i] = distance[i] <= report.threshold;
   return keep;

@@ -50,6 +50,8 @@ class TiledCloud {
 
   // The tile's points and, after them, every other point within `halo` of its box.
   TilePoints load(int tile, float halo) const;
+  // The other tiles whose cubes lie within `reach` of the tile's, in their numbers' order.
+  std::vector<int> tiles_near(int tile, float reach) const;
 
  private:
   int tile_of(vec3 p) const;

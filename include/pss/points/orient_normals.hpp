@@ -9,6 +9,7 @@
 // (docs/paper-notes.md).
 #pragma once
 
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -24,5 +25,18 @@ void orient_normals_consistently(std::span<const vec3> points, std::span<vec3> n
 // back as they were, the normals oriented. The radii are freed once indexed. Where it throws
 // (an interrupt through Progress), the lent arrays may come back empty.
 void orient_normals_consistently(std::vector<vec3>& points, std::vector<vec3>& normals, std::vector<float>&& radius);
+
+// The connected parts an orientation grew: each point's part, and each part's first point
+// (its highest), by the points' indices; parts in the order they were grown.
+struct OrientedParts {
+  std::vector<int> of_point;
+  std::vector<int> root;
+};
+
+// The same over a set of a cloud's points (a tile and its halo, issue 28), without a progress
+// of its own: ties go by id, each point's index in the cloud, so that the tree is the cloud's
+// where the set holds it; the parts say which signs the tiles must agree on (tiles/orient.hpp).
+OrientedParts orient_normals_in_parts(std::span<const vec3> points, std::span<vec3> normals,
+                                      std::span<const float> radius, std::span<const std::uint64_t> id);
 
 }  // namespace pss

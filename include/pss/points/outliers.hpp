@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "pss/backend/backend.hpp"
+#include "pss/core/progress.hpp"
 #include "pss/core/stats.hpp"
 #include "pss/fit/inverse_power.hpp"
 #include "pss/fit/moments.hpp"
@@ -56,6 +57,14 @@ struct OutlierReport {
   std::int64_t set_aside = 0;
   float threshold = 0;  // in units of h_i
 };
+
+// OutlierDistanceKernel's distance of each sorted sample of `grid` (phase "outliers").
+std::vector<float> distances_to_neighbours_planes(const SupportGrid& grid, Backend backend, Stats& stats,
+                                                  Progress* progress);
+
+// The largest distance a sample on the surface lies at: kOutlierSigmas robust standard
+// deviations of the finite distances, and at least kOutlierFloor.
+float outlier_threshold(std::vector<float> distance);
 
 // keep[i] for each sorted sample of `grid` (phase "outliers" on `backend`), with
 // report.threshold when it is set, else with the threshold of these distances (set then).
