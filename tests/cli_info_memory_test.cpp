@@ -18,6 +18,7 @@ namespace pss {
 namespace {
 
 using InfoMemory = test::CliTest;
+using test::ScratchFolder;
 
 // The lines of `text` but those starting with one of `except`.
 std::vector<std::string> lines_but(const std::string& text, std::initializer_list<std::string> except) {
@@ -30,22 +31,6 @@ std::vector<std::string> lines_but(const std::string& text, std::initializer_lis
   }
   return out;
 }
-
-// $TMPDIR set to a folder of the test's while it lives.
-class ScratchFolder {
- public:
-  explicit ScratchFolder(const std::filesystem::path& path) : path_(path) {
-    std::filesystem::create_directories(path);
-    if (const char* old = std::getenv("TMPDIR")) old_ = old;
-    setenv("TMPDIR", path.c_str(), 1);
-  }
-  ~ScratchFolder() { old_.empty() ? unsetenv("TMPDIR") : setenv("TMPDIR", old_.c_str(), 1); }
-  bool empty() const { return std::filesystem::is_empty(path_); }
-
- private:
-  std::filesystem::path path_;
-  std::string old_;
-};
 
 // About 34,000 points of a torus with normals, sparser on one side: 3.1 MiB in core.
 TEST_F(InfoMemory, ACloudLargerThanTheBudgetGivesTheInCoreFiguresTileByTile) {

@@ -2,6 +2,8 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <cstdint>
+#include <functional>
 #include <string>
 
 #include "pss/backend/backend.hpp"
@@ -32,8 +34,16 @@ void record_run(Stats& stats, const char* command, const std::string& input, con
                 Backend backend);
 void record_cloud_run(Stats& stats, const char* command, const std::string& input, const std::string& output,
                       const PointCloud& cloud, Backend backend);
+void record_cloud_run(Stats& stats, const char* command, const std::string& input, const std::string& output,
+                      std::uint64_t points, glm::dvec3 origin, Backend backend);
 // --progress auto|always|never: sets the process's ProgressMode when given.
 void add_progress_option(CLI::App& command);
+
+// --memory SIZE (tiles/memory_plan.hpp): the most memory a command on a cloud may take; a
+// cloud that needs more is worked on tile by tile. `what` says what comes out the same.
+void add_memory_option(CLI::App& command, std::string& size, const std::string& what);
+// The budget --memory gives, or default_memory_budget() where it is not given.
+std::uint64_t memory_budget(const std::string& size);
 
 // estimate_spacing of a cloud read from `file`, its errors ("the points coincide") naming
 // the file.
@@ -70,6 +80,9 @@ void add_cloud_surface_flags(CLI::App& command, CloudSurfaceFlags& flags);
 // The projection's parameters the flags give, h estimated from the spacing of `cloud` (read
 // from `file`; phase "estimate h") when --h is not given.
 ProjectionParams projection_params(const CloudSurfaceFlags& flags, const PointCloud& cloud, const std::string& file,
+                                   PlaneFitMethod plane, Stats& stats);
+// The same, h from `estimate_h` (phase "estimate h") when --h is not given.
+ProjectionParams projection_params(const CloudSurfaceFlags& flags, const std::function<float()>& estimate_h,
                                    PlaneFitMethod plane, Stats& stats);
 
 // A line on stdout when some of the file's normals were turned as contradicting the points

@@ -8,6 +8,7 @@
 #include "pss/core/memory.hpp"
 #include "pss/core/progress.hpp"
 #include "pss/io/point_cloud_file.hpp"
+#include "pss/tiles/memory_plan.hpp"
 
 namespace pss::app {
 
@@ -44,10 +45,28 @@ void record_run(Stats& stats, const char* command, const std::string& input, con
 
 void record_cloud_run(Stats& stats, const char* command, const std::string& input, const std::string& output,
                       const PointCloud& cloud, Backend backend) {
+  record_cloud_run(stats, command, input, output, cloud.size(), cloud.origin, backend);
+}
+
+void record_cloud_run(Stats& stats, const char* command, const std::string& input, const std::string& output,
+                      std::uint64_t points, glm::dvec3 origin, Backend backend) {
   record_run(stats, command, input, output, backend);
   auto& v = stats.values();
-  v["points"] = cloud.size();
-  v["origin"] = {cloud.origin.x, cloud.origin.y, cloud.origin.z};
+  v["points"] = points;
+  v["origin"] = {origin.x, origin.y, origin.z};
+}
+
+void add_memory_option(CLI::App& command, std::string& size, const std::string& what) {
+  command
+      .add_option("--memory", size,
+                  "the most memory the work on a cloud may take (such as 512M or 8G); a cloud that needs more is "
+                  "read into tiles in the temporary folder ($TMPDIR) and worked on one tile at a time, with " +
+                      what + " (default: half of this machine's memory)")
+      ->check(parsed_by(parse_memory_size, "--memory", "SIZE"));
+}
+
+std::uint64_t memory_budget(const std::string& size) {
+  return size.empty() ? default_memory_budget() : parse_memory_size(size);
 }
 
 void add_progress_option(CLI::App& command) {
@@ -149,10 +168,15 @@ void add_cloud_surface_flags(CLI::App& command, CloudSurfaceFlags& flags) {
 
 ProjectionParams projection_params(const CloudSurfaceFlags& flags, const PointCloud& cloud, const std::string& file,
                                    PlaneFitMethod plane, Stats& stats) {
+  return projection_params(flags, [&] { return float(estimate_spacing_of(cloud, file).suggested_h); }, plane, stats);
+}
+
+ProjectionParams projection_params(const CloudSurfaceFlags& flags, const std::function<float()>& estimate_h,
+                                   PlaneFitMethod plane, Stats& stats) {
   float h = flags.h;
   if (h == 0) {
     ScopedPhase phase(stats, "estimate h");
-    h = float(estimate_spacing_of(cloud, file).suggested_h);
+    h = estimate_h();
   }
   ProjectionParams params = ProjectionParams::from_h(h, plane);
   if (flags.rho != 0) params.rho = flags.rho;

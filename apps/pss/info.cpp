@@ -146,7 +146,7 @@ void print_cloud_in_tiles(const std::string& path, const MemoryPlan& plan) {
     c.spacing = estimate_spacing(tiles);
     try {
       c.widths = support_widths(tiles, adaptive_params(c.spacing));
-    } catch (const RowsNotTiled& e) {
+    } catch (const NotTiled& e) {
       c.widths_refused = e.what();
     }
   }
@@ -231,16 +231,11 @@ void add_info_command(CLI::App& app, Action action) {
       ->required();
   add_raw_volume_options(*command, *raw);
   auto memory = std::make_shared<std::string>();
-  command
-      ->add_option("--memory", *memory,
-                   "the most memory a cloud's figures may take (such as 512M or 8G); a cloud that needs more is read "
-                   "into tiles in the temporary folder ($TMPDIR) and worked on one tile at a time, with the same "
-                   "figures (default: half of this machine's memory)")
-      ->check(parsed_by(parse_memory_size, "--memory", "SIZE"));
+  add_memory_option(*command, *memory, "the same figures");
   add_progress_option(*command);
   command->callback([path, raw, memory, action] {
     const std::optional<RawVolumeFormat> format = raw_volume_format(*raw, *path);
-    const std::uint64_t budget = memory->empty() ? default_memory_budget() : parse_memory_size(*memory);
+    const std::uint64_t budget = memory_budget(*memory);
     if (action == Action::check) return;
     if (format || has_volume_header(*path))
       print_volume(*path, format);

@@ -1,8 +1,11 @@
 // pss project FILE -o OUT.ply|.xyz: every point moved onto the PSS, with its normal and, in a
 // PLY, the input's colours and scalars and how its projection ended.
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
+#include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -10,9 +13,17 @@
 #include "numbers.hpp"
 #include "output_options.hpp"
 #include "pss/core/error.hpp"
+#include "pss/core/text.hpp"
 #include "pss/io/output_file.hpp"
 #include "pss/io/point_cloud_file.hpp"
+#include "pss/io/point_cloud_writer.hpp"
+#include "pss/io/point_stream.hpp"
+#include "pss/io/tiled_cloud.hpp"
 #include "pss/points/project_cloud.hpp"
+#include "pss/tiles/memory_plan.hpp"
+#include "pss/tiles/project.hpp"
+#include "pss/tiles/spacing.hpp"
+#include "pss/tiles/support.hpp"
 
 namespace pss::app {
 
@@ -23,25 +34,43 @@ struct ProjectOptions {
   std::string method = "mls";
   CloudSurfaceFlags surface;
   ComputeOptions compute;
+  std::string memory;  // --memory SIZE
 };
 
-void run_project(const ProjectOptions& o) {
-  const auto start = std::chrono::steady_clock::now();
-  OutputSet outputs({o.input}, {o.output, o.compute.stats_path});
-  const Backend backend = start_compute(o.compute);
-  Stats stats;
-  PointCloud cloud = read_cloud(o.input, stats);
-  const ProjectionParams params = projection_params(
-      o.surface, cloud, o.input, o.method == "wls" ? PlaneFitMethod::wls : PlaneFitMethod::mls, stats);
+// Bytes a point (tiles/memory_plan.hpp): in core, measured at 148 on a 10^7-point torus
+// (docs/benchmarks.md); beside the tiles, each point's width, whether it is a sample and its
+// distance in the outliers' passes, copied for their median; a tile's point, its record, unit
+// position, width, grid and projection, and in the orientation its record, tree and parts.
+constexpr MemoryCosts kProjectCosts{160, 16, 256};
 
-  // The input's arrays become the output's (issue 28).
-  const CloudProjection result = project_cloud(std::move(cloud), params, backend, stats);
-  const PointCloud& projected = result.cloud;
+// What pss project says of a run, in core or tile by tile.
+struct ProjectRun {
+  std::uint64_t points = 0;
+  glm::dvec3 origin{0.0};
+  StatusCounts counts;
+  SupportWidths widths;
+  NormalsUsed normals = NormalsUsed::none;
+  std::size_t normals_turned = 0;
+  std::int64_t set_aside = 0;
+  std::string memory;  // how the run held the cloud, for the summary
+};
+
+PlaneFitMethod plane_of(const ProjectOptions& o) { return o.method == "wls" ? PlaneFitMethod::wls : PlaneFitMethod::mls; }
+
+void check_projected(const ProjectOptions& o, const StatusCounts& counts, const ProjectionParams& params) {
   try {
-    check_some_projected(result, params);
+    check_some_projected(counts, params);
   } catch (const Error& e) {
     throw file_error(o.input, e.what());
   }
+}
+
+ProjectRun project_in_core(const ProjectOptions& o, Backend backend, Stats& stats, ProjectionParams& params) {
+  PointCloud cloud = read_cloud(o.input, stats);
+  params = projection_params(o.surface, cloud, o.input, plane_of(o), stats);
+  // The input's arrays become the output's (issue 28).
+  const CloudProjection result = project_cloud(std::move(cloud), params, backend, stats);
+  check_projected(o, result.counts, params);
   {
     ScopedPhase phase(stats, "write");
     std::vector<std::int32_t> status(result.status.size());
@@ -49,36 +78,129 @@ void run_project(const ProjectOptions& o) {
     const PlyIntProperty extra[] = {{"status", status}};
     write_point_cloud(o.output, result.cloud, extra);
   }
+  return {result.cloud.size(), result.cloud.origin, result.counts, result.widths, result.normals,
+          result.normals_turned, result.outliers.set_aside, "in core"};
+}
+
+// The file's next `count` points (their colours and scalars) into `part`.
+void read_points(PointStream& stream, PointPart& part, std::size_t count, const std::string& file) {
+  part.clear();
+  while (part.size() < count)
+    if (stream.read(part, count - part.size()) == 0)
+      throw file_error(file, "changed while it was read: it has fewer points than before");
+}
+
+// A cloud larger than the budget, tile by tile (issue 28): the in-core points, in its order,
+// written a window at a time beside the file's colours and scalars, read again.
+ProjectRun project_in_tiles(const ProjectOptions& o, const MemoryPlan& plan, Backend backend, Stats& stats,
+                            ProjectionParams& params) {
+  std::optional<TiledCloud> read;
+  {
+    ScopedPhase phase(stats, "read", false);  // its Progress shows it
+    read.emplace(o.input, scratch_folder(), plan.points_per_tile, plan.buffer_bytes);
+  }
+  const TiledCloud& tiles = *read;
+  params = projection_params(
+      o.surface,
+      [&] {
+        try {
+          return float(estimate_spacing(tiles).suggested_h);
+        } catch (const Error& e) {
+          throw file_error(o.input, e.what());
+        }
+      },
+      plane_of(o), stats);
+  // A window's points take about 128 bytes: its results, the file's part and the writer's.
+  const std::size_t window = std::size_t(std::clamp<std::uint64_t>(plan.budget / 8 / 128, 4096, 1u << 24));
+  std::optional<TiledProjection> projected;
+  try {
+    projected.emplace(tiles, params, backend, scratch_folder(), window, plan.buffer_bytes, stats);
+  } catch (const NotTiled& e) {
+    throw file_error(o.input, std::string(e.what()) + "; in core it needs about " +
+                                  byte_size(double(tiles.size() * kProjectCosts.in_core)) + " (--memory)");
+  }
+  check_projected(o, projected->counts(), params);
+  {
+    ScopedPhase phase(stats, "write", false);
+    Progress progress("writing", std::int64_t(tiles.size()));
+    const auto stream = open_point_stream(o.input);
+    PointPart part;
+    read_points(*stream, part, std::min<std::uint64_t>(window, tiles.size()), o.input);
+    PointsLayout layout;
+    layout.count = tiles.size();
+    layout.origin = tiles.origin();
+    layout.normals = true;
+    layout.colors = tiles.has_colors();
+    layout.scalars = part.scalars;
+    layout.extra = {"status"};
+    PointCloudWriter writer(o.output, layout);
+    projected->read_in_order([&](const ProjectedWindow& w) {
+      if (w.first > 0) read_points(*stream, part, w.positions.size(), o.input);
+      PointCloud out;
+      out.origin = tiles.origin();
+      out.positions = w.positions;
+      out.normals = w.normals;
+      out.colors = part.colors;
+      out.scalars = part.scalars;
+      std::vector<std::int32_t> status(w.status.size());
+      for (std::size_t i = 0; i < status.size(); ++i) status[i] = std::int32_t(w.status[i]);
+      const PlyIntProperty extra[] = {{"status", status}};
+      writer.append(out, extra);
+      progress.advance(std::int64_t(w.positions.size()));
+    });
+    writer.commit();
+  }
+  char memory[160];
+  std::snprintf(memory, sizeof memory, "tile by tile: %d tiles of about %llu points", tiles.tiles(),
+                (unsigned long long)plan.points_per_tile);
+  return {tiles.size(), tiles.origin(), projected->counts(), projected->widths(), NormalsUsed::none, 0,
+          projected->outliers().set_aside, memory};
+}
+
+void run_project(const ProjectOptions& o) {
+  const auto start = std::chrono::steady_clock::now();
+  OutputSet outputs({o.input}, {o.output, o.compute.stats_path});
+  const Backend backend = start_compute(o.compute);
+  Stats stats;
+  // Formats read whole (OBJ, STL, OFF, PCD) have no stream to tile: in core.
+  MemoryPlan plan;
+  plan.budget = memory_budget(o.memory);
+  if (has_point_stream(o.input)) plan = plan_memory(o.input, plan.budget, kProjectCosts);
+  ProjectionParams params;
+  const ProjectRun run = plan.tiled ? project_in_tiles(o, plan, backend, stats, params)
+                                    : project_in_core(o, backend, stats, params);
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   stats.add_time("total", total);
 
   const double projection_s = stats.time("projection");
-  const auto& c = result.counts;
-  std::printf("projected %zu points onto the PSS in %.3f s (projection %.3f s, %.0f points/s, %s backend, %d threads)\n",
-              projected.size(), total, projection_s, double(projected.size()) / projection_s, backend_name(backend),
-              cpu_threads());
+  const auto& c = run.counts;
+  std::printf("projected %llu points onto the PSS in %.3f s (projection %.3f s, %.0f points/s, %s backend, %d threads; %s)\n",
+              (unsigned long long)run.points, total, projection_s, double(run.points) / projection_s,
+              backend_name(backend), cpu_threads(), run.memory.c_str());
   std::printf("%s surface%s, h = %g (%s), rho = %g, plane fit %s; converged %lld, not converged %lld, too few "
               "neighbours %lld, degenerate normal %lld; %lld outliers set aside (projected, not samples)\n",
-              surface_name(params.surface), normals_text(result.normals), params.h,
-              support_text(params.support, result.widths).c_str(), params.rho, o.method.c_str(), (long long)c.converged,
+              surface_name(params.surface), normals_text(run.normals), params.h,
+              support_text(params.support, run.widths).c_str(), params.rho, o.method.c_str(), (long long)c.converged,
               (long long)c.not_converged, (long long)c.too_few_neighbours, (long long)c.degenerate_normal,
-              (long long)result.outliers.set_aside);
-  print_normals_turned(result.normals_turned, projected.size());
+              (long long)run.set_aside);
+  print_normals_turned(run.normals_turned, std::size_t(run.points));
 
   if (!o.compute.stats_path.empty()) {
     auto& v = stats.values();
-    record_cloud_run(stats, "project", o.input, o.output, projected, backend);
+    record_cloud_run(stats, "project", o.input, o.output, run.points, run.origin, backend);
     v["params"] = {{"h", params.h}, {"rho", params.rho}, {"plane_fit", o.method},
                    {"support", support_name(params.support)},
-                   {"surface", surface_name(params.surface)}, {"normals", normals_used_name(result.normals)},
+                   {"surface", surface_name(params.surface)}, {"normals", normals_used_name(run.normals)},
                    {"outliers", o.surface.surface.outliers},
-                   {"h_least", result.widths.least}, {"h_largest", result.widths.largest},
+                   {"h_least", run.widths.least}, {"h_largest", run.widths.largest},
                    {"max_mls_iterations", params.max_mls_iterations}, {"t_tolerance", params.t_tolerance}};
     v["status"] = {{"converged", c.converged}, {"not_converged", c.not_converged},
                    {"too_few_neighbours", c.too_few_neighbours}, {"degenerate_normal", c.degenerate_normal}};
-    v["outliers_set_aside"] = result.outliers.set_aside;
-    v["normals_turned"] = result.normals_turned;
-    v["points_per_second"] = double(projected.size()) / projection_s;
+    v["outliers_set_aside"] = run.set_aside;
+    v["normals_turned"] = run.normals_turned;
+    v["points_per_second"] = double(run.points) / projection_s;
+    v["memory"] = {{"budget", plan.budget}, {"tiled", plan.tiled}};
+    if (plan.tiled) v["memory"]["points_per_tile"] = plan.points_per_tile;
     stats.write(o.compute.stats_path);
   }
   outputs.commit();
@@ -109,6 +231,7 @@ void add_project_command(CLI::App& app, Action action) {
       ->check(CLI::IsMember({"mls", "wls"}))
       ->capture_default_str();
   add_compute_options(*command, o->compute);
+  add_memory_option(*command, o->memory, "the same points (docs/architecture.md says what differs)");
   command->callback([o, action] {
     if (action == Action::run) run_project(*o);
   });

@@ -103,7 +103,7 @@ py::tuple project(const py::handle& points, const py::dict& o) {
     Stats stats;
     const ProjectionParams params = args.params(cloud, plane);
     CloudProjection projection = project_cloud(std::move(cloud), params, backend, stats);  // no second copy
-    check_some_projected(projection, params);
+    check_some_projected(projection.counts, params);
     return projection;
   });
   std::vector<std::int32_t> status(result.status.size());

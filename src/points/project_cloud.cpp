@@ -43,9 +43,10 @@ void check_neighbourhood(const ProjectionParams& p, double diagonal) {
   }
 }
 
-void check_some_projected(const CloudProjection& projection, const ProjectionParams& params) {
-  const StatusCounts& c = projection.counts;
-  if (projection.cloud.size() == 0 || c.converged + c.not_converged > 0) return;
+void check_some_projected(const StatusCounts& c, const ProjectionParams& params) {
+  if (c.converged + c.not_converged + c.too_few_neighbours + c.degenerate_normal == 0 ||
+      c.converged + c.not_converged > 0)
+    return;
   char message[300];
   std::snprintf(message, sizeof message,
                 "no point was projected with h = %g, rho = %g (too few neighbours %lld, degenerate normal %lld); "

@@ -110,7 +110,7 @@ SupportWidths support_widths(const TiledCloud& cloud, const ProjectionParams& pa
   }
   // As rows.hpp's first test: the in-core widths look for rows only where it holds.
   if (2 * row_like >= n)
-    throw RowsNotTiled("the cloud is sampled in rows (most samples' neighbours lie along a curve): its adaptive widths are "
+    throw NotTiled("the cloud is sampled in rows (most samples' neighbours lie along a curve): its adaptive widths are "
                 "worked out in core only");
   const float median_d = median_of(spacing);
   if (!(median_d > 0)) return out;  // most samples coincide with k others: no spacing to follow

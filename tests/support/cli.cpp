@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -64,5 +65,13 @@ void CliTest::expect_clean_failure(const std::string& args, const std::string& n
   for (const auto& entry : std::filesystem::directory_iterator(dir_))
     EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
 }
+
+ScratchFolder::ScratchFolder(const std::filesystem::path& path) : path_(path) {
+  std::filesystem::create_directories(path);
+  if (const char* old = std::getenv("TMPDIR")) old_ = old;
+  setenv("TMPDIR", path.c_str(), 1);
+}
+
+ScratchFolder::~ScratchFolder() { old_.empty() ? unsetenv("TMPDIR") : setenv("TMPDIR", old_.c_str(), 1); }
 
 }  // namespace pss::test

@@ -37,6 +37,18 @@ class CliTest : public testing::Test {
   std::filesystem::path dir_;
 };
 
+// $TMPDIR set to a folder of the test's while it lives (the tiles' scratch files go there).
+class ScratchFolder {
+ public:
+  explicit ScratchFolder(const std::filesystem::path& path);
+  ~ScratchFolder();
+  bool empty() const { return std::filesystem::is_empty(path_); }
+
+ private:
+  std::filesystem::path path_;
+  std::string old_;
+};
+
 // The message of the pss::Error that f() throws, or "" if it throws none.
 template <class F>
 std::string error_of(F&& f);

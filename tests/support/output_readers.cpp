@@ -58,14 +58,23 @@ PlyColumns read_ply_columns(const std::filesystem::path& path) {
   }
   for (std::size_t i = 0; i < count; ++i)
     for (const auto& [type, name] : properties) {
-      char bytes[4];
-      in.read(bytes, 4);
-      if (type == "float") {
+      char bytes[8];
+      if (type == "uchar") {
+        in.read(bytes, 1);
+        ply.columns[name].push_back(std::uint8_t(bytes[0]));
+      } else if (type == "double") {
+        double d;
+        in.read(bytes, 8);
+        std::memcpy(&d, bytes, 8);
+        ply.columns[name].push_back(d);
+      } else if (type == "float") {
         float f;
+        in.read(bytes, 4);
         std::memcpy(&f, bytes, 4);
         ply.columns[name].push_back(f);
       } else {
         std::int32_t v;
+        in.read(bytes, 4);
         std::memcpy(&v, bytes, 4);
         ply.columns[name].push_back(v);
       }

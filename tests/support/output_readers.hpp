@@ -27,7 +27,7 @@ struct ExrImage {
 };
 ExrImage read_exr(const std::filesystem::path& path);
 
-// A binary little-endian PLY's vertex properties (float or int), by name, as double.
+// A binary little-endian PLY's vertex properties (float, double, int or uchar), by name, as double.
 struct PlyColumns {
   std::vector<std::string> header;  // the header's lines, "ply" to "end_header"
   std::map<std::string, std::vector<double>> columns;

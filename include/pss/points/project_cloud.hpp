@@ -40,7 +40,7 @@ void validate(const ProjectionParams& params);
 
 // Throws Error when a cloud of points had none projected (every one with too few neighbours
 // or a degenerate normal): handing the input back unmoved would look like success.
-void check_some_projected(const CloudProjection& projection, const ProjectionParams& params);
+void check_some_projected(const StatusCounts& counts, const ProjectionParams& params);
 
 // Throws Error when ρ exceeds the cloud's bounding-box diagonal (every neighbourhood the
 // whole cloud); a diagonal of 0 (coincident points) passes.

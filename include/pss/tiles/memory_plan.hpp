@@ -6,7 +6,14 @@
 #include <cstdint>
 #include <filesystem>
 
+#include "pss/core/error.hpp"
+
 namespace pss {
+
+// What tiles do not do (yet), where a cloud's work is done in core only.
+struct NotTiled : Error {
+  using Error::Error;
+};
 
 // What a command holds, in bytes a point: in core (everything at once, measured), beside
 // the tiles (per-point results kept for the whole cloud), and for each point of a tile or

@@ -3,16 +3,12 @@
 #pragma once
 
 #include "pss/core/error.hpp"
+#include "pss/tiles/memory_plan.hpp"
 #include "pss/io/tiled_cloud.hpp"
 #include "pss/points/projection.hpp"
 #include "pss/points/support.hpp"
 
 namespace pss {
-
-// Why a cloud's widths are not worked out tile by tile.
-struct RowsNotTiled : Error {
-  using Error::Error;
-};
 
 // support_widths of the cloud's positions. Two passes over the tiles, each tile with a halo
 // that doubles until it holds every neighbour its own samples' answers read
@@ -20,7 +16,7 @@ struct RowsNotTiled : Error {
 // noise queries, the second, from their medians and regions, which samples widen and each
 // width. Holds 12 bytes a point (the spacings, their least neighbours' and the widths) beside
 // one tile at a time. Throws Error for a width that is not a positive number, and
-// RowsNotTiled for a cloud sampled in rows (rows.hpp: the rows' chains span the cloud;
+// NotTiled (tiles/memory_plan.hpp) for a cloud sampled in rows (rows.hpp: the rows' chains span the cloud;
 // support_widths of the points in core serves).
 SupportWidths support_widths(const TiledCloud& cloud, const ProjectionParams& params);
 

@@ -1,0 +1,62 @@
+// `pss project` tile by tile (issue 28): a cloud on disk (TiledCloud) projected onto its PSS
+// within a memory budget, with project_cloud's result (points/project_cloud.hpp) to the
+// rounding of sums taken in another order. Each step runs over the tiles, each tile with a
+// halo as wide as the step reads: the widths (tiles/support.hpp), the outliers' passes, the
+// projections, and the orientation of their normals, whose tiles agree on their signs where
+// their halos overlap (tiles/orient.hpp). The results wait in scratch files and come back in
+// the cloud's order, a window at a time.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "pss/backend/backend.hpp"
+#include "pss/core/stats.hpp"
+#include "pss/io/bucket_file.hpp"
+#include "pss/io/tiled_cloud.hpp"
+#include "pss/points/project_cloud.hpp"
+#include "pss/points/unit_frame.hpp"
+
+namespace pss {
+
+// Consecutive points of the cloud, in its order.
+struct ProjectedWindow {
+  std::uint64_t first = 0;      // the first one's index in the cloud
+  std::vector<vec3> positions;  // about the cloud's origin
+  std::vector<vec3> normals;
+  std::vector<ProjectionStatus> status;
+};
+
+class TiledProjection {
+ public:
+  // Projects every point of `cloud` onto its MLS surface, each step tile by tile, keeping the
+  // results in scratch files in `folder` (each buffered in at most `buffer_bytes`), to be read
+  // back in windows of `window_points`. Throws Error as project_cloud does, and NotTiled
+  // (tiles/memory_plan.hpp) for what tiles do not do yet: APSS and RIMLS, the file's normals,
+  // and adaptive widths in a cloud sampled in rows (tiles/support.hpp).
+  TiledProjection(const TiledCloud& cloud, const ProjectionParams& params, Backend backend,
+                  const std::filesystem::path& folder, std::size_t window_points, std::size_t buffer_bytes,
+                  Stats& stats);
+
+  StatusCounts counts() const { return counts_; }
+  SupportWidths widths() const { return widths_; }  // least, median, largest (h is not kept)
+  OutlierReport outliers() const { return outliers_; }
+
+  // f(window) for each window of the cloud's points, first to last.
+  void read_in_order(const std::function<void(const ProjectedWindow&)>& f) const;
+
+ private:
+  const TiledCloud& cloud_;
+  UnitFrame frame_;
+  std::size_t window_points_;
+  std::unique_ptr<BucketFile> ordered_;  // the oriented results, a bucket a window
+  std::vector<char> flip_;               // per part of a tile's orientation, whether it turns
+  StatusCounts counts_;
+  SupportWidths widths_;
+  OutlierReport outliers_;
+};
+
+}  // namespace pss

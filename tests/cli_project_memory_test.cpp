@@ -1,0 +1,133 @@
+// pss project --memory (issue 28): a cloud that needs more than the budget is projected tile
+// by tile and written in its order with the in-core points (to the rounding of sums taken in
+// another order), normals facing as in core, and the file's colours and scalars; what the
+// tiles do not do yet is refused in one line; a run that fails leaves no output and no scratch.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "support/cli.hpp"
+#include "support/file_bytes.hpp"
+#include "support/output_readers.hpp"
+
+namespace pss {
+namespace {
+
+using ProjectMemory = test::CliTest;
+using test::ScratchFolder;
+
+// The torus of torus_xyz (about 50,000 points, georeferenced, a little noisy) as an ASCII PLY
+// with colours and an intensity per point.
+std::string torus_ply() {
+  std::string body;
+  int n = 0;
+  std::istringstream in(test::torus_xyz(50000, false, 0));
+  char line[200];
+  for (std::string xyz; std::getline(in, xyz); ++n) {
+    double x, y, z;
+    std::sscanf(xyz.c_str(), "%lf %lf %lf", &x, &y, &z);
+    z += 0.002 * std::sin(977.0 * n);  // noise: a few projections stop at the iteration cap
+    std::snprintf(line, sizeof line, "%.12f %.12f %.12f %d %d %d %g\n", x, y, z, n % 256, (7 * n) % 256, 255 - n % 256,
+                  0.5 * n);
+    body += line;
+  }
+  return "ply\nformat ascii 1.0\nelement vertex " + std::to_string(n) +
+         "\nproperty double x\nproperty double y\nproperty double z\nproperty uchar red\nproperty uchar green\n"
+         "property uchar blue\nproperty float intensity\nend_header\n" + body;
+}
+
+TEST_F(ProjectMemory, TileByTileTheSamePointsInTheSameOrderWithTheirColoursAndScalars) {
+  const std::string file = write("torus.ply", torus_ply());
+  const test::CliResult in_core = test::run_pss("project " + file + " -o " + path("core.ply") + " --stats " + path("core.json"));
+  ASSERT_EQ(in_core.exit_code, 0) << in_core.err;
+  const ScratchFolder scratch(dir_ / "scratch");
+  const test::CliResult tiled = test::run_pss("project " + file + " -o " + path("tiled.ply") + " --memory 6M --stats " +
+                                              path("tiled.json") + " --progress always");
+  ASSERT_EQ(tiled.exit_code, 0) << tiled.err;
+  EXPECT_TRUE(scratch.empty()) << "the tiles' scratch files are left behind";
+  for (const char* phase : {"reading into tiles: done", "support widths: done", "outliers: done", "projecting: done",
+                            "orient normals: done", "writing: done"})
+    EXPECT_NE(tiled.err.find(phase), std::string::npos) << tiled.err;
+  EXPECT_NE(tiled.out.find("; tile by tile: "), std::string::npos) << tiled.out;
+  EXPECT_NE(in_core.out.find("; in core)"), std::string::npos) << in_core.out;
+  const nlohmann::json core_stats = nlohmann::json::parse(read(path("core.json")));
+  const nlohmann::json tiled_stats = nlohmann::json::parse(read(path("tiled.json")));
+  EXPECT_FALSE(core_stats["memory"]["tiled"].get<bool>());
+  EXPECT_TRUE(tiled_stats["memory"]["tiled"].get<bool>());
+  EXPECT_EQ(tiled_stats["memory"]["budget"].get<std::uint64_t>(), 6u << 20);
+  EXPECT_EQ(tiled_stats["outliers_set_aside"], core_stats["outliers_set_aside"]);
+  EXPECT_EQ(tiled_stats["params"]["h"], core_stats["params"]["h"]);
+
+  const test::PlyColumns core = test::read_ply_columns(path("core.ply")), ply = test::read_ply_columns(path("tiled.ply"));
+  EXPECT_EQ(ply.header, core.header);
+  const std::size_t n = core.columns.at("x").size();
+  ASSERT_EQ(ply.columns.at("x").size(), n);
+  const double tolerance = core_stats["params"]["t_tolerance"].get<double>();
+  std::size_t apart = 0, facing_apart = 0, status_differ = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto at = [&](const test::PlyColumns& p, const char* name) { return p.columns.at(name)[i]; };
+    apart += std::hypot(at(ply, "x") - at(core, "x"), at(ply, "y") - at(core, "y"), at(ply, "z") - at(core, "z")) >
+             2 * tolerance;
+    facing_apart += at(ply, "nx") * at(core, "nx") + at(ply, "ny") * at(core, "ny") + at(ply, "nz") * at(core, "nz") < 0;
+    status_differ += at(ply, "status") != at(core, "status");
+    for (const char* same : {"red", "green", "blue", "intensity"}) ASSERT_EQ(at(ply, same), at(core, same)) << same << " " << i;
+  }
+  EXPECT_EQ(apart, 0u) << "points whose projections in core and in tiles lie apart";
+  EXPECT_EQ(facing_apart, 0u) << "normals that face otherwise than in core";
+  EXPECT_LE(status_differ, n / 200);
+
+  // XYZ out, from the same tiles' work.
+  ASSERT_EQ(test::run_pss("project " + file + " -o " + path("tiled.xyz") + " --memory 6M").exit_code, 0);
+  ASSERT_EQ(test::run_pss("project " + file + " -o " + path("core.xyz")).exit_code, 0);
+  EXPECT_EQ(test::line_count(read(path("tiled.xyz"))), int(n));
+  EXPECT_TRUE(scratch.empty());
+}
+
+TEST_F(ProjectMemory, WhatTilesDoNotDoYetIsOneLineNamingTheFile) {
+  const std::string normals = write("normals.xyz", test::torus_xyz(50000, false, 1.0));
+  const std::string plain = write("torus.xyz", test::torus_xyz(50000, false, 0));
+  const ScratchFolder scratch(dir_ / "scratch");
+  for (const std::string& args : {"project " + normals + " -o " + path("o.ply") + " --memory 6M",
+                                  "project " + plain + " -o " + path("o.ply") + " --memory 6M --surface apss"}) {
+    SCOPED_TRACE(args);
+    const test::CliResult r = test::run_pss(args);
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(test::line_count(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("tile by tile"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(path("o.ply")));
+    EXPECT_TRUE(scratch.empty());
+  }
+}
+
+// A disk that fills (a file-size limit) while the tiles are written, or no temporary folder:
+// one line, no output and no scratch file left.
+TEST_F(ProjectMemory, AFullDiskOrNoScratchFolderIsOneLineAndLeavesNothing) {
+  const std::string file = write("torus.xyz", test::torus_xyz(50000, false, 0));
+  const ScratchFolder scratch(dir_ / "scratch");
+  const std::string err = path("err.txt");
+  const int status = std::system(("ulimit -f 256; " + std::string(PSS_CLI) + " project " + file + " -o " +
+                                  path("o.ply") + " --memory 6M 2>" + err).c_str());
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 1);
+  EXPECT_EQ(test::line_count(read(err)), 1) << read(err);
+  EXPECT_NE(read(err).find("File too large"), std::string::npos) << read(err);
+  EXPECT_FALSE(std::filesystem::exists(path("o.ply")));
+  EXPECT_TRUE(scratch.empty()) << "the scratch files are left behind";
+  // The tiles go to $TMPDIR: one that is no folder is named.
+  const int none = std::system(("TMPDIR=" + (dir_ / "none").string() + " " + std::string(PSS_CLI) + " project " +
+                                file + " -o " + path("o.ply") + " --memory 6M 2>" + err).c_str());
+  EXPECT_TRUE(WIFEXITED(none) && WEXITSTATUS(none) == 1);
+  EXPECT_EQ(test::line_count(read(err)), 1) << read(err);
+  EXPECT_NE(read(err).find("the temporary folder '" + (dir_ / "none").string() + "'"), std::string::npos) << read(err);
+  EXPECT_FALSE(std::filesystem::exists(path("o.ply")));
+}
+
+}  // namespace
+}  // namespace pss

@@ -1,0 +1,163 @@
+// pss project tile by tile (include/pss/tiles/project.hpp, issue 28): the points of
+// project_cloud, in its order, to the rounding of sums taken in another order (and where that
+// rounding moves MLS's stopping test, within its tolerance on t), whatever the tiles; the
+// normals facing as in core, whose signs the tiles agree on across their seams.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <functional>
+#include <random>
+#include <string>
+
+#include "pss/core/error.hpp"
+#include "pss/io/point_cloud_file.hpp"
+#include "pss/tiles/orient.hpp"
+#include "pss/tiles/project.hpp"
+#include "support/cli.hpp"
+#include "support/shapes.hpp"
+
+namespace pss {
+namespace {
+
+using TiledProjectTest = test::CliTest;
+
+std::string xyz_of(const std::vector<vec3>& points) {
+  std::string text;
+  char line[100];
+  for (const vec3& p : points) {
+    std::snprintf(line, sizeof line, "%.9g %.9g %.9g\n", p.x, p.y, p.z);
+    text += line;
+  }
+  return text;
+}
+
+struct Compared {
+  float farthest = 0;               // the largest distance between the two projections of a point
+  std::size_t facing_apart_on = 0;  // normals facing apart where `on` holds in core
+  std::size_t beyond_rounding = 0;  // points whose two projections lie farther apart than rounding
+  std::size_t facing_apart = 0;     // normals facing apart
+  std::size_t status_differ = 0;
+  std::size_t tiles = 0;
+};
+
+// The file's cloud projected in tiles of `per_tile` points, against its projection in core.
+Compared compare(const CloudProjection& in_core, const std::string& file, const std::filesystem::path& dir,
+                 const ProjectionParams& params, std::uint64_t per_tile, std::size_t window,
+                 const std::function<bool(vec3)>& on = [](vec3) { return true; }) {
+  Stats stats;
+  const TiledCloud tiles(file, dir, per_tile, 1 << 16);
+  const TiledProjection tiled(tiles, params, Backend::cpu, dir, window, 1 << 16, stats);
+  EXPECT_EQ(tiled.outliers().set_aside, in_core.outliers.set_aside);
+  EXPECT_EQ(tiled.counts().converged + tiled.counts().not_converged,
+            in_core.counts.converged + in_core.counts.not_converged);
+  Compared c;
+  c.tiles = std::size_t(tiles.tiles());
+  std::uint64_t next = 0;
+  tiled.read_in_order([&](const ProjectedWindow& w) {
+    EXPECT_EQ(w.first, next);
+    for (std::size_t k = 0; k < w.positions.size(); ++k) {
+      const std::size_t i = std::size_t(w.first + k);
+      const float d = glm::length(w.positions[k] - in_core.cloud.positions[i]);
+      c.farthest = std::max(c.farthest, d);
+      c.beyond_rounding += d > 1e-5f * params.h;
+      const bool apart = glm::dot(w.normals[k], in_core.cloud.normals[i]) < 0;
+      c.facing_apart += apart;
+      c.facing_apart_on += apart && on(in_core.cloud.positions[i]) && in_core.status[i] == ProjectionStatus::converged;
+      c.status_differ += w.status[k] != in_core.status[i];
+    }
+    next += w.positions.size();
+  });
+  EXPECT_EQ(next, in_core.cloud.size());
+  return c;
+}
+
+// A noisy torus and a sphere apart from it, with strays between: the torus crosses many tiles,
+// each orienting its piece from its own highest point, and the sphere is a part of its own.
+TEST_F(TiledProjectTest, ATorusAndASphereApartProjectInTilesAsInCore) {
+  test::SampleOptions o;
+  o.count = 20000;
+  o.noise = 0.004f;
+  std::vector<vec3> points = test::sample(test::Torus{}, o).positions;
+  o.count = 3000;
+  for (const vec3& p : test::sample(test::Sphere{vec3(3, 0, 0.5f), 0.5f}, o).positions) points.push_back(p);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> across(-1.5f, 1.5f);
+  for (int i = 0; i < 60; ++i) points.push_back(vec3(across(rng), across(rng), across(rng) * 0.5f));
+  const std::string file = write("torus.xyz", xyz_of(points));
+  PointCloud cloud = read_point_cloud(file);
+  const float h = test::suggested_h(cloud);
+  ProjectionParams params = ProjectionParams::from_h(h);
+  params.support = Support::adaptive;
+  Stats stats;
+  const CloudProjection in_core = project_cloud(std::move(cloud), params, Backend::cpu, stats);
+  for (const std::uint64_t per_tile : {600u, 2500u}) {
+    SCOPED_TRACE(per_tile);
+    const Compared c = compare(in_core, file, dir_, params, per_tile, 7001);
+    EXPECT_GT(c.tiles, 8u);
+    // Sums in another order round otherwise; where that moves MLS's last step across its
+    // stopping test, a point stops one step earlier or later: within the tolerance on t.
+    EXPECT_LT(c.farthest, 2 * params.t_tolerance) << "a point's projections in core and in tiles lie apart";
+    EXPECT_LT(c.beyond_rounding, points.size() / 200);
+    EXPECT_LE(c.status_differ, points.size() / 2000);
+    EXPECT_EQ(c.facing_apart, 0u) << "of " << points.size() << " normals face otherwise than in core";
+  }
+}
+
+// A noisy sphere with a fifth as many strays about it: the second outliers' pass keeps the
+// first's threshold, as in core, though the strays set aside moved the distances' median. The
+// strays' own projections are no surface's (most stop at the iteration cap, within the
+// sphere or outside it), and their normals' signs follow trees through them that rounding
+// changes; the sphere's converged points face as in core.
+TEST_F(TiledProjectTest, TheOutliersPassesSetAsideWhatTheyDoInCore) {
+  test::SampleOptions o;
+  o.count = 12000;
+  o.noise = 0.02f;
+  std::vector<vec3> points = test::sample(test::Sphere{}, o).positions;
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<float> off(-0.3f, 0.3f);
+  for (std::size_t i = 0; i < 2400; ++i) points.push_back(points[i * 5] * (1 + off(rng)));
+  const std::string file = write("sphere.xyz", xyz_of(points));
+  ProjectionParams params = ProjectionParams::from_h(test::suggested_h(read_point_cloud(file)));
+  params.support = Support::adaptive;
+  Stats stats;
+  const CloudProjection in_core = project_cloud(read_point_cloud(file), params, Backend::cpu, stats);
+  EXPECT_GT(in_core.outliers.set_aside, 200);
+  const Compared c = compare(in_core, file, dir_, params, 1500, 5000,
+                             [](vec3 p) { return std::abs(glm::length(p) - 1) < 0.05f; });
+  EXPECT_GT(c.tiles, 8u);
+  EXPECT_EQ(c.facing_apart_on, 0u);
+}
+
+// Pieces 0-1-2 one part, 3-4 another: the strongest votes join them, a weaker vote against
+// them is outvoted, and each part keeps the sign of its piece grown from its highest point.
+TEST(PieceSigns, TheStrongestVotesJoinPiecesAndTheHighestPieceKeepsItsSign) {
+  PieceSigns signs;
+  std::uint64_t root = 10;
+  for (const float z : {0.1f, 0.9f, 0.5f, 0.3f, 0.3f}) signs.add_piece(z, root++);
+  for (int k = 0; k < 5; ++k) signs.vote(0, 1, false);  // 0 and 1 face apart
+  for (int k = 0; k < 4; ++k) signs.vote(2, 1, true);
+  for (int k = 0; k < 3; ++k) signs.vote(0, 2, true);  // outvoted: 0 is apart from 1, so from 2
+  signs.vote(4, 3, false);
+  EXPECT_EQ(signs.turns(), (std::vector<char>{1, 0, 0, 0, 1}));  // 3 ties 4 in height: the lower index keeps
+}
+
+TEST(PieceSigns, TiesInHeightGoByTheRootsIndex) {
+  PieceSigns signs;
+  signs.add_piece(0.3f, 7);
+  signs.add_piece(0.3f, 2);
+  signs.vote(0, 1, false);
+  EXPECT_EQ(signs.turns(), (std::vector<char>{1, 0}));
+  PieceSigns alone;
+  alone.add_piece(0.0f, 0);
+  EXPECT_EQ(alone.turns(), (std::vector<char>{0}));
+}
+
+TEST_F(TiledProjectTest, TilesRefuseWhatTheyDoNotDoYet) {
+  const std::string file = write("normals.xyz", "0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n1 1 0 0 0 1\n");
+  const TiledCloud tiles(file, dir_, 2, 1 << 16);
+  Stats stats;
+  EXPECT_THROW(TiledProjection(tiles, ProjectionParams::from_h(1), Backend::cpu, dir_, 100, 1 << 16, stats), Error);
+}
+
+}  // namespace
+}  // namespace pss
