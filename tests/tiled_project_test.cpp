@@ -14,22 +14,13 @@
 #include "pss/tiles/orient.hpp"
 #include "pss/tiles/project.hpp"
 #include "support/cli.hpp"
+#include "support/file_bytes.hpp"
 #include "support/shapes.hpp"
 
 namespace pss {
 namespace {
 
 using TiledProjectTest = test::CliTest;
-
-std::string xyz_of(const std::vector<vec3>& points) {
-  std::string text;
-  char line[100];
-  for (const vec3& p : points) {
-    std::snprintf(line, sizeof line, "%.9g %.9g %.9g\n", p.x, p.y, p.z);
-    text += line;
-  }
-  return text;
-}
 
 struct Compared {
   float farthest = 0;               // the largest distance between the two projections of a point
@@ -83,7 +74,7 @@ TEST_F(TiledProjectTest, ATorusAndASphereApartProjectInTilesAsInCore) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> across(-1.5f, 1.5f);
   for (int i = 0; i < 60; ++i) points.push_back(vec3(across(rng), across(rng), across(rng) * 0.5f));
-  const std::string file = write("torus.xyz", xyz_of(points));
+  const std::string file = write("torus.xyz", test::xyz_text(points));
   PointCloud cloud = read_point_cloud(file);
   const float h = test::suggested_h(cloud);
   ProjectionParams params = ProjectionParams::from_h(h);
@@ -116,7 +107,7 @@ TEST_F(TiledProjectTest, TheOutliersPassesSetAsideWhatTheyDoInCore) {
   std::mt19937 rng(4);
   std::uniform_real_distribution<float> off(-0.3f, 0.3f);
   for (std::size_t i = 0; i < 2400; ++i) points.push_back(points[i * 5] * (1 + off(rng)));
-  const std::string file = write("sphere.xyz", xyz_of(points));
+  const std::string file = write("sphere.xyz", test::xyz_text(points));
   ProjectionParams params = ProjectionParams::from_h(test::suggested_h(read_point_cloud(file)));
   params.support = Support::adaptive;
   Stats stats;

@@ -49,16 +49,6 @@ SupportWidths expect_tiles_as_in_core(const std::string& file, const std::filesy
   return in_core;
 }
 
-std::string xyz(const std::vector<vec3>& points) {
-  std::string text;
-  char line[100];
-  for (const vec3& p : points) {
-    std::snprintf(line, sizeof line, "%.9g %.9g %.9g\n", p.x, p.y, p.z);
-    text += line;
-  }
-  return text;
-}
-
 std::size_t widened(const SupportWidths& w, float h) {
   std::size_t count = 0;
   for (float width : w.h) count += width > h;
@@ -92,7 +82,7 @@ TEST_F(TiledSupportTest, TheNoiseWidensInTilesAsInCore) {
   std::normal_distribution<float> offset(0.0f, 0.06f);
   for (vec3& p : cloud.positions)
     if (p.z > 0.3f) p += offset(rng) * glm::normalize(p);
-  const std::string file = write("cap.xyz", xyz(cloud.positions));
+  const std::string file = write("cap.xyz", test::xyz_text(cloud.positions));
   const SpacingEstimate e = estimate_spacing(read_point_cloud(file).positions);
   const SupportWidths w = expect_tiles_as_in_core(file, dir_, float(e.median_kth), {300, 2000});
   EXPECT_GT(widened(w, float(e.median_kth)), 2000u) << "the noise does not widen: no test";
@@ -106,7 +96,7 @@ TEST_F(TiledSupportTest, ACloudOfHugeCoordinatesWidensInTilesAsInCore) {
   PointCloud cloud = test::sample(test::Sphere{}, o);
   for (std::size_t i = 0; i < cloud.size(); i += 5) cloud.positions[i] *= 1.0f + 0.03f * float(i % 7);  // some noise
   for (vec3& p : cloud.positions) p *= 1e30f;
-  const std::string file = write("huge.xyz", xyz(cloud.positions));
+  const std::string file = write("huge.xyz", test::xyz_text(cloud.positions));
   const SpacingEstimate e = estimate_spacing(read_point_cloud(file).positions);
   expect_tiles_as_in_core(file, dir_, float(e.suggested_h), {300});
 }
@@ -118,7 +108,7 @@ TEST_F(TiledSupportTest, NeighboursAtEqualDistancesAreTheSameInTilesAsInCore) {
   for (int y = 0; y < 120; ++y)
     for (int x = 0; x < 120; ++x)
       if ((x < 60 && y < 60) ? (x % 3 == 0 && y % 3 == 0) : true) points.push_back(vec3(float(x), float(y), 0.0f));
-  const std::string file = write("lattice.xyz", xyz(points));
+  const std::string file = write("lattice.xyz", test::xyz_text(points));
   const SupportWidths w = expect_tiles_as_in_core(file, dir_, 4.0f, {250, 3000});
   EXPECT_GT(widened(w, 4.0f), 300u) << "the sparse corner does not widen: no test";
 }
@@ -135,7 +125,7 @@ TEST_F(TiledSupportTest, OneWidthForAllAndACloudOfRows) {
   std::vector<vec3> rows;
   for (int r = 0; r < 20; ++r)
     for (int s = 0; s < 200; ++s) rows.push_back(vec3(0.1f * float(s), 2.0f * float(r), 0.0f));
-  const std::string rows_file = write("rows.xyz", xyz(rows));
+  const std::string rows_file = write("rows.xyz", test::xyz_text(rows));
   try {
     support_widths(TiledCloud(rows_file, dir_, 500, 1 << 16), adaptive(1.0f));
     ADD_FAILURE() << "a cloud of rows was not refused";

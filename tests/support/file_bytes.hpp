@@ -1,5 +1,5 @@
 // Files written byte by byte for the readers' tests: values in either byte order, a LAS 1.2
-// file of point format 2, and a torus as XYZ text.
+// file of point format 2, a torus as XYZ text, and points as XYZ text.
 #pragma once
 
 #include <algorithm>
@@ -62,6 +62,18 @@ inline std::string torus_xyz(int n, bool sparse_side, double normal_length) {
                               normal_length * n_.y, normal_length * n_.z);
     text.append(line, std::size_t(length));
     text += '\n';
+  }
+  return text;
+}
+
+// Points as XYZ text, each float in the digits that read back as it.
+template <class Vec3>
+std::string xyz_text(const std::vector<Vec3>& points) {
+  std::string text;
+  char line[100];
+  for (const Vec3& p : points) {
+    std::snprintf(line, sizeof line, "%.9g %.9g %.9g\n", double(p.x), double(p.y), double(p.z));
+    text += line;
   }
   return text;
 }
