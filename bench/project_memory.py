@@ -52,7 +52,8 @@ def run(pss, cloud, n, threads, tmp, memory=None):
     seconds = time.perf_counter() - start
     s = json.load(open(stats))
     peak = s["peak_bytes"]
-    return {"points": n, "memory": memory or "in core", "tiled": s["memory"]["tiled"], "output": out,
+    return {"points": n, "memory": memory or "in core", "tiled": s["memory"]["tiled"],
+            "points_per_tile": s["memory"].get("points_per_tile"), "output": out,
             "process_seconds": seconds, "points_per_second": n / seconds,
             "peak_bytes": peak["total"], "bytes_per_point": peak["total"] / n,
             "phases": {p: {"seconds": t, "peak_bytes": peak.get(p)} for p, t in s["seconds"].items()},
@@ -80,7 +81,8 @@ def main():
         for r in runs:
             results.append(r)
             print("\n%d points, %s (%s), %s threads: %.2f s whole process, %.0f points/s, peak %.0f MiB "
-                  "(%.0f bytes/point)" % (n, r["memory"], "tiles" if r["tiled"] else "in core", r["threads"],
+                  "(%.0f bytes/point)" % (n, r["memory"], "tiles of about %d points" % r["points_per_tile"]
+                                          if r["tiled"] else "in core", r["threads"],
                                           r["process_seconds"], r["points_per_second"], r["peak_bytes"] / MIB,
                                           r["bytes_per_point"]))
             if "against_in_core" in r:
