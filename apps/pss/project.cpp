@@ -94,6 +94,13 @@ void read_points(PointStream& stream, PointPart& part, std::size_t count, const 
 // written a window at a time beside the file's colours and scalars, read again.
 ProjectRun project_in_tiles(const ProjectOptions& o, const MemoryPlan& plan, Backend backend, Stats& stats,
                             ProjectionParams& params) {
+  ProjectionParams surface;  // what tiles fit, known before the file is read
+  apply_surface_options(o.surface.surface, surface);
+  try {
+    check_tiled_surface(surface.surface);
+  } catch (const NotTiled& e) {
+    throw file_error(o.input, e.what());
+  }
   std::optional<TiledCloud> read;
   {
     ScopedPhase phase(stats, "read", false);  // its Progress shows it
@@ -131,23 +138,28 @@ ProjectRun project_in_tiles(const ProjectOptions& o, const MemoryPlan& plan, Bac
     layout.origin = tiles.origin();
     layout.normals = true;
     layout.colors = tiles.has_colors();
-    layout.scalars = part.scalars;
+    for (const ScalarProperty& scalar : part.scalars) layout.scalars.push_back({scalar.name, scalar.type, {}});
     layout.extra = {"status"};
     PointCloudWriter writer(o.output, layout);
-    projected->read_in_order([&](const ProjectedWindow& w) {
+    projected->read_in_order([&](ProjectedWindow& w) {
       if (w.first > 0) read_points(*stream, part, w.positions.size(), o.input);
-      PointCloud out;
-      out.origin = tiles.origin();
-      out.positions = w.positions;
-      out.normals = w.normals;
-      out.colors = part.colors;
-      out.scalars = part.scalars;
       std::vector<std::int32_t> status(w.status.size());
       for (std::size_t i = 0; i < status.size(); ++i) status[i] = std::int32_t(w.status[i]);
+      const std::size_t count = w.positions.size();
+      PointCloud out;
+      out.origin = tiles.origin();
+      out.positions = std::move(w.positions);
+      out.normals = std::move(w.normals);
+      out.colors = std::move(part.colors);
+      out.scalars = std::move(part.scalars);
       const PlyIntProperty extra[] = {{"status", status}};
       writer.append(out, extra);
-      progress.advance(std::int64_t(w.positions.size()));
+      part.colors = std::move(out.colors);
+      part.scalars = std::move(out.scalars);  // their names and types for the next window
+      progress.advance(std::int64_t(count));
     });
+    part.clear();
+    if (stream->read(part, 1) > 0) throw file_error(o.input, "changed while it was read: it has more points than before");
     writer.commit();
   }
   char memory[160];

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <optional>
 
 #include "pss/core/error.hpp"
@@ -127,13 +126,9 @@ TilePoints TiledCloud::load(int tile, float halo) const {
   std::vector<Record> near;  // the halo's points, put in input order below
   const Aabb box = tile_box(tile);
   auto take = [&](int from, bool own) {
-    store_->read(from, [&](std::span<const char> block) {
-      for (std::size_t k = 0; k < block.size(); k += sizeof(Record)) {
-        Record r;
-        std::memcpy(&r, block.data() + k, sizeof r);
-        if (own) add(r);
-        else if (distance_to_box(r.position, box) <= double(halo)) near.push_back(r);
-      }
+    store_->for_each_record<Record>(from, [&](const Record& r) {
+      if (own) add(r);
+      else if (distance_to_box(r.position, box) <= double(halo)) near.push_back(r);
     });
   };
   take(tile, true);

@@ -10,14 +10,18 @@
 
 namespace pss {
 
-std::vector<float> distances_to_neighbours_planes(const SupportGrid& grid, Backend backend, Stats& stats,
-                                                  Progress* progress) {
+namespace {
+
+std::vector<float> distances_to_neighbours_planes(const SupportGrid& grid, Backend backend, Stats& stats) {
   const std::size_t n = grid.sorted_points().size();
   const GridMirror g(backend, grid);
   Mirror<float> out(backend, n);
-  parallel_for(backend, "outliers", std::int64_t(n), OutlierDistanceKernel{g.view(), out.data()}, stats, progress);
+  Progress progress("outliers", std::int64_t(n));
+  parallel_for(backend, "outliers", std::int64_t(n), OutlierDistanceKernel{g.view(), out.data()}, stats, &progress);
   return out.take();
 }
+
+}  // namespace
 
 // The noise's scale, robustly: 1.4826 times the median distance is σ for Gaussian noise.
 float outlier_threshold(std::vector<float> distance) {
@@ -28,8 +32,7 @@ float outlier_threshold(std::vector<float> distance) {
 }
 
 std::vector<char> samples_on_the_surface(const SupportGrid& grid, Backend backend, Stats& stats, OutlierReport& report) {
-  Progress progress("outliers", std::int64_t(grid.sorted_points().size()));
-  const std::vector<float> distance = distances_to_neighbours_planes(grid, backend, stats, &progress);
+  const std::vector<float> distance = distances_to_neighbours_planes(grid, backend, stats);
   if (!(report.threshold > 0)) report.threshold = outlier_threshold(distance);
   std::vector<char> keep(distance.size());
   for (std::size_t i = 0; i < keep.size(); ++i) keep[i] = distance[i] <= report.threshold;

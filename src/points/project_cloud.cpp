@@ -29,6 +29,14 @@ void validate(const ProjectionParams& p) {
   if (p.max_mls_iterations < 1) throw Error("MLS iterations must be at least 1");
 }
 
+ProjectionParams in_unit_frame(const ProjectionParams& params, double scale) {
+  ProjectionParams unit = params;
+  unit.h = float(double(params.h) / scale);
+  unit.rho = float(double(params.rho) / scale);
+  unit.t_tolerance = float(double(params.t_tolerance) / scale);
+  return unit;
+}
+
 void check_neighbourhood(const ProjectionParams& p, double diagonal) {
   // A ball wider than the whole cloud holds every point: each projection would fit the
   // entire cloud (quadratic work, a useless global plane) and a uniform grid of cells that
@@ -79,10 +87,7 @@ CloudProjection project_cloud(PointCloud input, const ProjectionParams& params, 
   // lengths, so they scale with the points; the results are mapped back at the end.
   const UnitFrame frame = unit_frame(input.positions);
   check_neighbourhood(params, frame.diagonal);
-  ProjectionParams unit_params = params;
-  unit_params.h = float(double(params.h) / frame.scale);
-  unit_params.rho = float(double(params.rho) / frame.scale);
-  unit_params.t_tolerance = float(double(params.t_tolerance) / frame.scale);
+  const ProjectionParams unit_params = in_unit_frame(params, frame.scale);
   CloudProjection out;
   // The projections keep the input's order, so its per-point values stay with them; the
   // input's arrays become the output's (issue 28: one copy of each at 10^7 points).
@@ -169,12 +174,7 @@ CloudProjection project_cloud(PointCloud input, const ProjectionParams& params, 
   out.widths.least = float(widths.least * frame.scale);
   out.widths.median = float(widths.median * frame.scale);
   out.widths.largest = float(widths.largest * frame.scale);
-  for (const ProjectionStatus status : out.status) switch (status) {
-      case ProjectionStatus::converged: ++out.counts.converged; break;
-      case ProjectionStatus::not_converged: ++out.counts.not_converged; break;
-      case ProjectionStatus::too_few_neighbours: ++out.counts.too_few_neighbours; break;
-      case ProjectionStatus::degenerate_normal: ++out.counts.degenerate_normal; break;
-    }
+  for (const ProjectionStatus status : out.status) out.counts.add(status);
   out.normals = normals_used;
   out.normals_turned = normals_turned;
   out.outliers = outliers;

@@ -2,11 +2,16 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <limits>
 #include <numeric>
+
+#include "pss/core/error.hpp"
 
 namespace pss {
 
 std::uint32_t PieceSigns::add_piece(float z, std::uint64_t root) {
+  if (roots_.size() >= std::size_t(std::numeric_limits<std::uint32_t>::max()))
+    throw Error("the normals' orientation has more than 2^32 pieces across its tiles");
   roots_.push_back({z, root});
   return std::uint32_t(roots_.size() - 1);
 }

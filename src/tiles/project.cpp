@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 
 #include "pss/backend/cpu/parallel_for.hpp"
@@ -21,12 +20,15 @@ namespace pss {
 
 namespace {
 
+// Records written whole to scratch files: every byte set, padding included.
 struct Projected {  // a point projected, in its tile's bucket
   std::uint64_t index;
   vec3 point, normal;  // unit frame
   float radius;        // ρ_i, unit frame: the orientation links the samples of each N(p_i)
   ProjectionStatus status;
+  std::uint8_t unused[3] = {};
 };
+static_assert(sizeof(Projected) == 40);
 
 struct Oriented {  // a point oriented, in its window's bucket: its own tile's, or a halo's vote
   std::uint64_t index;
@@ -34,7 +36,11 @@ struct Oriented {  // a point oriented, in its window's bucket: its own tile's, 
   std::uint32_t piece;
   ProjectionStatus status;
   bool own;
+  std::uint8_t unused[2] = {};
 };
+static_assert(sizeof(Oriented) == 40);
+
+constexpr std::uint32_t kNoPiece = std::uint32_t(-1);
 
 // A tile and its halo in the unit frame, with each point's width and whether it is a sample.
 struct UnitSet {
@@ -59,8 +65,17 @@ UnitSet load_unit(const TiledCloud& cloud, int tile, double halo, const UnitFram
   return s;
 }
 
-// The world halo that holds every sample within `unit_reach` of the tile's box, rounding aside.
-double world_halo(double unit_reach, const UnitFrame& frame) { return unit_reach * frame.scale * (1 + 1e-5); }
+// The world halo that holds every sample within `unit_reach` of the tile's box: a little more
+// for the rounding of the unit frame's floats (about 2^-25 of the box, whatever the reach).
+double world_halo(double unit_reach, const UnitFrame& frame) {
+  return (unit_reach + 0x1p-20) * frame.scale * (1 + 1e-5);
+}
+
+// The distance between two boxes (0 where they touch or overlap).
+double box_distance(const Aabb& a, const Aabb& b) {
+  return glm::length(glm::max(glm::max(glm::dvec3(a.lo) - glm::dvec3(b.hi), glm::dvec3(b.lo) - glm::dvec3(a.hi)),
+                              glm::dvec3(0.0)));
+}
 
 }  // namespace
 
@@ -69,16 +84,12 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
                                  std::size_t buffer_bytes, Stats& stats)
     : cloud_(cloud), window_points_(std::max<std::size_t>(window_points, 1)) {
   validate(params);
-  if (params.surface != SurfaceOperator::mls)
-    throw NotTiled("tile by tile, pss project fits the paper's MLS surface only (not APSS or RIMLS) so far");
+  check_tiled_surface(params.surface);
   if (cloud.has_normals()) throw NotTiled("tile by tile, pss project does not take a file's normals so far");
   const std::uint64_t n = cloud.size();
   frame_ = unit_frame_of_box(glm::dvec3(cloud.bounds().lo), glm::dvec3(cloud.bounds().hi));
   check_neighbourhood(params, frame_.diagonal);
-  ProjectionParams unit_params = params;
-  unit_params.h = float(double(params.h) / frame_.scale);
-  unit_params.rho = float(double(params.rho) / frame_.scale);
-  unit_params.t_tolerance = float(double(params.t_tolerance) / frame_.scale);
+  const ProjectionParams unit_params = in_unit_frame(params, frame_.scale);
   const float kappa = unit_params.rho / unit_params.h;
 
   // The widths, in the unit frame as in core.
@@ -93,7 +104,8 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
   const double reach = double(kappa) * (n > 0 ? *std::max_element(h.begin(), h.end()) : 0.0f);  // the widest ρ_i
 
   // The outliers' passes (points/outliers.hpp): each sample's distance in its tile, then the
-  // threshold over the whole cloud's.
+  // threshold over the whole cloud's. On the CPU, over the tile's own samples only (a GPU
+  // launch would measure the halo's too, whose kernel runs over every sample of a grid).
   std::vector<char> kept(std::size_t(n), 1);
   if (params.outliers == OutlierPolicy::set_aside) {
     ScopedPhase phase(stats, "outliers", false);
@@ -126,56 +138,44 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
     }
   }
 
-  // The projections, each tile's from its samples and its halo's: a projection reads the
-  // samples covering the points it moves through, within ρ of them; a halo twice the widest ρ
-  // holds them while no point moves farther than ρ, and doubles where one does.
+  // The projections, each tile's from its samples and its halo's: MLS gathers N(r) once, at
+  // the point (points/surface_projection.hpp), so a halo of the widest ρ_i holds it. How far
+  // each tile's points moved says how far its projections lie outside its box.
   BucketFile projected(folder, cloud.tiles(), sizeof(Projected), buffer_bytes);
-  double moved = 0;  // the farthest a point moved, unit frame
+  std::vector<double> moved(std::size_t(cloud.tiles()), 0.0);  // the farthest, unit frame
   {
     Progress progress("projecting", std::int64_t(n));
     for (int t = 0; t < cloud.tiles(); ++t) {
       if (cloud.tile_size(t) == 0) continue;
-      for (double halo = 2 * reach;; halo *= 2) {
-        const UnitSet set = load_unit(cloud, t, world_halo(halo, frame_), frame_, h, kept);
-        const SupportGrid grid(set.unit, set.h, set.samples, kappa);
-        const GridMirror g(backend, grid);
-        // The own points in the grid's order, then those set aside: neighbouring threads
-        // gather neighbouring samples, as in core (a file's random order costs a fifth).
-        const std::size_t own = set.points.own;
-        std::vector<int> order;
-        order.reserve(own);
-        std::vector<char> placed(own, 0);
-        for (const int i : grid.original_index())
-          if (std::size_t(i) < own) {
-            order.push_back(i);
-            placed[std::size_t(i)] = 1;
-          }
-        for (std::size_t i = 0; i < own; ++i)
-          if (!placed[i]) order.push_back(int(i));
-        std::vector<vec3> own_points(own);
-        for (std::size_t k = 0; k < own; ++k) own_points[k] = set.unit[std::size_t(order[k])];
-        const Mirror<vec3> points(backend, own_points);
-        Mirror<ProjectedPoint> out(backend, own);
-        parallel_for(backend, "projection", std::int64_t(own),
-                     ProjectPointsKernel{g.view(), points.data(), nullptr, out.data(), unit_params}, stats, &progress);
-        const std::vector<ProjectedPoint> done = out.take();
-        double farthest = 0;
-        for (std::size_t k = 0; k < own; ++k)
-          farthest = std::max(farthest, double(glm::length(done[k].point - own_points[k])));
-        if (farthest + reach > halo && set.unit.size() < n) continue;
-        moved = std::max(moved, farthest);
-        for (std::size_t k = 0; k < own; ++k) {
-          const auto i = std::size_t(order[k]);
-          const Projected r{set.points.index[i], done[k].point, done[k].normal, kappa * set.h[i], done[k].status};
-          projected.append(t, &r);
-          switch (r.status) {
-            case ProjectionStatus::converged: ++counts_.converged; break;
-            case ProjectionStatus::not_converged: ++counts_.not_converged; break;
-            case ProjectionStatus::too_few_neighbours: ++counts_.too_few_neighbours; break;
-            case ProjectionStatus::degenerate_normal: ++counts_.degenerate_normal; break;
-          }
+      const UnitSet set = load_unit(cloud, t, world_halo(reach, frame_), frame_, h, kept);  // N(r) of each point
+      const SupportGrid grid(set.unit, set.h, set.samples, kappa);
+      const GridMirror g(backend, grid);
+      // The own points in the grid's order, then those set aside: neighbouring threads
+      // gather neighbouring samples, as in core (a file's random order costs a fifth).
+      const std::size_t own = set.points.own;
+      std::vector<int> order;
+      order.reserve(own);
+      std::vector<char> placed(own, 0);
+      for (const int i : grid.original_index())
+        if (std::size_t(i) < own) {
+          order.push_back(i);
+          placed[std::size_t(i)] = 1;
         }
-        break;
+      for (std::size_t i = 0; i < own; ++i)
+        if (!placed[i]) order.push_back(int(i));
+      std::vector<vec3> own_points(own);
+      for (std::size_t k = 0; k < own; ++k) own_points[k] = set.unit[std::size_t(order[k])];
+      const Mirror<vec3> points(backend, own_points);
+      Mirror<ProjectedPoint> out(backend, own);
+      parallel_for(backend, "projection", std::int64_t(own),
+                   ProjectPointsKernel{g.view(), points.data(), nullptr, out.data(), unit_params}, stats, &progress);
+      const std::vector<ProjectedPoint> done = out.take();
+      for (std::size_t k = 0; k < own; ++k) {
+        const auto i = std::size_t(order[k]);
+        moved[std::size_t(t)] = std::max(moved[std::size_t(t)], double(glm::length(done[k].point - own_points[k])));
+        const Projected r{set.points.index[i], done[k].point, done[k].normal, kappa * set.h[i], done[k].status};
+        projected.append(t, &r);
+        counts_.add(r.status);
       }
     }
   }
@@ -191,28 +191,23 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
   ScopedPhase orientation(stats, "orient normals", false);  // its Progress shows it
   {
     Progress progress("orient normals", std::int64_t(n));
-    const double halo = world_halo(reach, frame_);
+    const double farthest = *std::max_element(moved.begin(), moved.end());
     for (int t = 0; t < cloud.tiles(); ++t) {
       if (cloud.tile_size(t) == 0) continue;
-      std::vector<Projected> set;
+      // Each own point lies within moved[t] of the box and links to points within the widest
+      // ρ_j of it; a point of tile u lies within moved[u] of u's box.
+      const double reach_t = reach + moved[std::size_t(t)];
+      const double halo = world_halo(reach_t, frame_);
       const Aabb box = cloud.tile_box(t);
-      projected.read(t, [&](std::span<const char> block) {
-        for (std::size_t k = 0; k < block.size(); k += sizeof(Projected)) {
-          Projected r;
-          std::memcpy(&r, block.data() + k, sizeof r);
-          set.push_back(r);
-        }
-      });
+      std::vector<Projected> set;
+      projected.for_each_record<Projected>(t, [&](const Projected& r) { set.push_back(r); });
       const std::size_t own = set.size();
-      // A halo's point lies within `moved` of its own tile's box.
-      for (const int other : cloud.tiles_near(t, float(halo + world_halo(moved, frame_))))
-        projected.read(other, [&](std::span<const char> block) {
-          for (std::size_t k = 0; k < block.size(); k += sizeof(Projected)) {
-            Projected r;
-            std::memcpy(&r, block.data() + k, sizeof r);
-            if (distance_to_box(frame_.from_unit(r.point), box) <= halo) set.push_back(r);
-          }
+      for (const int u : cloud.tiles_near(t, float(world_halo(reach_t + farthest, frame_)))) {
+        if (box_distance(cloud.tile_box(u), box) > world_halo(reach_t + moved[std::size_t(u)], frame_)) continue;
+        projected.for_each_record<Projected>(u, [&](const Projected& r) {
+          if (distance_to_box(frame_.from_unit(r.point), box) <= halo) set.push_back(r);
         });
+      }
       std::sort(set.begin() + std::ptrdiff_t(own), set.end(),
                 [](const Projected& a, const Projected& b) { return a.index < b.index; });
       std::vector<vec3> points(set.size()), normals(set.size());
@@ -225,13 +220,18 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
         id[i] = set[i].index;
       }
       const OrientedParts parts = orient_normals_in_parts(points, normals, radius, id);
-      std::vector<std::uint32_t> piece(parts.root.size());
+      // A halo's point alone in its part can only agree with its own tile's piece: no piece.
+      std::vector<int> size(parts.root.size(), 0);
+      for (const int part : parts.of_point) ++size[std::size_t(part)];
+      std::vector<std::uint32_t> piece(parts.root.size(), kNoPiece);
       for (std::size_t p = 0; p < piece.size(); ++p) {
         const auto root = std::size_t(parts.root[p]);
-        piece[p] = signs.add_piece(points[root].z, id[root]);
+        if (size[p] > 1 || root < own) piece[p] = signs.add_piece(points[root].z, id[root]);
       }
       for (std::size_t i = 0; i < set.size(); ++i) {
-        const Oriented r{id[i], points[i], normals[i], piece[std::size_t(parts.of_point[i])], set[i].status, i < own};
+        const std::uint32_t p = piece[std::size_t(parts.of_point[i])];
+        if (p == kNoPiece) continue;
+        const Oriented r{id[i], points[i], normals[i], p, set[i].status, i < own};
         ordered_->append(int(id[i] / window_points_), &r);
       }
       progress.advance(std::int64_t(own));
@@ -246,12 +246,8 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
     std::vector<vec3> normal(size);
     std::vector<std::uint32_t> piece(size);
     auto each = [&](bool own, auto&& f) {
-      ordered_->read(w, [&](std::span<const char> block) {
-        for (std::size_t k = 0; k < block.size(); k += sizeof(Oriented)) {
-          Oriented r;
-          std::memcpy(&r, block.data() + k, sizeof r);
-          if (r.own == own) f(r);
-        }
+      ordered_->for_each_record<Oriented>(w, [&](const Oriented& r) {
+        if (r.own == own) f(r);
       });
     };
     each(true, [&](const Oriented& r) {
@@ -265,7 +261,12 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
   flip_ = signs.turns();
 }
 
-void TiledProjection::read_in_order(const std::function<void(const ProjectedWindow&)>& f) const {
+void check_tiled_surface(SurfaceOperator surface) {
+  if (surface != SurfaceOperator::mls)
+    throw NotTiled("tile by tile, pss project fits the paper's MLS surface only (not APSS or RIMLS) so far");
+}
+
+void TiledProjection::read_in_order(const std::function<void(ProjectedWindow&)>& f) const {
   const std::uint64_t n = cloud_.size();
   for (int w = 0; w < ordered_->buckets() && n > 0; ++w) {
     ProjectedWindow window;
@@ -274,16 +275,12 @@ void TiledProjection::read_in_order(const std::function<void(const ProjectedWind
     window.positions.resize(size);
     window.normals.resize(size);
     window.status.resize(size);
-    ordered_->read(w, [&](std::span<const char> block) {
-      for (std::size_t k = 0; k < block.size(); k += sizeof(Oriented)) {
-        Oriented r;
-        std::memcpy(&r, block.data() + k, sizeof r);
-        if (!r.own) continue;
-        const std::size_t i = std::size_t(r.index - window.first);
-        window.positions[i] = frame_.from_unit(r.point);
-        window.normals[i] = flip_[r.piece] ? -r.normal : r.normal;
-        window.status[i] = r.status;
-      }
+    ordered_->for_each_record<Oriented>(w, [&](const Oriented& r) {
+      if (!r.own) return;
+      const std::size_t i = std::size_t(r.index - window.first);
+      window.positions[i] = frame_.from_unit(r.point);
+      window.normals[i] = flip_[r.piece] ? -r.normal : r.normal;
+      window.status[i] = r.status;
     });
     f(window);
   }

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <functional>
 #include <span>
@@ -32,6 +33,18 @@ class BucketFile {
   // Calls `block` with each block of the bucket's records in the order they were appended
   // (a span of whole records' bytes, valid during the call).
   void read(int bucket, const std::function<void(std::span<const char>)>& block) const;
+
+  // f(record) for each of the bucket's records, read into a T (record_bytes() == sizeof(T)).
+  template <class T, class F>
+  void for_each_record(int bucket, F&& f) const {
+    read(bucket, [&](std::span<const char> block) {
+      for (std::size_t k = 0; k + sizeof(T) <= block.size(); k += sizeof(T)) {
+        T record;
+        std::memcpy(&record, block.data() + k, sizeof record);
+        f(record);
+      }
+    });
+  }
 
   const std::filesystem::path& path() const { return file_.path(); }
 

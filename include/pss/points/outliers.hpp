@@ -15,7 +15,6 @@
 #include <vector>
 
 #include "pss/backend/backend.hpp"
-#include "pss/core/progress.hpp"
 #include "pss/core/stats.hpp"
 #include "pss/fit/inverse_power.hpp"
 #include "pss/fit/moments.hpp"
@@ -57,10 +56,6 @@ struct OutlierReport {
   std::int64_t set_aside = 0;
   float threshold = 0;  // in units of h_i
 };
-
-// OutlierDistanceKernel's distance of each sorted sample of `grid` (phase "outliers").
-std::vector<float> distances_to_neighbours_planes(const SupportGrid& grid, Backend backend, Stats& stats,
-                                                  Progress* progress);
 
 // The largest distance a sample on the surface lies at: kOutlierSigmas robust standard
 // deviations of the finite distances, and at least kOutlierFloor.

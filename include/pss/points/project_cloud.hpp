@@ -18,6 +18,14 @@ namespace pss {
 
 struct StatusCounts {
   std::int64_t converged = 0, not_converged = 0, too_few_neighbours = 0, degenerate_normal = 0;
+  void add(ProjectionStatus status) {
+    switch (status) {
+      case ProjectionStatus::converged: ++converged; break;
+      case ProjectionStatus::not_converged: ++not_converged; break;
+      case ProjectionStatus::too_few_neighbours: ++too_few_neighbours; break;
+      case ProjectionStatus::degenerate_normal: ++degenerate_normal; break;
+    }
+  }
 };
 
 struct CloudProjection {
@@ -37,6 +45,10 @@ struct CloudProjection {
 CloudProjection project_cloud(PointCloud input, const ProjectionParams& params, Backend backend, Stats& stats);
 
 void validate(const ProjectionParams& params);
+
+// The parameters' lengths (h, ρ, the tolerance on t) in a unit frame of that scale
+// (unit_frame.hpp), where projection runs.
+ProjectionParams in_unit_frame(const ProjectionParams& params, double scale);
 
 // Throws Error when a cloud of points had none projected (every one with too few neighbours
 // or a degenerate normal): handing the input back unmoved would look like success.

@@ -30,6 +30,9 @@ struct ProjectedWindow {
   std::vector<ProjectionStatus> status;
 };
 
+// Throws NotTiled for a surface tiles do not fit yet (APSS, RIMLS).
+void check_tiled_surface(SurfaceOperator surface);
+
 class TiledProjection {
  public:
   // Projects every point of `cloud` onto its MLS surface, each step tile by tile, keeping the
@@ -45,15 +48,15 @@ class TiledProjection {
   SupportWidths widths() const { return widths_; }  // least, median, largest (h is not kept)
   OutlierReport outliers() const { return outliers_; }
 
-  // f(window) for each window of the cloud's points, first to last.
-  void read_in_order(const std::function<void(const ProjectedWindow&)>& f) const;
+  // f(window) for each window of the cloud's points, first to last (f may take its arrays).
+  void read_in_order(const std::function<void(ProjectedWindow&)>& f) const;
 
  private:
   const TiledCloud& cloud_;
   UnitFrame frame_;
   std::size_t window_points_;
   std::unique_ptr<BucketFile> ordered_;  // the oriented results, a bucket a window
-  std::vector<char> flip_;               // per part of a tile's orientation, whether it turns
+  std::vector<char> flip_;               // per piece of a tile's orientation, whether it turns
   StatusCounts counts_;
   SupportWidths widths_;
   OutlierReport outliers_;
