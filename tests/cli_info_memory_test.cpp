@@ -96,7 +96,7 @@ TEST_F(InfoMemory, BudgetsThatAreNoSizeOrTooSmallAreRefused) {
 }
 
 // A temporary folder that is none, and a disk that fills (a file-size limit): one line, no
-// figures, and no scratch file left.
+// figures, and no scratch file left; an empty TMPDIR is /tmp.
 TEST_F(InfoMemory, NoScratchFolderOrAFullDiskIsOneLineAndLeavesNothing) {
   const std::string file = write("torus.xyz", test::torus_xyz(60000, true, 0));
   const std::string out = path("out.txt"), err = path("err.txt");
@@ -111,6 +111,9 @@ TEST_F(InfoMemory, NoScratchFolderOrAFullDiskIsOneLineAndLeavesNothing) {
   EXPECT_EQ(test::line_count(read(err)), 1) << read(err);
   EXPECT_NE(read(err).find("the temporary folder '" + (dir_ / "none").string() + "'"), std::string::npos) << read(err);
   EXPECT_TRUE(read(out).empty()) << read(out);
+  // An empty TMPDIR is as none set: /tmp.
+  EXPECT_EQ(run("TMPDIR= "), 0) << read(err);
+  EXPECT_NE(read(out).find("memory          tile by tile"), std::string::npos) << read(out);
 
   const ScratchFolder scratch(dir_ / "scratch");
   // 256 KiB at most a file (the tiles' store needs 1 MiB): writing past it fails, an error

@@ -25,13 +25,14 @@ std::uint64_t default_memory_budget() {
 }
 
 std::filesystem::path scratch_folder() {
+  const char* named = std::getenv("TMPDIR");
+  // An empty TMPDIR reads as unset (POSIX), where temp_directory_path would take "".
+  const bool empty = named && *named == '\0';
   std::error_code error;
-  const std::filesystem::path folder = std::filesystem::temp_directory_path(error);
-  if (error) {
-    const char* named = std::getenv("TMPDIR");
-    throw Error("the temporary folder " + quote(named ? named : "/tmp") + " for the tiles is no folder: " +
-                error.message());
-  }
+  const std::filesystem::path folder = empty ? std::filesystem::path("/tmp") : std::filesystem::temp_directory_path(error);
+  if (error || !std::filesystem::is_directory(folder, error))
+    throw Error("the temporary folder " + quote(named && !empty ? named : "/tmp") + " for the tiles is no folder" +
+                (error ? ": " + error.message() : std::string()));
   return folder;
 }
 
