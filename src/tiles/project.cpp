@@ -77,6 +77,66 @@ double box_distance(const Aabb& a, const Aabb& b) {
                               glm::dvec3(0.0)));
 }
 
+// The outliers' passes (points/outliers.hpp): each sample's distance in its tile, then the
+// threshold over the whole cloud's; whether each point is kept as a sample. On the CPU, over
+// the tile's own samples only (a GPU launch would measure the halo's too, whose kernel runs
+// over every sample of a grid).
+std::vector<char> samples_kept(const TiledCloud& cloud, const UnitFrame& frame, const std::vector<float>& h,
+                               float kappa, double reach, OutlierReport& report) {
+  const std::uint64_t n = cloud.size();
+  std::vector<char> kept(std::size_t(n), 1);
+  for (int pass = 0; pass < kOutlierPasses; ++pass) {
+    std::vector<float> distance(std::size_t(n), std::numeric_limits<float>::quiet_NaN());
+    Progress progress("outliers", std::int64_t(n));
+    for (int t = 0; t < cloud.tiles(); ++t) {
+      if (cloud.tile_size(t) == 0) continue;
+      const UnitSet set = load_unit(cloud, t, world_halo(reach, frame), frame, h, kept);
+      const SupportGrid grid(set.unit, set.h, set.samples, kappa);
+      const std::span<const int> original = grid.original_index();
+      std::vector<int> own;  // the tile's own samples, by sorted index
+      for (std::size_t k = 0; k < original.size(); ++k)
+        if (std::size_t(original[k]) < set.points.own) own.push_back(int(k));
+      std::vector<float> out(original.size());
+      const OutlierDistanceKernel kernel{grid.view(), out.data()};
+      cpu::parallel_for(std::int64_t(own.size()), [&](std::int64_t m) { kernel(own[std::size_t(m)]); });
+      for (const int k : own) distance[std::size_t(set.points.index[std::size_t(original[std::size_t(k)])])] = out[std::size_t(k)];
+      progress.advance(std::int64_t(cloud.tile_size(t)));
+    }
+    if (pass == 0) report.threshold = outlier_threshold(distance);  // the second keeps it, as in core
+    std::int64_t set_aside = 0;
+    for (std::size_t i = 0; i < std::size_t(n); ++i)
+      if (kept[i] && !(distance[i] <= report.threshold)) {
+        kept[i] = 0;
+        ++set_aside;
+      }
+    report.set_aside += set_aside;
+    if (set_aside == 0) break;
+  }
+  return kept;
+}
+
+// The pieces' votes: each halo point's normal against its own tile's, window by window.
+void vote(const BucketFile& ordered, std::uint64_t n, std::size_t window_points, PieceSigns& signs) {
+  for (int w = 0; w < ordered.buckets(); ++w) {
+    const std::uint64_t first = std::uint64_t(w) * window_points;
+    const std::size_t size = std::size_t(std::min<std::uint64_t>(window_points, n - first));
+    std::vector<vec3> normal(size);
+    std::vector<std::uint32_t> piece(size);
+    auto each = [&](bool own, auto&& f) {
+      ordered.for_each_record<Oriented>(w, [&](const Oriented& r) {
+        if (r.own == own) f(r);
+      });
+    };
+    each(true, [&](const Oriented& r) {
+      normal[r.index - first] = r.normal;
+      piece[r.index - first] = r.piece;
+    });
+    each(false, [&](const Oriented& r) {
+      signs.vote(r.piece, piece[r.index - first], glm::dot(r.normal, normal[r.index - first]) >= 0);
+    });
+  }
+}
+
 }  // namespace
 
 TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams& params, Backend backend,
@@ -103,39 +163,10 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
   for (float& w : h) w = float(double(w) / frame_.scale);
   const double reach = double(kappa) * (n > 0 ? *std::max_element(h.begin(), h.end()) : 0.0f);  // the widest ρ_i
 
-  // The outliers' passes (points/outliers.hpp): each sample's distance in its tile, then the
-  // threshold over the whole cloud's. On the CPU, over the tile's own samples only (a GPU
-  // launch would measure the halo's too, whose kernel runs over every sample of a grid).
   std::vector<char> kept(std::size_t(n), 1);
   if (params.outliers == OutlierPolicy::set_aside) {
-    ScopedPhase phase(stats, "outliers", false);
-    for (int pass = 0; pass < kOutlierPasses; ++pass) {
-      std::vector<float> distance(std::size_t(n), std::numeric_limits<float>::quiet_NaN());
-      Progress progress("outliers", std::int64_t(n));
-      for (int t = 0; t < cloud.tiles(); ++t) {
-        if (cloud.tile_size(t) == 0) continue;
-        const UnitSet set = load_unit(cloud, t, world_halo(reach, frame_), frame_, h, kept);
-        const SupportGrid grid(set.unit, set.h, set.samples, kappa);
-        const std::span<const int> original = grid.original_index();
-        std::vector<int> own;  // the tile's own samples, by sorted index
-        for (std::size_t k = 0; k < original.size(); ++k)
-          if (std::size_t(original[k]) < set.points.own) own.push_back(int(k));
-        std::vector<float> out(original.size());
-        const OutlierDistanceKernel kernel{grid.view(), out.data()};
-        cpu::parallel_for(std::int64_t(own.size()), [&](std::int64_t m) { kernel(own[std::size_t(m)]); });
-        for (const int k : own) distance[std::size_t(set.points.index[std::size_t(original[std::size_t(k)])])] = out[std::size_t(k)];
-        progress.advance(std::int64_t(cloud.tile_size(t)));
-      }
-      if (pass == 0) outliers_.threshold = outlier_threshold(distance);  // the second keeps it, as in core
-      std::int64_t set_aside = 0;
-      for (std::size_t i = 0; i < std::size_t(n); ++i)
-        if (kept[i] && !(distance[i] <= outliers_.threshold)) {
-          kept[i] = 0;
-          ++set_aside;
-        }
-      outliers_.set_aside += set_aside;
-      if (set_aside == 0) break;
-    }
+    ScopedPhase phase(stats, "outliers", false);  // its Progress shows it
+    kept = samples_kept(cloud, frame_, h, kappa, reach, outliers_);
   }
 
   // The projections, each tile's from its samples and its halo's: MLS gathers N(r) once, at
@@ -239,25 +270,7 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
   }
   ordered_->flush();
 
-  // The votes: each halo point's normal against its own tile's, window by window.
-  for (int w = 0; w < ordered_->buckets(); ++w) {
-    const std::uint64_t first = std::uint64_t(w) * window_points_;
-    const std::size_t size = std::size_t(std::min<std::uint64_t>(window_points_, n - first));
-    std::vector<vec3> normal(size);
-    std::vector<std::uint32_t> piece(size);
-    auto each = [&](bool own, auto&& f) {
-      ordered_->for_each_record<Oriented>(w, [&](const Oriented& r) {
-        if (r.own == own) f(r);
-      });
-    };
-    each(true, [&](const Oriented& r) {
-      normal[r.index - first] = r.normal;
-      piece[r.index - first] = r.piece;
-    });
-    each(false, [&](const Oriented& r) {
-      signs.vote(r.piece, piece[r.index - first], glm::dot(r.normal, normal[r.index - first]) >= 0);
-    });
-  }
+  vote(*ordered_, n, window_points_, signs);
   flip_ = signs.turns();
 }
 
