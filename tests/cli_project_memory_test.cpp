@@ -70,19 +70,12 @@ TEST_F(ProjectMemory, TileByTileTheSamePointsInTheSameOrderWithTheirColoursAndSc
   EXPECT_EQ(ply.header, core.header);
   const std::size_t n = core.columns.at("x").size();
   ASSERT_EQ(ply.columns.at("x").size(), n);
-  const double tolerance = core_stats["params"]["t_tolerance"].get<double>();
-  std::size_t apart = 0, facing_apart = 0, status_differ = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto at = [&](const test::PlyColumns& p, const char* name) { return p.columns.at(name)[i]; };
-    apart += std::hypot(at(ply, "x") - at(core, "x"), at(ply, "y") - at(core, "y"), at(ply, "z") - at(core, "z")) >
-             2 * tolerance;
-    facing_apart += at(ply, "nx") * at(core, "nx") + at(ply, "ny") * at(core, "ny") + at(ply, "nz") * at(core, "nz") < 0;
-    status_differ += at(ply, "status") != at(core, "status");
-    for (const char* same : {"red", "green", "blue", "intensity"}) ASSERT_EQ(at(ply, same), at(core, same)) << same << " " << i;
-  }
-  EXPECT_EQ(apart, 0u) << "points whose projections in core and in tiles lie apart";
-  EXPECT_EQ(facing_apart, 0u) << "normals that face otherwise than in core";
-  EXPECT_LE(status_differ, n / 200);
+  for (const char* same : {"red", "green", "blue", "intensity"}) EXPECT_EQ(ply.columns.at(same), core.columns.at(same)) << same;
+  const test::ProjectedApart c =
+      test::compare_projected(ply, core, 2 * core_stats["params"]["t_tolerance"].get<double>());
+  EXPECT_EQ(c.apart, 0u) << "points whose projections in core and in tiles lie apart";
+  EXPECT_EQ(c.facing_apart, 0u) << "normals that face otherwise than in core";
+  EXPECT_LE(c.status_differ, n / 200);
 
   // XYZ out, from the same tiles' work.
   ASSERT_EQ(test::run_pss("project " + file + " -o " + path("tiled.xyz") + " --memory 6M").exit_code, 0);

@@ -10,6 +10,7 @@
 
 #include "commands.hpp"
 #include "pss/core/error.hpp"
+#include "ranks/ranks.hpp"
 #include "view/view_command.hpp"
 
 int main(int argc, char** argv) {
@@ -25,6 +26,9 @@ int main(int argc, char** argv) {
   // A closed pipe (pss info … | head) makes a write fail instead of killing pss with its
   // scratch files left behind.
   std::signal(SIGPIPE, SIG_IGN);
+  // Under mpirun, ranks other than 0 work on rank 0's tiles (ranks/ranks.hpp).
+  pss::app::RankSession ranks(argc, argv);
+  if (ranks.serves()) return ranks.serve();
   CLI::App app{"pss: point set surfaces of point clouds and volumes, on CPUs and GPUs"};
   pss::app::configure_app(app, pss::app::Action::run);
   pss::app::add_view_command(app);

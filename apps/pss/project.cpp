@@ -24,6 +24,7 @@
 #include "pss/tiles/project.hpp"
 #include "pss/tiles/spacing.hpp"
 #include "pss/tiles/support.hpp"
+#include "ranks/ranks.hpp"
 
 namespace pss::app {
 
@@ -53,6 +54,7 @@ struct ProjectRun {
   std::size_t normals_turned = 0;
   std::int64_t set_aside = 0;
   std::string memory;  // how the run held the cloud, for the summary
+  std::vector<std::uint64_t> points_per_rank;  // the points each rank projected
 };
 
 PlaneFitMethod plane_of(const ProjectOptions& o) { return o.method == "wls" ? PlaneFitMethod::wls : PlaneFitMethod::mls; }
@@ -78,8 +80,10 @@ ProjectRun project_in_core(const ProjectOptions& o, Backend backend, Stats& stat
     const PlyIntProperty extra[] = {{"status", status}};
     write_point_cloud(o.output, result.cloud, extra);
   }
+  std::vector<std::uint64_t> per_rank(std::size_t(rank_count()), 0);
+  per_rank[0] = result.cloud.size();
   return {result.cloud.size(), result.cloud.origin, result.counts, result.widths, result.normals,
-          result.normals_turned, result.outliers.set_aside, "in core"};
+          result.normals_turned, result.outliers.set_aside, "in core", per_rank};
 }
 
 // The file's next `count` points (their colours and scalars) into `part`.
@@ -96,11 +100,7 @@ ProjectRun project_in_tiles(const ProjectOptions& o, const MemoryPlan& plan, Bac
                             ProjectionParams& params) {
   ProjectionParams surface;  // what tiles fit, known before the file is read
   apply_surface_options(o.surface.surface, surface);
-  try {
-    check_tiled_surface(surface.surface);
-  } catch (const NotTiled& e) {
-    throw file_error(o.input, e.what());
-  }
+  check_tiled_surface(surface.surface);
   std::optional<TiledCloud> read;
   {
     ScopedPhase phase(stats, "read", false);  // its Progress shows it
@@ -119,14 +119,9 @@ ProjectRun project_in_tiles(const ProjectOptions& o, const MemoryPlan& plan, Bac
       plane_of(o), stats);
   // A window's points take about 128 bytes: its results, the file's part and the writer's.
   const std::size_t window = std::size_t(std::clamp<std::uint64_t>(plan.budget / 8 / 128, 4096, 1u << 24));
-  std::optional<TiledProjection> projected;
-  try {
-    projected.emplace(tiles, params, backend, scratch_folder(), window, plan.buffer_bytes, stats);
-  } catch (const NotTiled& e) {
-    throw file_error(o.input, std::string(e.what()) + "; in core it needs about " +
-                                  byte_size(double(tiles.size() * kProjectCosts.in_core)) + " (--memory)");
-  }
-  check_projected(o, projected->counts(), params);
+  const TiledProjection projected(tiles, params, backend, scratch_folder(), window, plan.buffer_bytes, stats,
+                                  rank_farm());
+  check_projected(o, projected.counts(), params);
   {
     ScopedPhase phase(stats, "write", false);
     Progress progress("writing", std::int64_t(tiles.size()));
@@ -141,7 +136,7 @@ ProjectRun project_in_tiles(const ProjectOptions& o, const MemoryPlan& plan, Bac
     for (const ScalarProperty& scalar : part.scalars) layout.scalars.push_back({scalar.name, scalar.type, {}});
     layout.extra = {"status"};
     PointCloudWriter writer(o.output, layout);
-    projected->read_in_order([&](ProjectedWindow& w) {
+    projected.read_in_order([&](ProjectedWindow& w) {
       if (w.first > 0) read_points(*stream, part, w.positions.size(), o.input);
       std::vector<std::int32_t> status(w.status.size());
       for (std::size_t i = 0; i < status.size(); ++i) status[i] = std::int32_t(w.status[i]);
@@ -165,8 +160,8 @@ ProjectRun project_in_tiles(const ProjectOptions& o, const MemoryPlan& plan, Bac
   char memory[160];
   std::snprintf(memory, sizeof memory, "tile by tile: %d tiles of about %llu points", tiles.tiles(),
                 (unsigned long long)plan.points_per_tile);
-  return {tiles.size(), tiles.origin(), projected->counts(), projected->widths(), NormalsUsed::none, 0,
-          projected->outliers().set_aside, memory};
+  return {tiles.size(), tiles.origin(), projected.counts(), projected.widths(), NormalsUsed::none, 0,
+          projected.outliers().set_aside, memory, projected.points_per_rank()};
 }
 
 void run_project(const ProjectOptions& o) {
@@ -178,17 +173,30 @@ void run_project(const ProjectOptions& o) {
   MemoryPlan plan;
   plan.budget = memory_budget(o.memory);
   if (has_point_stream(o.input)) plan = plan_memory(o.input, plan.budget, kProjectCosts);
+  // Under mpirun, a cloud that fits in core is tiled all the same, for the ranks to share.
+  const MemoryPlan needed = plan;
+  plan = spread_over_ranks(plan, rank_count());
   ProjectionParams params;
-  const ProjectRun run = plan.tiled ? project_in_tiles(o, plan, backend, stats, params)
-                                    : project_in_core(o, backend, stats, params);
+  ProjectRun run;
+  try {
+    run = plan.tiled ? project_in_tiles(o, plan, backend, stats, params) : project_in_core(o, backend, stats, params);
+  } catch (const NotTiled& e) {
+    if (needed.tiled)
+      throw file_error(o.input, std::string(e.what()) + "; in core it needs about " +
+                                    byte_size(double(plan.points * kProjectCosts.in_core)) + " (--memory)");
+    stats = Stats();  // rank 0 alone, in core
+    plan = needed;
+    run = project_in_core(o, backend, stats, params);
+  }
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   stats.add_time("total", total);
 
   const double projection_s = stats.time("projection");
   const auto& c = run.counts;
-  std::printf("projected %llu points onto the PSS in %.3f s (projection %.3f s, %.0f points/s, %s backend, %d threads; %s)\n",
+  const std::string ranks = rank_count() > 1 ? "; " + std::to_string(rank_count()) + " ranks" : "";
+  std::printf("projected %llu points onto the PSS in %.3f s (projection %.3f s, %.0f points/s, %s backend, %d threads; %s%s)\n",
               (unsigned long long)run.points, total, projection_s, double(run.points) / projection_s,
-              backend_name(backend), cpu_threads(), run.memory.c_str());
+              backend_name(backend), cpu_threads(), run.memory.c_str(), ranks.c_str());
   std::printf("%s surface%s, h = %g (%s), rho = %g, plane fit %s; converged %lld, not converged %lld, too few "
               "neighbours %lld, degenerate normal %lld; %lld outliers set aside (projected, not samples)\n",
               surface_name(params.surface), normals_text(run.normals), params.h,
@@ -213,6 +221,8 @@ void run_project(const ProjectOptions& o) {
     v["points_per_second"] = double(run.points) / projection_s;
     v["memory"] = {{"budget", plan.budget}, {"tiled", plan.tiled}};
     if (plan.tiled) v["memory"]["points_per_tile"] = plan.points_per_tile;
+    v["ranks"] = rank_count();
+    v["points_per_rank"] = run.points_per_rank;
     stats.write(o.compute.stats_path);
   }
   outputs.commit();

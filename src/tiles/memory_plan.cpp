@@ -51,13 +51,21 @@ std::uint64_t point_count_at_most(const std::filesystem::path& file) {
   return lines + (last != '\n');
 }
 
+namespace {
+
+std::size_t buffer_bytes_of(std::uint64_t budget) {
+  return std::size_t(std::clamp<std::uint64_t>(budget / 8, 1 << 16, std::uint64_t(64) << 20));
+}
+
+}  // namespace
+
 MemoryPlan plan_memory(const std::filesystem::path& file, std::uint64_t budget, const MemoryCosts& costs) {
   MemoryPlan plan;
   plan.budget = budget;
   plan.points = point_count_at_most(file);
   if (plan.points * costs.in_core <= budget) return plan;
   plan.tiled = true;
-  plan.buffer_bytes = std::size_t(std::clamp<std::uint64_t>(budget / 8, 1 << 16, std::uint64_t(64) << 20));
+  plan.buffer_bytes = buffer_bytes_of(budget);
   const std::uint64_t held = plan.points * costs.held + plan.buffer_bytes;
   // A tile's halo may hold as many points again on each side: four times its own.
   const std::uint64_t tile_bytes = 4 * costs.tile;
@@ -65,6 +73,17 @@ MemoryPlan plan_memory(const std::filesystem::path& file, std::uint64_t budget, 
     throw Error("--memory " + byte_size(double(budget)) + " is too small for " + file.string() + "'s " + std::to_string(plan.points) +
                 " points: it needs at least " + byte_size(double(held + kLeastTilePoints * tile_bytes)));
   plan.points_per_tile = (budget - held) / tile_bytes;
+  return plan;
+}
+
+MemoryPlan spread_over_ranks(MemoryPlan plan, int ranks) {
+  if (plan.tiled || ranks < 2) return plan;
+  const std::uint64_t tiles = 4 * std::uint64_t(ranks);
+  const std::uint64_t points_per_tile = std::max(kLeastTilePoints, (plan.points + tiles - 1) / tiles);
+  if (points_per_tile >= plan.points) return plan;
+  plan.tiled = true;
+  plan.points_per_tile = points_per_tile;
+  plan.buffer_bytes = buffer_bytes_of(plan.budget);
   return plan;
 }
 

@@ -3,18 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
-#include "pss/backend/cpu/parallel_for.hpp"
-#include "pss/backend/mirror.hpp"
-#include "pss/backend/parallel_for.hpp"
 #include "pss/core/error.hpp"
 #include "pss/core/memory.hpp"
 #include "pss/core/progress.hpp"
-#include "pss/points/orient_normals.hpp"
 #include "pss/points/outliers.hpp"
-#include "pss/spatial/grid_mirror.hpp"
 #include "pss/tiles/orient.hpp"
 #include "pss/tiles/support.hpp"
+#include "tile_works.hpp"
 
 namespace pss {
 
@@ -77,31 +74,43 @@ double box_distance(const Aabb& a, const Aabb& b) {
                               glm::dvec3(0.0)));
 }
 
+// The tiles that hold points.
+std::vector<int> tiles_with_points(const TiledCloud& cloud) {
+  std::vector<int> tiles;
+  for (int t = 0; t < cloud.tiles(); ++t)
+    if (cloud.tile_size(t) > 0) tiles.push_back(t);
+  return tiles;
+}
+
+UnitTile unit_tile(const UnitSet& set) { return {set.unit, set.h, set.samples, set.points.own}; }
+
 // The outliers' passes (points/outliers.hpp): each sample's distance in its tile, then the
-// threshold over the whole cloud's; whether each point is kept as a sample. On the CPU, over
-// the tile's own samples only (a GPU launch would measure the halo's too, whose kernel runs
-// over every sample of a grid).
+// threshold over the whole cloud's; whether each point is kept as a sample.
 std::vector<char> samples_kept(const TiledCloud& cloud, const UnitFrame& frame, const std::vector<float>& h,
-                               float kappa, double reach, OutlierReport& report) {
+                               float kappa, double reach, TileFarm& farm, OutlierReport& report) {
   const std::uint64_t n = cloud.size();
+  const std::vector<int> tiles = tiles_with_points(cloud);
   std::vector<char> kept(std::size_t(n), 1);
   for (int pass = 0; pass < kOutlierPasses; ++pass) {
     std::vector<float> distance(std::size_t(n), std::numeric_limits<float>::quiet_NaN());
     Progress progress("outliers", std::int64_t(n));
-    for (int t = 0; t < cloud.tiles(); ++t) {
-      if (cloud.tile_size(t) == 0) continue;
-      const UnitSet set = load_unit(cloud, t, world_halo(reach, frame), frame, h, kept);
-      const SupportGrid grid(set.unit, set.h, set.samples, kappa);
-      const std::span<const int> original = grid.original_index();
-      std::vector<int> own;  // the tile's own samples, by sorted index
-      for (std::size_t k = 0; k < original.size(); ++k)
-        if (std::size_t(original[k]) < set.points.own) own.push_back(int(k));
-      std::vector<float> out(original.size());
-      const OutlierDistanceKernel kernel{grid.view(), out.data()};
-      cpu::parallel_for(std::int64_t(own.size()), [&](std::int64_t m) { kernel(own[std::size_t(m)]); });
-      for (const int k : own) distance[std::size_t(set.points.index[std::size_t(original[std::size_t(k)])])] = out[std::size_t(k)];
-      progress.advance(std::int64_t(cloud.tile_size(t)));
-    }
+    std::map<int, std::vector<std::uint64_t>> own;  // each tile's own points, till its result
+    farm.run(
+        TileStep::outliers, tiles,
+        [&](int t) {
+          const UnitSet set = load_unit(cloud, t, world_halo(reach, frame), frame, h, kept);
+          own[t].assign(set.points.index.begin(), set.points.index.begin() + std::ptrdiff_t(set.points.own));
+          return outliers_request(unit_tile(set), kappa);
+        },
+        [&](int t, std::span<const std::byte> result, int) {
+          const std::vector<float> d = outliers_result(result);
+          const std::vector<std::uint64_t> index = std::move(own.at(t));
+          own.erase(t);
+          if (d.size() != index.size()) throw Error("a tile's outliers do not hold together");
+          for (std::size_t i = 0; i < d.size(); ++i)
+            if (!std::isnan(d[i])) distance[std::size_t(index[i])] = d[i];
+          progress.advance(std::int64_t(index.size()));
+        });
     if (pass == 0) report.threshold = outlier_threshold(distance);  // the second keeps it, as in core
     std::int64_t set_aside = 0;
     for (std::size_t i = 0; i < std::size_t(n); ++i)
@@ -141,7 +150,7 @@ void vote(const BucketFile& ordered, std::uint64_t n, std::size_t window_points,
 
 TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams& params, Backend backend,
                                  const std::filesystem::path& folder, std::size_t window_points,
-                                 std::size_t buffer_bytes, Stats& stats)
+                                 std::size_t buffer_bytes, Stats& stats, TileFarm& farm)
     : cloud_(cloud), window_points_(std::max<std::size_t>(window_points, 1)) {
   validate(params);
   check_tiled_surface(params.surface);
@@ -166,49 +175,48 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
   std::vector<char> kept(std::size_t(n), 1);
   if (params.outliers == OutlierPolicy::set_aside) {
     ScopedPhase phase(stats, "outliers", false);  // its Progress shows it
-    kept = samples_kept(cloud, frame_, h, kappa, reach, outliers_);
+    kept = samples_kept(cloud, frame_, h, kappa, reach, farm, outliers_);
   }
 
-  // The projections, each tile's from its samples and its halo's: MLS gathers N(r) once, at
-  // the point (points/surface_projection.hpp), so a halo of the widest ρ_i holds it. How far
+  // The projections, each tile's from its samples and its halo's (tile_works.hpp). How far
   // each tile's points moved says how far its projections lie outside its box.
   BucketFile projected(folder, cloud.tiles(), sizeof(Projected), buffer_bytes);
   std::vector<double> moved(std::size_t(cloud.tiles()), 0.0);  // the farthest, unit frame
+  points_per_rank_.assign(std::size_t(farm.ranks()), 0);
   {
+    ScopedPhase phase(stats, "projection", false);  // its Progress shows it
     Progress progress("projecting", std::int64_t(n));
-    for (int t = 0; t < cloud.tiles(); ++t) {
-      if (cloud.tile_size(t) == 0) continue;
-      const UnitSet set = load_unit(cloud, t, world_halo(reach, frame_), frame_, h, kept);  // N(r) of each point
-      const SupportGrid grid(set.unit, set.h, set.samples, kappa);
-      const GridMirror g(backend, grid);
-      // The own points in the grid's order, then those set aside: neighbouring threads
-      // gather neighbouring samples, as in core (a file's random order costs a fifth).
-      const std::size_t own = set.points.own;
-      std::vector<int> order;
-      order.reserve(own);
-      std::vector<char> placed(own, 0);
-      for (const int i : grid.original_index())
-        if (std::size_t(i) < own) {
-          order.push_back(i);
-          placed[std::size_t(i)] = 1;
-        }
-      for (std::size_t i = 0; i < own; ++i)
-        if (!placed[i]) order.push_back(int(i));
-      std::vector<vec3> own_points(own);
-      for (std::size_t k = 0; k < own; ++k) own_points[k] = set.unit[std::size_t(order[k])];
-      const Mirror<vec3> points(backend, own_points);
-      Mirror<ProjectedPoint> out(backend, own);
-      parallel_for(backend, "projection", std::int64_t(own),
-                   ProjectPointsKernel{g.view(), points.data(), nullptr, out.data(), unit_params}, stats, &progress);
-      const std::vector<ProjectedPoint> done = out.take();
-      for (std::size_t k = 0; k < own; ++k) {
-        const auto i = std::size_t(order[k]);
-        moved[std::size_t(t)] = std::max(moved[std::size_t(t)], double(glm::length(done[k].point - own_points[k])));
-        const Projected r{set.points.index[i], done[k].point, done[k].normal, kappa * set.h[i], done[k].status};
-        projected.append(t, &r);
-        counts_.add(r.status);
-      }
-    }
+    struct Own {  // a tile's own points, till its result
+      std::vector<std::uint64_t> index;
+      std::vector<vec3> unit;
+    };
+    std::map<int, Own> own;
+    farm.run(
+        TileStep::projection, tiles_with_points(cloud),
+        [&](int t) {
+          const UnitSet set = load_unit(cloud, t, world_halo(reach, frame_), frame_, h, kept);  // N(r) of each point
+          const auto end = std::ptrdiff_t(set.points.own);
+          own[t] = {{set.points.index.begin(), set.points.index.begin() + end}, {set.unit.begin(), set.unit.begin() + end}};
+          return projection_request(unit_tile(set), kappa, unit_params, backend);
+        },
+        [&](int t, std::span<const std::byte> result, int rank) {
+          const TileProjections done = projection_result(result);
+          const Own tile = std::move(own.at(t));
+          own.erase(t);
+          const std::size_t count = tile.index.size();
+          if (done.order.size() != count) throw Error("a tile's projections do not hold together");
+          for (std::size_t k = 0; k < count; ++k) {
+            const auto i = std::size_t(done.order[k]);
+            if (i >= count) throw Error("a tile's projections do not hold together");
+            const ProjectedPoint& p = done.projected[k];
+            moved[std::size_t(t)] = std::max(moved[std::size_t(t)], double(glm::length(p.point - tile.unit[i])));
+            const Projected r{tile.index[i], p.point, p.normal, kappa * h[std::size_t(tile.index[i])], p.status};
+            projected.append(t, &r);
+            counts_.add(r.status);
+          }
+          points_per_rank_[std::size_t(rank)] += count;
+          progress.advance(std::int64_t(count));
+        });
   }
   projected.flush();
   release(h);
@@ -223,50 +231,64 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
   {
     Progress progress("orient normals", std::int64_t(n));
     const double farthest = *std::max_element(moved.begin(), moved.end());
-    for (int t = 0; t < cloud.tiles(); ++t) {
-      if (cloud.tile_size(t) == 0) continue;
-      // Each own point lies within moved[t] of the box and links to points within the widest
-      // ρ_j of it; a point of tile u lies within moved[u] of u's box.
-      const double reach_t = reach + moved[std::size_t(t)];
-      const double halo = world_halo(reach_t, frame_);
-      const Aabb box = cloud.tile_box(t);
-      std::vector<Projected> set;
-      projected.for_each_record<Projected>(t, [&](const Projected& r) { set.push_back(r); });
-      const std::size_t own = set.size();
-      for (const int u : cloud.tiles_near(t, float(world_halo(reach_t + farthest, frame_)))) {
-        if (box_distance(cloud.tile_box(u), box) > world_halo(reach_t + moved[std::size_t(u)], frame_)) continue;
-        projected.for_each_record<Projected>(u, [&](const Projected& r) {
-          if (distance_to_box(frame_.from_unit(r.point), box) <= halo) set.push_back(r);
+    struct Set {  // a tile's projected points and its halo's, till their orientation
+      std::vector<Projected> records;
+      std::size_t own = 0;
+    };
+    std::map<int, Set> sets;
+    farm.run(
+        TileStep::orientation, tiles_with_points(cloud),
+        [&](int t) {
+          // Each own point lies within moved[t] of the box and links to points within the
+          // widest ρ_j of it; a point of tile u lies within moved[u] of u's box.
+          const double reach_t = reach + moved[std::size_t(t)];
+          const double halo = world_halo(reach_t, frame_);
+          const Aabb box = cloud.tile_box(t);
+          Set& set = sets[t];
+          projected.for_each_record<Projected>(t, [&](const Projected& r) { set.records.push_back(r); });
+          set.own = set.records.size();
+          for (const int u : cloud.tiles_near(t, float(world_halo(reach_t + farthest, frame_)))) {
+            if (box_distance(cloud.tile_box(u), box) > world_halo(reach_t + moved[std::size_t(u)], frame_)) continue;
+            projected.for_each_record<Projected>(u, [&](const Projected& r) {
+              if (distance_to_box(frame_.from_unit(r.point), box) <= halo) set.records.push_back(r);
+            });
+          }
+          std::sort(set.records.begin() + std::ptrdiff_t(set.own), set.records.end(),
+                    [](const Projected& a, const Projected& b) { return a.index < b.index; });
+          const std::size_t m = set.records.size();
+          std::vector<vec3> points(m), normals(m);
+          std::vector<float> radius(m);
+          std::vector<std::uint64_t> id(m);
+          for (std::size_t i = 0; i < m; ++i) {
+            points[i] = set.records[i].point;
+            normals[i] = set.records[i].normal;
+            radius[i] = set.records[i].radius;
+            id[i] = set.records[i].index;
+          }
+          return orientation_request(points, normals, radius, id);
+        },
+        [&](int t, std::span<const std::byte> result, int) {
+          const Set set = std::move(sets.at(t));
+          sets.erase(t);
+          const TileOrientation oriented = orientation_result(result, set.records.size());
+          const OrientedParts& parts = oriented.parts;
+          // A halo's point alone in its part can only agree with its own tile's piece: no piece.
+          std::vector<int> size(parts.root.size(), 0);
+          for (const int part : parts.of_point) ++size[std::size_t(part)];
+          std::vector<std::uint32_t> piece(parts.root.size(), kNoPiece);
+          for (std::size_t p = 0; p < piece.size(); ++p) {
+            const Projected& root = set.records[std::size_t(parts.root[p])];
+            if (size[p] > 1 || std::size_t(parts.root[p]) < set.own) piece[p] = signs.add_piece(root.point.z, root.index);
+          }
+          for (std::size_t i = 0; i < set.records.size(); ++i) {
+            const std::uint32_t p = piece[std::size_t(parts.of_point[i])];
+            if (p == kNoPiece) continue;
+            const Projected& r = set.records[i];
+            const Oriented o{r.index, r.point, oriented.normals[i], p, r.status, i < set.own};
+            ordered_->append(int(r.index / window_points_), &o);
+          }
+          progress.advance(std::int64_t(set.own));
         });
-      }
-      std::sort(set.begin() + std::ptrdiff_t(own), set.end(),
-                [](const Projected& a, const Projected& b) { return a.index < b.index; });
-      std::vector<vec3> points(set.size()), normals(set.size());
-      std::vector<float> radius(set.size());
-      std::vector<std::uint64_t> id(set.size());
-      for (std::size_t i = 0; i < set.size(); ++i) {
-        points[i] = set[i].point;
-        normals[i] = set[i].normal;
-        radius[i] = set[i].radius;
-        id[i] = set[i].index;
-      }
-      const OrientedParts parts = orient_normals_in_parts(points, normals, radius, id);
-      // A halo's point alone in its part can only agree with its own tile's piece: no piece.
-      std::vector<int> size(parts.root.size(), 0);
-      for (const int part : parts.of_point) ++size[std::size_t(part)];
-      std::vector<std::uint32_t> piece(parts.root.size(), kNoPiece);
-      for (std::size_t p = 0; p < piece.size(); ++p) {
-        const auto root = std::size_t(parts.root[p]);
-        if (size[p] > 1 || root < own) piece[p] = signs.add_piece(points[root].z, id[root]);
-      }
-      for (std::size_t i = 0; i < set.size(); ++i) {
-        const std::uint32_t p = piece[std::size_t(parts.of_point[i])];
-        if (p == kNoPiece) continue;
-        const Oriented r{id[i], points[i], normals[i], p, set[i].status, i < own};
-        ordered_->append(int(id[i] / window_points_), &r);
-      }
-      progress.advance(std::int64_t(own));
-    }
   }
   ordered_->flush();
 

@@ -22,12 +22,14 @@ std::string slurp(const std::filesystem::path& p) {
 }
 }  // namespace
 
-CliResult run_pss(const std::string& args) {
+CliResult run_pss(const std::string& args) { return run_shell(std::string(PSS_CLI) + " " + args); }
+
+CliResult run_shell(const std::string& command_line) {
   static int counter = 0;
   const auto dir = std::filesystem::temp_directory_path();
   const auto base = "pss-cli-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
   const auto out = dir / (base + ".out"), err = dir / (base + ".err");
-  const std::string command = std::string(PSS_CLI) + " " + args + " >" + out.string() + " 2>" + err.string();
+  const std::string command = command_line + " >" + out.string() + " 2>" + err.string();
   const int status = std::system(command.c_str());
   CliResult r{WIFEXITED(status) ? WEXITSTATUS(status) : 128, slurp(out), slurp(err)};
   std::filesystem::remove(out);

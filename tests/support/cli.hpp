@@ -16,6 +16,8 @@ struct CliResult {
 
 // Runs `pss <args>` through the shell (args are passed as written).
 CliResult run_pss(const std::string& args);
+// Runs a shell command line; its exit status and what it printed.
+CliResult run_shell(const std::string& command_line);
 
 // Count of '\n' in s: a one-line message has exactly one.
 int line_count(const std::string& s);

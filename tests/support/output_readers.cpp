@@ -5,6 +5,7 @@
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -80,6 +81,18 @@ PlyColumns read_ply_columns(const std::filesystem::path& path) {
       }
     }
   return ply;
+}
+
+ProjectedApart compare_projected(const PlyColumns& a, const PlyColumns& b, double distance) {
+  ProjectedApart c;
+  const std::size_t n = a.columns.at("x").size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto at = [&](const PlyColumns& p, const char* name) { return p.columns.at(name).at(i); };
+    c.apart += std::hypot(at(a, "x") - at(b, "x"), at(a, "y") - at(b, "y"), at(a, "z") - at(b, "z")) > distance;
+    c.facing_apart += at(a, "nx") * at(b, "nx") + at(a, "ny") * at(b, "ny") + at(a, "nz") * at(b, "nz") < 0;
+    c.status_differ += at(a, "status") != at(b, "status");
+  }
+  return c;
 }
 
 }  // namespace pss::test

@@ -34,4 +34,11 @@ struct PlyColumns {
 };
 PlyColumns read_ply_columns(const std::filesystem::path& path);
 
+// Two outputs of pss project, point by point: how many lie farther apart than `distance`,
+// whose normals face apart, whose status differs.
+struct ProjectedApart {
+  std::size_t apart = 0, facing_apart = 0, status_differ = 0;
+};
+ProjectedApart compare_projected(const PlyColumns& a, const PlyColumns& b, double distance);
+
 }  // namespace pss::test

@@ -46,4 +46,9 @@ std::uint64_t point_count_at_most(const std::filesystem::path& file);
 // budget cannot hold even the per-point results and a tile of a few thousand points.
 MemoryPlan plan_memory(const std::filesystem::path& file, std::uint64_t budget, const MemoryCosts& costs);
 
+// A plan in core made tiles for `ranks` processes to share (tiles/farm.hpp): about four a
+// rank, of a few thousand points at least. Unchanged where it is tiled already, or where the
+// cloud is too small to share.
+MemoryPlan spread_over_ranks(MemoryPlan plan, int ranks);
+
 }  // namespace pss

@@ -3,7 +3,8 @@
 // rounding of sums taken in another order. Each step runs over the tiles, each tile with a
 // halo as wide as the step reads: the widths (tiles/support.hpp), the outliers' passes, the
 // projections, and the orientation of their normals, whose tiles agree on their signs where
-// their halos overlap (tiles/orient.hpp). The results wait in scratch files and come back in
+// their halos overlap (tiles/orient.hpp). The outliers' passes, the projections and the
+// orientations may be spread over processes (tiles/farm.hpp). The results wait in scratch files and come back in
 // the cloud's order, a window at a time.
 #pragma once
 
@@ -19,6 +20,7 @@
 #include "pss/io/tiled_cloud.hpp"
 #include "pss/points/project_cloud.hpp"
 #include "pss/points/unit_frame.hpp"
+#include "pss/tiles/farm.hpp"
 
 namespace pss {
 
@@ -42,11 +44,13 @@ class TiledProjection {
   // and adaptive widths in a cloud sampled in rows (tiles/support.hpp).
   TiledProjection(const TiledCloud& cloud, const ProjectionParams& params, Backend backend,
                   const std::filesystem::path& folder, std::size_t window_points, std::size_t buffer_bytes,
-                  Stats& stats);
+                  Stats& stats, TileFarm& farm = local_farm());
 
   StatusCounts counts() const { return counts_; }
   SupportWidths widths() const { return widths_; }  // least, median, largest (h is not kept)
   OutlierReport outliers() const { return outliers_; }
+  // The points each rank of the farm projected.
+  const std::vector<std::uint64_t>& points_per_rank() const { return points_per_rank_; }
 
   // f(window) for each window of the cloud's points, first to last (f may take its arrays).
   void read_in_order(const std::function<void(ProjectedWindow&)>& f) const;
@@ -60,6 +64,7 @@ class TiledProjection {
   StatusCounts counts_;
   SupportWidths widths_;
   OutlierReport outliers_;
+  std::vector<std::uint64_t> points_per_rank_;
 };
 
 }  // namespace pss

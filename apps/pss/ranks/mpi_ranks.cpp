@@ -1,0 +1,168 @@
+// The ranks over Open MPI. Rank 0 reads and writes every file, and sends each tile's work
+// (its points and its halo's) in a message, so that no rank needs a file system shared with
+// it; the other ranks only compute (tile_work). Tiles go out in rounds, one a rank, rank 0
+// working on its own meanwhile, and their results are taken in the tiles' order.
+#include <mpi.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdlib>
+#include <exception>
+#include <new>
+#include <string>
+#include <vector>
+
+#include "pss/backend/backend.hpp"
+#include "pss/core/error.hpp"
+#include "ranks.hpp"
+
+namespace pss::app {
+
+namespace {
+
+enum Tag : int { kWork = 1, kStop = 2, kResult = 3 };
+
+struct Ranks {
+  bool joined = false;
+  int rank = 0, size = 1;
+};
+Ranks world;
+
+// What mpirun (Open MPI, or a PMI/PMIx launcher) sets in each rank's environment. A process
+// started otherwise stays out of MPI: an MPI_Init of its own would start a runtime for one.
+bool started_by_mpirun() {
+  return std::getenv("OMPI_COMM_WORLD_SIZE") || std::getenv("PMIX_RANK") || std::getenv("PMI_RANK");
+}
+
+// Bytes in pieces of at most 1 GiB: an MPI count is an int.
+constexpr std::uint64_t kPiece = std::uint64_t(1) << 30;
+
+void send_bytes(std::span<const std::byte> bytes, int to, int tag) {
+  const std::uint64_t size = bytes.size();
+  MPI_Send(&size, 1, MPI_UINT64_T, to, tag, MPI_COMM_WORLD);
+  for (std::uint64_t at = 0; at < size; at += kPiece)
+    MPI_Send(bytes.data() + at, int(std::min(kPiece, size - at)), MPI_BYTE, to, tag, MPI_COMM_WORLD);
+}
+
+std::vector<std::byte> receive_bytes(int from, int tag) {
+  std::uint64_t size = 0;
+  MPI_Recv(&size, 1, MPI_UINT64_T, from, tag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  std::vector<std::byte> bytes(static_cast<std::size_t>(size));
+  for (std::uint64_t at = 0; at < size; at += kPiece)
+    MPI_Recv(bytes.data() + at, int(std::min(kPiece, size - at)), MPI_BYTE, from, tag, MPI_COMM_WORLD,
+             MPI_STATUS_IGNORE);
+  return bytes;
+}
+
+// A rank's result: its bytes, or the one line of what went wrong there.
+struct Result {
+  bool done = false;
+  std::vector<std::byte> bytes;
+};
+
+void send_result(const Result& result) {
+  const int done = result.done;
+  MPI_Send(&done, 1, MPI_INT, 0, kResult, MPI_COMM_WORLD);
+  send_bytes(result.bytes, 0, kResult);
+}
+
+Result receive_result(int from) {
+  int done = 0;
+  MPI_Recv(&done, 1, MPI_INT, from, kResult, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  return {done != 0, receive_bytes(from, kResult)};
+}
+
+std::vector<std::byte> text_bytes(const std::string& text) {
+  const auto* p = reinterpret_cast<const std::byte*>(text.data());
+  return {p, p + text.size()};
+}
+
+class MpiFarm final : public TileFarm {
+ public:
+  int ranks() const override { return world.size; }
+
+  void run(TileStep step, std::span<const int> tiles, const Request& request, const Take& take) override {
+    const int threads = cpu_threads();  // every rank works with rank 0's
+    for (std::size_t first = 0; first < tiles.size(); first += std::size_t(world.size)) {
+      const int count = int(std::min<std::size_t>(std::size_t(world.size), tiles.size() - first));
+      int sent = 0, taken = 0;  // ranks 1…sent hold a tile, 1…taken gave theirs back
+      try {
+        for (int k = 1; k < count; ++k) {
+          const std::vector<std::byte> work = request(tiles[first + std::size_t(k)]);
+          const int header[2] = {int(step), threads};
+          MPI_Send(header, 2, MPI_INT, k, kWork, MPI_COMM_WORLD);
+          send_bytes(work, k, kWork);
+          sent = k;
+        }
+        take(tiles[first], tile_work(step, request(tiles[first])), 0);
+        for (int k = 1; k < count; ++k) {
+          const Result result = receive_result(k);
+          taken = k;
+          if (!result.done)
+            throw Error("rank " + std::to_string(k) + ": " +
+                        std::string(reinterpret_cast<const char*>(result.bytes.data()), result.bytes.size()));
+          take(tiles[first + std::size_t(k)], result.bytes, k);
+        }
+      } catch (...) {
+        for (int k = taken + 1; k <= sent; ++k) receive_result(k);  // each rank free for the stop
+        throw;
+      }
+    }
+  }
+};
+
+MpiFarm farm;
+
+}  // namespace
+
+RankSession::RankSession(int& argc, char**& argv) {
+  if (!started_by_mpirun()) return;
+  int provided = 0;
+  MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);  // MPI from the main thread only
+  world.joined = true;
+  MPI_Comm_rank(MPI_COMM_WORLD, &world.rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &world.size);
+  MPI_Comm here;  // the ranks on this machine share its cores
+  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &here);
+  int local = 1;
+  MPI_Comm_size(here, &local);
+  MPI_Comm_free(&here);
+  set_cpu_threads(std::max(1, cpu_threads() / local));
+}
+
+RankSession::~RankSession() {
+  if (!world.joined) return;
+  if (world.rank == 0) {
+    const int header[2] = {0, 0};
+    for (int k = 1; k < world.size; ++k) MPI_Send(header, 2, MPI_INT, k, kStop, MPI_COMM_WORLD);
+  }
+  MPI_Finalize();
+}
+
+bool RankSession::serves() const { return world.rank > 0; }
+
+int RankSession::serve() {
+  for (;;) {
+    int header[2] = {0, 0};
+    MPI_Status status;
+    MPI_Recv(header, 2, MPI_INT, 0, MPI_ANY_TAG, MPI_COMM_WORLD, &status);
+    if (status.MPI_TAG == kStop) return 0;
+    const std::vector<std::byte> work = receive_bytes(0, kWork);
+    set_cpu_threads(header[1]);
+    Result result;
+    try {
+      result = {true, tile_work(TileStep(header[0]), work)};
+    } catch (const std::bad_alloc&) {
+      result = {false, text_bytes("out of memory")};
+    } catch (const std::exception& e) {
+      result = {false, text_bytes(e.what())};
+    }
+    send_result(result);
+  }
+}
+
+int rank_count() { return world.size; }
+
+TileFarm& rank_farm() { return world.size > 1 ? static_cast<TileFarm&>(farm) : local_farm(); }
+
+}  // namespace pss::app

@@ -1,0 +1,34 @@
+// Where the tiles of a step are worked on (issue 28): in this process, one after another, or
+// spread over processes (`mpirun -np N pss project`: apps/pss/mpi). A tile's work is a pure
+// function of its request's bytes (tile_work), so that any process gives the same result and
+// the output does not depend on how many processes shared it.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <span>
+#include <vector>
+
+namespace pss {
+
+enum class TileStep : int { outliers = 1, projection = 2, orientation = 3 };
+
+// The result's bytes of a tile's work. Throws Error where the request does not hold together.
+std::vector<std::byte> tile_work(TileStep step, std::span<const std::byte> request);
+
+class TileFarm {
+ public:
+  using Request = std::function<std::vector<std::byte>(int tile)>;
+  using Take = std::function<void(int tile, std::span<const std::byte> result, int rank)>;
+
+  virtual ~TileFarm() = default;
+  virtual int ranks() const = 0;
+  // For each of `tiles`: request(tile) here, tile_work in some rank, then take(tile, result,
+  // that rank) here, in the order of `tiles`.
+  virtual void run(TileStep step, std::span<const int> tiles, const Request& request, const Take& take) = 0;
+};
+
+// This process alone: each tile's request, work and result in turn.
+TileFarm& local_farm();
+
+}  // namespace pss

@@ -1,0 +1,37 @@
+#include "pss/tiles/farm.hpp"
+
+#include "pss/core/error.hpp"
+#include "tile_works.hpp"
+
+namespace pss {
+
+std::vector<std::byte> tile_work(TileStep step, std::span<const std::byte> request) {
+  switch (step) {
+    case TileStep::outliers:
+      return work_outliers(request);
+    case TileStep::projection:
+      return work_projection(request);
+    case TileStep::orientation:
+      return work_orientation(request);
+  }
+  throw Error("a tile's work names no step");
+}
+
+namespace {
+
+class LocalFarm final : public TileFarm {
+ public:
+  int ranks() const override { return 1; }
+  void run(TileStep step, std::span<const int> tiles, const Request& request, const Take& take) override {
+    for (const int tile : tiles) take(tile, tile_work(step, request(tile)), 0);
+  }
+};
+
+}  // namespace
+
+TileFarm& local_farm() {
+  static LocalFarm farm;
+  return farm;
+}
+
+}  // namespace pss

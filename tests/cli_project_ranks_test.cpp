@@ -1,0 +1,109 @@
+// mpirun -np N pss project (issue 28): rank 0 reads and writes, every rank projects its share
+// of the tiles, and the output is byte for byte one process's with the same tiles; a cloud
+// that fits in core is tiled all the same for the ranks to share; what tiles do not do runs
+// in core on rank 0; a failure on rank 0 is one line and lets the other ranks go.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <numeric>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "support/cli.hpp"
+#include "support/file_bytes.hpp"
+#include "support/output_readers.hpp"
+
+namespace pss {
+namespace {
+
+using ProjectRanks = test::CliTest;
+using test::ScratchFolder;
+
+// `pss <args>` on `ranks` processes of mpirun on this machine (as root too, and with more
+// ranks than cores), stopped after two minutes should a rank wait forever.
+test::CliResult run_ranks(int ranks, const std::string& args) {
+  return test::run_shell("OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 timeout 120 " +
+                         std::string(PSS_MPIEXEC) + " --oversubscribe -np " + std::to_string(ranks) + " " +
+                         std::string(PSS_CLI) + " " + args);
+}
+
+#define SKIP_WITHOUT_MPI() \
+  if (!PSS_HAVE_MPI) GTEST_SKIP() << "pss is built without MPI"
+
+TEST_F(ProjectRanks, TwoAndThreeRanksWriteOneProcesssBytesAndCountEachRanksPoints) {
+  SKIP_WITHOUT_MPI();
+  const std::string file = write("torus.xyz", test::torus_xyz(50000, false, 0));
+  const ScratchFolder scratch(dir_ / "scratch");
+  const test::CliResult one =
+      test::run_pss("project " + file + " -o " + path("one.ply") + " --memory 6M --stats " + path("one.json"));
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  const int threads = nlohmann::json::parse(read(path("one.json")))["threads"].get<int>();
+  ASSERT_NE(one.out.find("; tile by tile: "), std::string::npos) << one.out;
+  for (const int ranks : {2, 3}) {
+    SCOPED_TRACE(ranks);
+    const std::string out = path(std::to_string(ranks) + ".ply"), stats = path(std::to_string(ranks) + ".json");
+    const test::CliResult r = run_ranks(ranks, "project " + file + " -o " + out + " --memory 6M --stats " + stats);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("; " + std::to_string(ranks) + " ranks)"), std::string::npos) << r.out;
+    EXPECT_EQ(read(out), read(path("one.ply"))) << "the ranks' output differs from one process's";
+    const nlohmann::json v = nlohmann::json::parse(read(stats));
+    EXPECT_EQ(v["ranks"], ranks);
+    EXPECT_EQ(v["threads"], std::max(1, threads / ranks)) << "the ranks on a machine share its cores";
+    const auto per_rank = v["points_per_rank"].get<std::vector<std::uint64_t>>();
+    ASSERT_EQ(per_rank.size(), std::size_t(ranks));
+    EXPECT_EQ(std::accumulate(per_rank.begin(), per_rank.end(), std::uint64_t(0)), v["points"].get<std::uint64_t>());
+    for (const std::uint64_t points : per_rank) EXPECT_GT(points, v["points"].get<std::uint64_t>() / (2 * ranks));
+    EXPECT_TRUE(scratch.empty()) << "the tiles' scratch files are left behind";
+  }
+}
+
+TEST_F(ProjectRanks, ACloudThatFitsInCoreIsSharedInTilesWithTheInCorePoints) {
+  SKIP_WITHOUT_MPI();
+  const std::string file = write("torus.xyz", test::torus_xyz(50000, false, 0));
+  const test::CliResult core = test::run_pss("project " + file + " -o " + path("core.ply") + " --stats " + path("core.json"));
+  ASSERT_EQ(core.exit_code, 0) << core.err;
+  const test::CliResult r = run_ranks(2, "project " + file + " -o " + path("ranks.ply") + " --stats " + path("ranks.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("; tile by tile: "), std::string::npos) << r.out;
+  const nlohmann::json v = nlohmann::json::parse(read(path("ranks.json")));
+  EXPECT_TRUE(v["memory"]["tiled"].get<bool>());
+  EXPECT_GE(v["memory"]["points_per_tile"].get<std::uint64_t>(), 4096u);
+  EXPECT_LE(v["memory"]["points_per_tile"].get<std::uint64_t>(), 50000u / 8 + 1);
+  EXPECT_GT(v["points_per_rank"][1].get<std::uint64_t>(), 0u);
+  const test::PlyColumns in_core = test::read_ply_columns(path("core.ply"));
+  const test::PlyColumns ranks = test::read_ply_columns(path("ranks.ply"));
+  ASSERT_EQ(ranks.columns.at("x").size(), in_core.columns.at("x").size());
+  const nlohmann::json c = nlohmann::json::parse(read(path("core.json")));
+  const test::ProjectedApart apart = test::compare_projected(ranks, in_core, 2 * c["params"]["t_tolerance"].get<double>());
+  EXPECT_EQ(apart.apart, 0u);
+  EXPECT_EQ(apart.facing_apart, 0u);
+  EXPECT_LE(apart.status_differ, in_core.columns.at("x").size() / 200);
+}
+
+TEST_F(ProjectRanks, WhatTilesDoNotDoRunsInCoreOnRankZero) {
+  SKIP_WITHOUT_MPI();
+  const std::string file = write("torus.xyz", test::torus_xyz(20000, false, 0));
+  ASSERT_EQ(test::run_pss("project " + file + " -o " + path("one.ply") + " --surface apss").exit_code, 0);
+  const test::CliResult r =
+      run_ranks(2, "project " + file + " -o " + path("ranks.ply") + " --surface apss --stats " + path("s.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("; in core; 2 ranks)"), std::string::npos) << r.out;
+  EXPECT_EQ(read(path("ranks.ply")), read(path("one.ply")));
+  const nlohmann::json v = nlohmann::json::parse(read(path("s.json")));
+  EXPECT_EQ(v["points_per_rank"], nlohmann::json::array({20000, 0}));
+}
+
+TEST_F(ProjectRanks, AFailureOnRankZeroIsOneLineAndLetsTheOtherRanksGo) {
+  SKIP_WITHOUT_MPI();
+  const std::string file = write("torus.xyz", test::torus_xyz(20000, false, 0) + "1 2 oops\n");
+  const test::CliResult r = run_ranks(3, "project " + file + " -o " + path("o.ply"));
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.exit_code, 124) << "a rank waited until the timeout";
+  EXPECT_NE(r.err.find("pss: error: " + file), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("pss: error", r.err.find("pss: error") + 1), std::string::npos) << "one rank says it, once";
+  EXPECT_FALSE(std::filesystem::exists(path("o.ply")));
+}
+
+}  // namespace
+}  // namespace pss

@@ -1,0 +1,115 @@
+// The tiles' farm (tiles/farm.hpp, issue 28): a tile's work is a pure function of its
+// request's bytes, so that a farm that works the tiles elsewhere and in another order, as
+// mpirun's ranks do, gives the local farm's result bit for bit, and each rank's points are
+// counted; a request that does not hold together is an error, not a read past its end.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "../src/tiles/tile_works.hpp"
+#include "pss/core/error.hpp"
+#include "pss/io/point_cloud_file.hpp"
+#include "pss/tiles/farm.hpp"
+#include "pss/tiles/project.hpp"
+#include "support/cli.hpp"
+#include "support/file_bytes.hpp"
+#include "support/shapes.hpp"
+
+namespace pss {
+namespace {
+
+using TileFarmTest = test::CliTest;
+
+// Works every tile on a copy of its request, the last tile first; tile t on rank t % 3.
+class Elsewhere final : public TileFarm {
+ public:
+  int ranks() const override { return 3; }
+  void run(TileStep step, std::span<const int> tiles, const Request& request, const Take& take) override {
+    std::vector<std::vector<std::byte>> results(tiles.size());
+    for (std::size_t k = tiles.size(); k-- > 0;) {
+      const std::vector<std::byte> copy = request(tiles[k]);
+      results[k] = tile_work(step, copy);
+    }
+    for (std::size_t k = 0; k < tiles.size(); ++k) take(tiles[k], results[k], tiles[k] % 3);
+  }
+};
+
+TEST_F(TileFarmTest, TilesWorkedElsewhereInAnotherOrderGiveTheSameBitsAndCountEachRanksPoints) {
+  test::SampleOptions o;
+  o.count = 12000;
+  o.noise = 0.02f;
+  std::vector<vec3> points = test::sample(test::Sphere{}, o).positions;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> off(-0.3f, 0.3f);
+  for (std::size_t i = 0; i < 600; ++i) points.push_back(points[i * 11] * (1 + off(rng)));  // strays
+  const std::string file = write("sphere.xyz", test::xyz_text(points));
+  ProjectionParams params = ProjectionParams::from_h(test::suggested_h(read_point_cloud(file)));
+  params.support = Support::adaptive;
+  const TiledCloud tiles(file, dir_, 1500, 1 << 16);
+  ASSERT_GT(tiles.tiles(), 6);
+  Stats stats;
+  Elsewhere elsewhere;
+  const TiledProjection local(tiles, params, Backend::cpu, dir_, 5000, 1 << 16, stats, local_farm());
+  const TiledProjection farmed(tiles, params, Backend::cpu, dir_, 5000, 1 << 16, stats, elsewhere);
+  EXPECT_GT(local.outliers().set_aside, 20);
+  EXPECT_EQ(farmed.outliers().set_aside, local.outliers().set_aside);
+  EXPECT_EQ(farmed.outliers().threshold, local.outliers().threshold);
+
+  std::vector<ProjectedWindow> expected;
+  local.read_in_order([&](ProjectedWindow& w) { expected.push_back(std::move(w)); });
+  std::size_t window = 0;
+  farmed.read_in_order([&](const ProjectedWindow& w) {
+    ASSERT_LT(window, expected.size());
+    const ProjectedWindow& e = expected[window++];
+    ASSERT_EQ(w.first, e.first);
+    ASSERT_EQ(w.positions.size(), e.positions.size());
+    EXPECT_EQ(std::memcmp(w.positions.data(), e.positions.data(), w.positions.size() * sizeof(vec3)), 0);
+    EXPECT_EQ(std::memcmp(w.normals.data(), e.normals.data(), w.normals.size() * sizeof(vec3)), 0);
+    EXPECT_EQ(w.status, e.status);
+  });
+  EXPECT_EQ(window, expected.size());
+
+  ASSERT_EQ(local.points_per_rank(), std::vector<std::uint64_t>{points.size()});
+  std::vector<std::uint64_t> per_rank(3, 0);
+  for (int t = 0; t < tiles.tiles(); ++t) per_rank[std::size_t(t % 3)] += tiles.tile_size(t);
+  EXPECT_EQ(farmed.points_per_rank(), per_rank);
+}
+
+TEST(TileWork, ARequestCutShortOrOfNoStepIsAnError) {
+  const std::vector<vec3> unit = {{0, 0, 0}, {0.01f, 0, 0}, {0, 0.01f, 0}, {0.01f, 0.01f, 0.001f}};
+  const std::vector<float> h(unit.size(), 0.01f);
+  const std::vector<int> samples = {0, 1, 2, 3};
+  const UnitTile tile{unit, h, samples, 2};
+  const std::vector<std::byte> outliers = outliers_request(tile, 2);
+  const std::vector<std::byte> projection = projection_request(tile, 2, ProjectionParams::from_h(0.01f), Backend::cpu);
+  const std::vector<vec3> normals(unit.size(), vec3(0, 0, 1));
+  const std::vector<float> radius(unit.size(), 0.02f);
+  const std::vector<std::uint64_t> id = {5, 6, 7, 8};
+  const std::vector<std::byte> orientation = orientation_request(unit, normals, radius, id);
+  EXPECT_EQ(outliers_result(tile_work(TileStep::outliers, outliers)).size(), 2u);
+  EXPECT_EQ(projection_result(tile_work(TileStep::projection, projection)).projected.size(), 2u);
+  EXPECT_EQ(orientation_result(tile_work(TileStep::orientation, orientation), 4).parts.of_point.size(), 4u);
+  EXPECT_THROW(orientation_result(tile_work(TileStep::orientation, orientation), 5), Error);
+  const std::pair<TileStep, const std::vector<std::byte>*> requests[] = {
+      {TileStep::outliers, &outliers}, {TileStep::projection, &projection}, {TileStep::orientation, &orientation}};
+  for (const auto& [step, request] : requests)
+    for (const std::size_t cut : {std::size_t(0), std::size_t(3), request->size() / 2, request->size() - 1}) {
+      const std::span<const std::byte> part(request->data(), cut);
+      EXPECT_THROW(tile_work(step, part), Error) << int(step) << " cut at " << cut;
+    }
+  EXPECT_THROW(tile_work(TileStep(99), projection), Error);
+  // An array's length past the request's end fails before anything that long is made.
+  std::vector<std::byte> lying(outliers.begin(), outliers.begin() + 12);
+  const std::uint64_t huge = std::uint64_t(1) << 61;
+  lying.resize(lying.size() + sizeof huge);
+  std::memcpy(lying.data() + 12, &huge, sizeof huge);
+  EXPECT_THROW(tile_work(TileStep::outliers, lying), Error);
+  // A sample that is not in the tile.
+  const std::vector<int> beyond = {0, 4};
+  EXPECT_THROW(tile_work(TileStep::outliers, outliers_request({unit, h, beyond, 2}, 2)), Error);
+}
+
+}  // namespace
+}  // namespace pss
