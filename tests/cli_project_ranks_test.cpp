@@ -105,5 +105,30 @@ TEST_F(ProjectRanks, AFailureOnRankZeroIsOneLineAndLetsTheOtherRanksGo) {
   EXPECT_FALSE(std::filesystem::exists(path("o.ply")));
 }
 
+// A rank killed while the tiles are worked on: mpirun ends the run, which fails, with no
+// output and no scratch file left (rank 0 removes them on the SIGTERM mpirun sends it).
+TEST_F(ProjectRanks, ARankThatDiesEndsTheRunWithNoOutputAndNoScratch) {
+  SKIP_WITHOUT_MPI();
+  const std::string file = write("torus.xyz", test::torus_xyz(50000, false, 0));
+  const ScratchFolder scratch(dir_ / "scratch");
+  const std::string err = path("err.txt"), pss = std::string(PSS_CLI) + " project " + file;
+  // Rank 1 is the pss process whose environment says OMPI_COMM_WORLD_RANK=1.
+  const std::string script =
+      "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 timeout 120 " + std::string(PSS_MPIEXEC) +
+      " --oversubscribe -np 2 " + pss + " -o " + path("o.ply") + " --memory 6M --progress always 2>" + err +
+      " & run=$!\n"
+      "for i in $(seq 600); do grep -q projecting " + err + " && break; sleep 0.05; done\n"
+      "for p in $(pgrep -f '" + pss + "'); do\n"
+      "  tr '\\0' '\\n' </proc/$p/environ 2>/dev/null | grep -qx OMPI_COMM_WORLD_RANK=1 && kill -9 $p && echo killed\n"
+      "done\n"
+      "wait $run; echo exit=$?\n";
+  const test::CliResult r = test::run_shell("bash " + write("kill.sh", script));
+  EXPECT_NE(r.out.find("killed"), std::string::npos) << r.out << read(err);
+  EXPECT_EQ(r.out.find("exit=0"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("exit=124"), std::string::npos) << "the run waited until the timeout";
+  EXPECT_FALSE(std::filesystem::exists(path("o.ply")));
+  EXPECT_TRUE(scratch.empty()) << "the tiles' scratch files are left behind";
+}
+
 }  // namespace
 }  // namespace pss

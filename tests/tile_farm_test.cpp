@@ -92,8 +92,21 @@ TEST(TileWork, ARequestCutShortOrOfNoStepIsAnError) {
   EXPECT_EQ(projection_result(tile_work(TileStep::projection, projection)).projected.size(), 2u);
   EXPECT_EQ(orientation_result(tile_work(TileStep::orientation, orientation), 4).parts.of_point.size(), 4u);
   EXPECT_THROW(orientation_result(tile_work(TileStep::orientation, orientation), 5), Error);
+  const MarginTile whole{unit, id, {}, 2, 9, 1.0};  // the cloud's indices 5 to 8 of 9
+  const std::vector<std::byte> spacing = spacing_request(whole, 1);
+  const std::vector<float> spacings(unit.size(), 0.01f), noise_measured = {0.0f};
+  const std::vector<vec3> noise_at = {unit[0]};
+  const std::vector<std::byte> widths =
+      widths_request(whole, {spacings, spacings, 0.01f, 0.01f, 0.04f, noise_at, noise_measured});
+  EXPECT_FALSE(spacing_result(tile_work(TileStep::spacing, spacing), 2).complete) << "4 points hold no 16 neighbours";
+  const TileWidths w = widths_result(tile_work(TileStep::widths, widths), 2);
+  EXPECT_TRUE(w.complete);
+  EXPECT_EQ(w.h.size(), 2u);
+  EXPECT_THROW(tile_work(TileStep::spacing, spacing_request({unit, id, {}, 2, 8, 1.0}, 1)), Error)
+      << "an index past the cloud's size";
   const std::pair<TileStep, const std::vector<std::byte>*> requests[] = {
-      {TileStep::outliers, &outliers}, {TileStep::projection, &projection}, {TileStep::orientation, &orientation}};
+      {TileStep::outliers, &outliers},       {TileStep::projection, &projection}, {TileStep::orientation, &orientation},
+      {TileStep::spacing, &spacing},         {TileStep::widths, &widths}};
   for (const auto& [step, request] : requests)
     for (const std::size_t cut : {std::size_t(0), std::size_t(3), request->size() / 2, request->size() - 1}) {
       const std::span<const std::byte> part(request->data(), cut);

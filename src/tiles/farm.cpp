@@ -13,6 +13,10 @@ std::vector<std::byte> tile_work(TileStep step, std::span<const std::byte> reque
       return work_projection(request);
     case TileStep::orientation:
       return work_orientation(request);
+    case TileStep::spacing:
+      return work_spacing(request);
+    case TileStep::widths:
+      return work_widths(request);
   }
   throw Error("a tile's work names no step");
 }

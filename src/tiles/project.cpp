@@ -165,7 +165,7 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
   std::vector<float> h;
   {
     ScopedPhase phase(stats, "support widths", params.support == Support::global);
-    SupportWidths widths = support_widths(cloud, params);
+    SupportWidths widths = support_widths(cloud, params, farm);
     widths_ = {{}, widths.least, widths.median, widths.largest};
     h = std::move(widths.h);
   }

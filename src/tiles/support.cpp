@@ -2,16 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <string>
 #include <vector>
 
-#include "pss/backend/cpu/parallel_for.hpp"
 #include "pss/core/error.hpp"
 #include "pss/core/median.hpp"
 #include "pss/core/progress.hpp"
 #include "pss/points/support_steps.hpp"
 #include "pss/points/unit_frame.hpp"
-#include "pss/spatial/uniform_grid.hpp"
+#include "tile_works.hpp"
 
 namespace pss {
 
@@ -20,17 +20,17 @@ namespace {
 // A tile and its halo in the unit frame, with each sample's margin: the set holds every
 // point of the cloud within it (a point outside the halo lies farther than the halo from
 // the box), a little less for the rounding of the unit frame's floats.
-struct UnitTile {
+struct HaloTile {
   TilePoints points;
   std::vector<vec3> unit;
   std::vector<float> margin;  // empty when the tile and its halo hold the whole cloud
-  SampleSet set(std::uint64_t cloud_size, double scale) const {
-    return SampleSet{unit, points.index, margin, cloud_size, scale};
+  MarginTile view(std::uint64_t cloud_size, double scale) const {
+    return MarginTile{unit, points.index, margin, points.own, cloud_size, scale};
   }
 };
 
-UnitTile load_unit(const TiledCloud& cloud, int tile, float halo, const UnitFrame& frame) {
-  UnitTile t{cloud.load(tile, halo), {}, {}};
+HaloTile load_unit(const TiledCloud& cloud, int tile, float halo, const UnitFrame& frame) {
+  HaloTile t{cloud.load(tile, halo), {}, {}};
   t.unit.resize(t.points.positions.size());
   for (std::size_t i = 0; i < t.unit.size(); ++i) t.unit[i] = frame.to_unit(t.points.positions[i]);
   if (t.points.positions.size() < cloud.size()) {
@@ -43,22 +43,43 @@ UnitTile load_unit(const TiledCloud& cloud, int tile, float halo, const UnitFram
   return t;
 }
 
-// f(tile, its points) for every tile with points, with the smallest halo (from an eighth of a
-// tile, doubling) for which f says every own sample's answer is complete.
-template <class F>
-void for_each_tile(const TiledCloud& cloud, const UnitFrame& frame, Progress& progress, F&& f) {
-  for (int t = 0; t < cloud.tiles(); ++t) {
-    if (cloud.tile_size(t) == 0) continue;
+// Each tile with points worked on by the farm with a halo of an eighth of a tile, and where
+// its result says the halo did not hold every answer its own samples read, here again with
+// the halo doubling until it does. request(tile) is a tile's work; use(its own points'
+// indices, result) takes the result, or says it is incomplete.
+template <class Request, class Use>
+void for_each_tile(const TiledCloud& cloud, const UnitFrame& frame, TileFarm& farm, TileStep step, Progress& progress,
+                   Request&& request, Use&& use) {
+  std::vector<int> tiles;
+  for (int t = 0; t < cloud.tiles(); ++t)
+    if (cloud.tile_size(t) > 0) tiles.push_back(t);
+  const auto first_halo = [&](int t) {
     const Aabb box = cloud.tile_box(t);
-    for (float halo = 0.125f * (box.hi.x - box.lo.x);; halo *= 2)
-      if (f(load_unit(cloud, t, halo, frame))) break;
-    progress.advance(std::int64_t(cloud.tile_size(t)));
-  }
+    return 0.125f * (box.hi.x - box.lo.x);
+  };
+  std::map<int, std::vector<std::uint64_t>> own;  // each tile's own points, till its result
+  farm.run(
+      step, tiles,
+      [&](int t) {
+        const HaloTile tile = load_unit(cloud, t, first_halo(t), frame);
+        own[t].assign(tile.points.index.begin(), tile.points.index.begin() + std::ptrdiff_t(tile.points.own));
+        return request(tile);
+      },
+      [&](int t, std::span<const std::byte> result, int) {
+        std::vector<std::byte> wider;
+        for (float halo = first_halo(t); !use(own.at(t), result);) {
+          halo *= 2;
+          wider = tile_work(step, request(load_unit(cloud, t, halo, frame)));
+          result = wider;
+        }
+        own.erase(t);
+        progress.advance(std::int64_t(cloud.tile_size(t)));
+      });
 }
 
 }  // namespace
 
-SupportWidths support_widths(const TiledCloud& cloud, const ProjectionParams& params) {
+SupportWidths support_widths(const TiledCloud& cloud, const ProjectionParams& params, TileFarm& farm) {
   const float h = params.h;
   if (!(h > 0) || !std::isfinite(h)) throw Error("h must be a positive number (got " + std::to_string(h) + ")");
   const std::uint64_t n = cloud.size();
@@ -77,36 +98,24 @@ SupportWidths support_widths(const TiledCloud& cloud, const ProjectionParams& pa
   std::uint64_t row_like = 0;
   {
     Progress progress("support widths (spacing)", std::int64_t(n));
-    for_each_tile(cloud, frame, progress, [&](const UnitTile& tile) {
-      SupportSteps steps(tile.set(n, frame.scale));
-      // query_spacing looks farther until it finds k neighbours: none here yet.
-      if (tile.unit.size() <= std::size_t(steps.k())) return false;
-      steps.measure_spacing(false);
-      const std::size_t own = tile.points.own;
-      for (std::size_t i = 0; i < own; ++i)
-        if (!steps.complete(i)) return false;  // before the noise's grid: this halo is too narrow anyway
-      const UniformGrid grid(tile.unit, 1e-7f, std::max<long long>(4096, (long long)tile.unit.size()));
-      const GridView view = grid.view();
-      const float cell = 1.0f / view.inv_cell;
-      std::vector<char> held(own, 1);
-      cpu::parallel_for(std::int64_t(own), [&](std::int64_t s) {
-        const auto i = std::size_t(s);
-        const std::uint64_t id = tile.points.index[i];
-        if (id % stride == 0) {
-          const QuerySpacing q = query_spacing(view, cell, tile.unit[i], steps.k(), true);
-          at[std::size_t(id / stride)] = tile.unit[i];
-          measured[std::size_t(id / stride)] = measured_noise(q);
-          held[i] = tile.margin.empty() || q.reach <= tile.margin[i];
-        }
-      });
-      if (!std::all_of(held.begin(), held.end(), [](char c) { return c != 0; })) return false;
-      for (std::size_t i = 0; i < own; ++i) {
-        spacing[std::size_t(tile.points.index[i])] = steps.spacing()[i];
-        least[std::size_t(tile.points.index[i])] = steps.least()[i];
-        row_like += steps.row_like(i);
-      }
-      return true;
-    });
+    for_each_tile(
+        cloud, frame, farm, TileStep::spacing, progress,
+        [&](const HaloTile& tile) { return spacing_request(tile.view(n, frame.scale), stride); },
+        [&](const std::vector<std::uint64_t>& own, std::span<const std::byte> result) {
+          const TileSpacing s = spacing_result(result, own.size());
+          if (!s.complete) return false;
+          for (std::size_t i = 0; i < own.size(); ++i) {
+            spacing[std::size_t(own[i])] = s.spacing[i];
+            least[std::size_t(own[i])] = s.least[i];
+          }
+          row_like += s.row_like;
+          for (std::size_t q = 0; q < s.query.size(); ++q) {
+            if (s.query[q] >= queries) throw Error("a tile's spacings do not hold together");
+            at[std::size_t(s.query[q])] = s.at[q];
+            measured[std::size_t(s.query[q])] = s.measured[q];
+          }
+          return true;
+        });
   }
   // As rows.hpp's first test: the in-core widths look for rows only where it holds.
   if (2 * row_like >= n)
@@ -115,29 +124,25 @@ SupportWidths support_widths(const TiledCloud& cloud, const ProjectionParams& pa
   const float median_d = median_of(spacing);
   if (!(median_d > 0)) return out;  // most samples coincide with k others: no spacing to follow
   const float widest = widest_width(h, params, frame.diagonal);
-  const RegionalNoise noise(std::move(at), std::move(measured));
 
   // The second pass: which samples widen, and each width, from the first's spacings.
   Progress progress("support widths", std::int64_t(n));
-  for_each_tile(cloud, frame, progress, [&](const UnitTile& tile) {
-    SupportSteps steps(tile.set(n, frame.scale));
-    std::vector<float> set_spacing(tile.unit.size()), set_least(tile.unit.size());
-    for (std::size_t i = 0; i < tile.unit.size(); ++i) {
-      set_spacing[i] = spacing[std::size_t(tile.points.index[i])];
-      set_least[i] = least[std::size_t(tile.points.index[i])];
-    }
-    steps.use_spacing(std::move(set_spacing), std::move(set_least));
-    steps.find_wide(median_d);
-    const std::size_t own = tile.points.own;
-    for (std::size_t i = 0; i < own; ++i)
-      if (!steps.complete(i)) return false;
-    cpu::parallel_for(std::int64_t(own), [&](std::int64_t s) {
-      const auto i = std::size_t(s);
-      out.h[std::size_t(tile.points.index[i])] = adaptive_width(h, widest, steps.wide(i), steps.spacing()[i], median_d,
-                                                                noise.about(tile.unit[i]), frame.scale);
-    });
-    return true;
-  });
+  for_each_tile(
+      cloud, frame, farm, TileStep::widths, progress,
+      [&](const HaloTile& tile) {
+        std::vector<float> set_spacing(tile.unit.size()), set_least(tile.unit.size());
+        for (std::size_t i = 0; i < tile.unit.size(); ++i) {
+          set_spacing[i] = spacing[std::size_t(tile.points.index[i])];
+          set_least[i] = least[std::size_t(tile.points.index[i])];
+        }
+        return widths_request(tile.view(n, frame.scale), {set_spacing, set_least, median_d, h, widest, at, measured});
+      },
+      [&](const std::vector<std::uint64_t>& own, std::span<const std::byte> result) {
+        const TileWidths w = widths_result(result, own.size());
+        if (!w.complete) return false;
+        for (std::size_t i = 0; i < own.size(); ++i) out.h[std::size_t(own[i])] = w.h[i];
+        return true;
+      });
   out.least = *std::min_element(out.h.begin(), out.h.end());
   out.largest = *std::max_element(out.h.begin(), out.h.end());
   out.median = median_of(out.h);

@@ -1,5 +1,6 @@
 #include "tile_works.hpp"
 
+#include <algorithm>
 #include <limits>
 
 #include "pss/backend/cpu/parallel_for.hpp"
@@ -7,8 +8,10 @@
 #include "pss/backend/parallel_for.hpp"
 #include "pss/core/stats.hpp"
 #include "pss/points/outliers.hpp"
+#include "pss/points/spacing.hpp"
 #include "pss/spatial/grid_mirror.hpp"
 #include "pss/spatial/support_grid.hpp"
+#include "pss/spatial/uniform_grid.hpp"
 #include "tile_bytes.hpp"
 
 namespace pss {
@@ -34,9 +37,8 @@ struct TileArrays {
 TileArrays get_tile(ByteReader& in) {
   TileArrays t{in.get<float>(), std::size_t(in.get<std::uint64_t>()), in.get_array<vec3>(), in.get_array<float>(),
                in.get_array<int>()};
+  // SupportGrid refuses a sample outside the set.
   if (t.h.size() != t.unit.size() || t.own > t.unit.size()) throw Error("a tile's work does not hold together");
-  for (const int s : t.samples)
-    if (s < 0 || std::size_t(s) >= t.unit.size()) throw Error("a tile's work does not hold together");
   return t;
 }
 
@@ -172,6 +174,167 @@ TileOrientation orientation_result(std::span<const std::byte> result, std::size_
   for (const int root : o.parts.root) whole = whole && root >= 0 && std::size_t(root) < points;
   if (!whole) throw Error("a tile's orientation does not hold together");
   return o;
+}
+
+namespace {
+
+void put_margin_tile(ByteWriter& out, const MarginTile& tile) {
+  out.put(std::uint64_t(tile.own));
+  out.put(tile.cloud_size);
+  out.put(tile.scale);
+  out.put_array(tile.unit);
+  out.put_array(tile.id);
+  out.put_array(tile.margin);
+}
+
+struct MarginArrays {
+  std::size_t own;
+  std::uint64_t cloud_size;
+  double scale;
+  std::vector<vec3> unit;
+  std::vector<std::uint64_t> id;
+  std::vector<float> margin;
+  SampleSet set() const { return SampleSet{unit, id, margin, cloud_size, scale}; }
+};
+
+MarginArrays get_margin_tile(ByteReader& in) {
+  MarginArrays t{std::size_t(in.get<std::uint64_t>()), in.get<std::uint64_t>(), in.get<double>(),
+                 in.get_array<vec3>(), in.get_array<std::uint64_t>(), in.get_array<float>()};
+  if (t.id.size() != t.unit.size() || (!t.margin.empty() && t.margin.size() != t.unit.size()) ||
+      t.own > t.unit.size() || !(t.scale > 0))
+    throw Error("a tile's work does not hold together");
+  for (const std::uint64_t id : t.id)
+    if (id >= t.cloud_size) throw Error("a tile's work does not hold together");
+  return t;
+}
+
+std::vector<std::byte> incomplete() {
+  ByteWriter out;
+  out.put(std::uint8_t(0));
+  return out.take();
+}
+
+}  // namespace
+
+std::vector<std::byte> spacing_request(const MarginTile& tile, std::uint64_t stride) {
+  ByteWriter out;
+  put_margin_tile(out, tile);
+  out.put(stride);
+  return out.take();
+}
+
+std::vector<std::byte> work_spacing(std::span<const std::byte> request) {
+  ByteReader in(request);
+  const MarginArrays t = get_margin_tile(in);
+  const auto stride = in.get<std::uint64_t>();
+  if (stride == 0) throw Error("a tile's work does not hold together");
+  SupportSteps steps(t.set());
+  // query_spacing looks farther until it finds k neighbours: none here yet.
+  if (t.unit.size() <= std::size_t(steps.k())) return incomplete();
+  steps.measure_spacing(false);
+  for (std::size_t i = 0; i < t.own; ++i)
+    if (!steps.complete(i)) return incomplete();  // before the noise's grid: this halo is too narrow anyway
+  const UniformGrid grid(t.unit, 1e-7f, std::max<long long>(4096, (long long)t.unit.size()));
+  const GridView view = grid.view();
+  const float cell = 1.0f / view.inv_cell;
+  std::vector<float> measured(t.own);
+  std::vector<char> held(t.own, 1);
+  cpu::parallel_for(std::int64_t(t.own), [&](std::int64_t s) {
+    const auto i = std::size_t(s);
+    if (t.id[i] % stride == 0) {
+      const QuerySpacing q = query_spacing(view, cell, t.unit[i], steps.k(), true);
+      measured[i] = measured_noise(q);
+      held[i] = t.margin.empty() || q.reach <= t.margin[i];
+    }
+  });
+  if (!std::all_of(held.begin(), held.end(), [](char c) { return c != 0; })) return incomplete();
+  TileSpacing s;
+  s.spacing.assign(steps.spacing().begin(), steps.spacing().begin() + std::ptrdiff_t(t.own));
+  s.least.assign(steps.least().begin(), steps.least().begin() + std::ptrdiff_t(t.own));
+  for (std::size_t i = 0; i < t.own; ++i) {
+    s.row_like += steps.row_like(i);
+    if (t.id[i] % stride == 0) {
+      s.query.push_back(t.id[i] / stride);
+      s.at.push_back(t.unit[i]);
+      s.measured.push_back(measured[i]);
+    }
+  }
+  ByteWriter out;
+  out.put(std::uint8_t(1));
+  out.put_array<float>(s.spacing);
+  out.put_array<float>(s.least);
+  out.put(s.row_like);
+  out.put_array<std::uint64_t>(s.query);
+  out.put_array<vec3>(s.at);
+  out.put_array<float>(s.measured);
+  return out.take();
+}
+
+TileSpacing spacing_result(std::span<const std::byte> result, std::size_t own) {
+  ByteReader in(result);
+  TileSpacing s;
+  s.complete = in.get<std::uint8_t>() != 0;
+  if (!s.complete) return s;
+  s.spacing = in.get_array<float>();
+  s.least = in.get_array<float>();
+  s.row_like = in.get<std::uint64_t>();
+  s.query = in.get_array<std::uint64_t>();
+  s.at = in.get_array<vec3>();
+  s.measured = in.get_array<float>();
+  if (s.spacing.size() != own || s.least.size() != own || s.at.size() != s.query.size() ||
+      s.measured.size() != s.query.size())
+    throw Error("a tile's spacings do not hold together");
+  return s;
+}
+
+std::vector<std::byte> widths_request(const MarginTile& tile, const WidthsInputs& inputs) {
+  ByteWriter out;
+  put_margin_tile(out, tile);
+  out.put_array(inputs.spacing);
+  out.put_array(inputs.least);
+  out.put(inputs.median_spacing);
+  out.put(inputs.h);
+  out.put(inputs.widest);
+  out.put_array(inputs.noise_at);
+  out.put_array(inputs.noise_measured);
+  return out.take();
+}
+
+std::vector<std::byte> work_widths(std::span<const std::byte> request) {
+  ByteReader in(request);
+  const MarginArrays t = get_margin_tile(in);
+  auto spacing = in.get_array<float>();
+  auto least = in.get_array<float>();
+  const auto median = in.get<float>(), h = in.get<float>(), widest = in.get<float>();
+  auto at = in.get_array<vec3>();
+  auto measured = in.get_array<float>();
+  if (spacing.size() != t.unit.size() || least.size() != t.unit.size() || measured.size() != at.size())
+    throw Error("a tile's work does not hold together");
+  SupportSteps steps(t.set());
+  steps.use_spacing(std::move(spacing), std::move(least));
+  steps.find_wide(median);
+  for (std::size_t i = 0; i < t.own; ++i)
+    if (!steps.complete(i)) return incomplete();
+  const RegionalNoise noise(std::move(at), std::move(measured));
+  std::vector<float> width(t.own);
+  cpu::parallel_for(std::int64_t(t.own), [&](std::int64_t s) {
+    const auto i = std::size_t(s);
+    width[i] = adaptive_width(h, widest, steps.wide(i), steps.spacing()[i], median, noise.about(t.unit[i]), t.scale);
+  });
+  ByteWriter out;
+  out.put(std::uint8_t(1));
+  out.put_array<float>(width);
+  return out.take();
+}
+
+TileWidths widths_result(std::span<const std::byte> result, std::size_t own) {
+  ByteReader in(result);
+  TileWidths w;
+  w.complete = in.get<std::uint8_t>() != 0;
+  if (!w.complete) return w;
+  w.h = in.get_array<float>();
+  if (w.h.size() != own) throw Error("a tile's widths do not hold together");
+  return w;
 }
 
 }  // namespace pss

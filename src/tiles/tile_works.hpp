@@ -11,6 +11,7 @@
 #include "pss/backend/backend.hpp"
 #include "pss/points/orient_normals.hpp"
 #include "pss/points/project_points.hpp"
+#include "pss/points/support_steps.hpp"
 
 namespace pss {
 
@@ -48,5 +49,47 @@ struct TileOrientation {
   OrientedParts parts;
 };
 TileOrientation orientation_result(std::span<const std::byte> result, std::size_t points);
+
+// A tile and its halo for the adaptive widths (points/support_steps.hpp): each point's index
+// in the cloud and margin (none: the set is the whole cloud).
+struct MarginTile {
+  std::span<const vec3> unit;
+  std::span<const std::uint64_t> id;
+  std::span<const float> margin;
+  std::size_t own = 0;
+  std::uint64_t cloud_size = 0;
+  double scale = 1;
+};
+
+// The widths' first pass (tiles/support.hpp): each own sample's spacing and its least
+// neighbour's, whether it looks like a row's, and σ at the noise queries among them (every
+// `stride`-th index); nothing where the halo did not hold every answer.
+std::vector<std::byte> spacing_request(const MarginTile& tile, std::uint64_t stride);
+std::vector<std::byte> work_spacing(std::span<const std::byte> request);
+struct TileSpacing {
+  bool complete = false;
+  std::vector<float> spacing, least;  // of each own sample
+  std::uint64_t row_like = 0;
+  std::vector<std::uint64_t> query;  // each noise query's index over the stride
+  std::vector<vec3> at;
+  std::vector<float> measured;
+};
+TileSpacing spacing_result(std::span<const std::byte> result, std::size_t own);
+
+// The second pass: each own sample's width, from the first pass's spacings of the tile and
+// its halo, their median over the cloud, and σ at every noise query of the cloud.
+struct WidthsInputs {
+  std::span<const float> spacing, least;  // of each point of the tile and its halo
+  float median_spacing = 0, h = 0, widest = 0;
+  std::span<const vec3> noise_at;
+  std::span<const float> noise_measured;
+};
+std::vector<std::byte> widths_request(const MarginTile& tile, const WidthsInputs& inputs);
+std::vector<std::byte> work_widths(std::span<const std::byte> request);
+struct TileWidths {
+  bool complete = false;
+  std::vector<float> h;  // of each own sample
+};
+TileWidths widths_result(std::span<const std::byte> result, std::size_t own);
 
 }  // namespace pss

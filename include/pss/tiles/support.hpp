@@ -7,6 +7,7 @@
 #include "pss/io/tiled_cloud.hpp"
 #include "pss/points/projection.hpp"
 #include "pss/points/support.hpp"
+#include "pss/tiles/farm.hpp"
 
 namespace pss {
 
@@ -18,6 +19,7 @@ namespace pss {
 // one tile at a time. Throws Error for a width that is not a positive number, and
 // NotTiled (tiles/memory_plan.hpp) for a cloud sampled in rows (rows.hpp: the rows' chains span the cloud;
 // support_widths of the points in core serves).
-SupportWidths support_widths(const TiledCloud& cloud, const ProjectionParams& params);
+// Each pass's tiles may be spread over processes (tiles/farm.hpp).
+SupportWidths support_widths(const TiledCloud& cloud, const ProjectionParams& params, TileFarm& farm = local_farm());
 
 }  // namespace pss
