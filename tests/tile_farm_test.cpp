@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
-#include <random>
 #include <vector>
 
 #include "../src/tiles/tile_works.hpp"
@@ -37,13 +36,7 @@ class Elsewhere final : public TileFarm {
 };
 
 TEST_F(TileFarmTest, TilesWorkedElsewhereInAnotherOrderGiveTheSameBitsAndCountEachRanksPoints) {
-  test::SampleOptions o;
-  o.count = 12000;
-  o.noise = 0.02f;
-  std::vector<vec3> points = test::sample(test::Sphere{}, o).positions;
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<float> off(-0.3f, 0.3f);
-  for (std::size_t i = 0; i < 600; ++i) points.push_back(points[i * 11] * (1 + off(rng)));  // strays
+  const std::vector<vec3> points = test::noisy_sphere_with_strays(600, 11, 7);
   const std::string file = write("sphere.xyz", test::xyz_text(points));
   ProjectionParams params = ProjectionParams::from_h(test::suggested_h(read_point_cloud(file)));
   params.support = Support::adaptive;

@@ -100,13 +100,7 @@ TEST_F(TiledProjectTest, ATorusAndASphereApartProjectInTilesAsInCore) {
 // sphere or outside it), and their normals' signs follow trees through them that rounding
 // changes; the sphere's converged points face as in core.
 TEST_F(TiledProjectTest, TheOutliersPassesSetAsideWhatTheyDoInCore) {
-  test::SampleOptions o;
-  o.count = 12000;
-  o.noise = 0.02f;
-  std::vector<vec3> points = test::sample(test::Sphere{}, o).positions;
-  std::mt19937 rng(4);
-  std::uniform_real_distribution<float> off(-0.3f, 0.3f);
-  for (std::size_t i = 0; i < 2400; ++i) points.push_back(points[i * 5] * (1 + off(rng)));
+  const std::vector<vec3> points = test::noisy_sphere_with_strays(2400, 5, 4);
   const std::string file = write("sphere.xyz", test::xyz_text(points));
   ProjectionParams params = ProjectionParams::from_h(test::suggested_h(read_point_cloud(file)));
   params.support = Support::adaptive;

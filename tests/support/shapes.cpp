@@ -130,4 +130,15 @@ SupportGrid support_grid(std::span<const vec3> points, const ProjectionParams& p
   return SupportGrid(points, support_widths(points, params).h, params.rho / params.h);
 }
 
+std::vector<vec3> noisy_sphere_with_strays(std::size_t strays, std::size_t every, unsigned seed) {
+  SampleOptions o;
+  o.count = 12000;
+  o.noise = 0.02f;
+  std::vector<vec3> points = sample(Sphere{}, o).positions;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> off(-0.3f, 0.3f);
+  for (std::size_t i = 0; i < strays; ++i) points.push_back(points[i * every] * (1 + off(rng)));
+  return points;
+}
+
 }  // namespace pss::test

@@ -50,6 +50,9 @@ struct SampleOptions {
 PointCloud sample(const Sphere& s, const SampleOptions& o);
 PointCloud sample(const Torus& t, const SampleOptions& o);
 PointCloud sample_plane(float half_size, const SampleOptions& o);  // square [-a, a]² at z = 0
+// 12,000 samples of the unit sphere with noise 0.02, and `strays` more: the samples 0, every,
+// 2·every, ... each moved up to 30 % along its radius (seeded by `seed`).
+std::vector<vec3> noisy_sphere_with_strays(std::size_t strays, std::size_t every, unsigned seed);
 // Evenly by area, faces and rim, with the exact outward normals (no noise, uniform density).
 PointCloud sample(const Pill& pill, const SampleOptions& o);
 
