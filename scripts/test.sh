@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Installs (with the optional peers: PCL), builds and runs the whole test suite (GPU tests skip
+# Installs (with the optional parts: PCL for a peer benchmark, Open MPI for the ranks), builds and runs the whole test suite (GPU tests skip
 # without a device), then builds it again under AddressSanitizer + UndefinedBehaviorSanitizer
 # (CPU-only, build-asan/) and runs it there: any sanitizer report fails the run.
 set -euo pipefail

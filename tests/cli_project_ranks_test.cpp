@@ -20,12 +20,13 @@ namespace {
 using ProjectRanks = test::CliTest;
 using test::ScratchFolder;
 
-// `pss <args>` on `ranks` processes of mpirun on this machine (as root too, and with more
-// ranks than cores), stopped after two minutes should a rank wait forever.
+// `pss <args>` on `ranks` processes of mpirun on this machine (as root too, with more ranks
+// than cores, and each free to run on every core: the ranks then share them), stopped after
+// two minutes should a rank wait forever.
 test::CliResult run_ranks(int ranks, const std::string& args) {
   return test::run_shell("OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 timeout 120 " +
-                         std::string(PSS_MPIEXEC) + " --oversubscribe -np " + std::to_string(ranks) + " " +
-                         std::string(PSS_CLI) + " " + args);
+                         std::string(PSS_MPIEXEC) + " --oversubscribe --bind-to none -np " + std::to_string(ranks) +
+                         " " + std::string(PSS_CLI) + " " + args);
 }
 
 #define SKIP_WITHOUT_MPI() \
@@ -84,7 +85,9 @@ TEST_F(ProjectRanks, ACloudThatFitsInCoreIsSharedInTilesWithTheInCorePoints) {
 TEST_F(ProjectRanks, WhatTilesDoNotDoRunsInCoreOnRankZero) {
   SKIP_WITHOUT_MPI();
   const std::string file = write("torus.xyz", test::torus_xyz(20000, false, 0));
-  ASSERT_EQ(test::run_pss("project " + file + " -o " + path("one.ply") + " --surface apss").exit_code, 0);
+  ASSERT_EQ(test::run_pss("project " + file + " -o " + path("one.ply") + " --surface apss --stats " + path("one.json"))
+                .exit_code,
+            0);
   const test::CliResult r =
       run_ranks(2, "project " + file + " -o " + path("ranks.ply") + " --surface apss --stats " + path("s.json"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -92,6 +95,8 @@ TEST_F(ProjectRanks, WhatTilesDoNotDoRunsInCoreOnRankZero) {
   EXPECT_EQ(read(path("ranks.ply")), read(path("one.ply")));
   const nlohmann::json v = nlohmann::json::parse(read(path("s.json")));
   EXPECT_EQ(v["points_per_rank"], nlohmann::json::array({20000, 0}));
+  EXPECT_EQ(v["threads"], nlohmann::json::parse(read(path("one.json")))["threads"])
+      << "rank 0 alone takes all the machine's cores";
 }
 
 TEST_F(ProjectRanks, AFailureOnRankZeroIsOneLineAndLetsTheOtherRanksGo) {

@@ -186,6 +186,7 @@ void run_project(const ProjectOptions& o) {
                                     byte_size(double(plan.points * kProjectCosts.in_core)) + " (--memory)");
     stats = Stats();  // rank 0 alone, in core
     plan = needed;
+    run_alone();
     run = project_in_core(o, backend, stats, params);
   }
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

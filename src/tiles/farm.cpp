@@ -27,7 +27,10 @@ class LocalFarm final : public TileFarm {
  public:
   int ranks() const override { return 1; }
   void run(TileStep step, std::span<const int> tiles, const Request& request, const Take& take) override {
-    for (const int tile : tiles) take(tile, tile_work(step, request(tile)), 0);
+    for (const int tile : tiles) {
+      const std::vector<std::byte> result = tile_work(step, request(tile));  // the request freed first
+      take(tile, result, 0);
+    }
   }
 };
 

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <new>
@@ -23,8 +24,9 @@ namespace {
 enum Tag : int { kWork = 1, kStop = 2, kResult = 3 };
 
 struct Ranks {
-  bool joined = false;
+  bool joined = false, released = false;  // released: the other ranks let go
   int rank = 0, size = 1;
+  int share = 1, all = 1;  // this rank's share of its machine's cores, and all of them
 };
 Ranks world;
 
@@ -44,10 +46,23 @@ void send_bytes(std::span<const std::byte> bytes, int to, int tag) {
     MPI_Send(bytes.data() + at, int(std::min(kPiece, size - at)), MPI_BYTE, to, tag, MPI_COMM_WORLD);
 }
 
+// Where a message cannot be taken whole, the ranks' messages no longer pair up: every rank
+// ends (mpirun's SIGTERM makes rank 0 remove its outputs and scratch files).
+[[noreturn]] void end_every_rank(const std::string& why) {
+  std::fprintf(stderr, "pss: error: rank %d: %s\n", world.rank, why.c_str());
+  MPI_Abort(MPI_COMM_WORLD, 1);
+  std::abort();
+}
+
 std::vector<std::byte> receive_bytes(int from, int tag) {
   std::uint64_t size = 0;
   MPI_Recv(&size, 1, MPI_UINT64_T, from, tag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-  std::vector<std::byte> bytes(static_cast<std::size_t>(size));
+  std::vector<std::byte> bytes;
+  try {
+    bytes.resize(static_cast<std::size_t>(size));
+  } catch (const std::exception&) {
+    end_every_rank("out of memory for a message of " + std::to_string(size) + " bytes from rank " + std::to_string(from));
+  }
   for (std::uint64_t at = 0; at < size; at += kPiece)
     MPI_Recv(bytes.data() + at, int(std::min(kPiece, size - at)), MPI_BYTE, from, tag, MPI_COMM_WORLD,
              MPI_STATUS_IGNORE);
@@ -82,7 +97,8 @@ class MpiFarm final : public TileFarm {
   int ranks() const override { return world.size; }
 
   void run(TileStep step, std::span<const int> tiles, const Request& request, const Take& take) override {
-    const int threads = cpu_threads();  // every rank works with rank 0's
+    // Rank 0's --threads, where given, for every rank; else each its own share (0).
+    const int threads = cpu_threads() == world.share ? 0 : cpu_threads();
     for (std::size_t first = 0; first < tiles.size(); first += std::size_t(world.size)) {
       const int count = int(std::min<std::size_t>(std::size_t(world.size), tiles.size() - first));
       int sent = 0, taken = 0;  // ranks 1…sent hold a tile, 1…taken gave theirs back
@@ -94,10 +110,11 @@ class MpiFarm final : public TileFarm {
           send_bytes(work, k, kWork);
           sent = k;
         }
-        take(tiles[first], tile_work(step, request(tiles[first])), 0);
+        const std::vector<std::byte> own = tile_work(step, request(tiles[first]));
+        take(tiles[first], own, 0);
         for (int k = 1; k < count; ++k) {
+          taken = k;  // a result half taken ends every rank (receive_bytes)
           const Result result = receive_result(k);
-          taken = k;
           if (!result.done)
             throw Error("rank " + std::to_string(k) + ": " +
                         std::string(reinterpret_cast<const char*>(result.bytes.data()), result.bytes.size()));
@@ -127,16 +144,23 @@ RankSession::RankSession(int& argc, char**& argv) {
   int local = 1;
   MPI_Comm_size(here, &local);
   MPI_Comm_free(&here);
-  set_cpu_threads(std::max(1, cpu_threads() / local));
+  world.all = cpu_threads();
+  world.share = std::max(1, world.all / local);
+  set_cpu_threads(world.share);
 }
 
 RankSession::~RankSession() {
   if (!world.joined) return;
-  if (world.rank == 0) {
-    const int header[2] = {0, 0};
-    for (int k = 1; k < world.size; ++k) MPI_Send(header, 2, MPI_INT, k, kStop, MPI_COMM_WORLD);
-  }
+  run_alone();
   MPI_Finalize();
+}
+
+void run_alone() {
+  if (!world.joined || world.rank != 0 || world.released) return;
+  const int header[2] = {0, 0};
+  for (int k = 1; k < world.size; ++k) MPI_Send(header, 2, MPI_INT, k, kStop, MPI_COMM_WORLD);
+  world.released = true;
+  if (cpu_threads() == world.share) set_cpu_threads(world.all);  // not a --threads given
 }
 
 bool RankSession::serves() const { return world.rank > 0; }
@@ -148,7 +172,7 @@ int RankSession::serve() {
     MPI_Recv(header, 2, MPI_INT, 0, MPI_ANY_TAG, MPI_COMM_WORLD, &status);
     if (status.MPI_TAG == kStop) return 0;
     const std::vector<std::byte> work = receive_bytes(0, kWork);
-    set_cpu_threads(header[1]);
+    set_cpu_threads(header[1] > 0 ? header[1] : world.share);
     Result result;
     try {
       result = {true, tile_work(TileStep(header[0]), work)};
@@ -163,6 +187,6 @@ int RankSession::serve() {
 
 int rank_count() { return world.size; }
 
-TileFarm& rank_farm() { return world.size > 1 ? static_cast<TileFarm&>(farm) : local_farm(); }
+TileFarm& rank_farm() { return world.size > 1 && !world.released ? static_cast<TileFarm&>(farm) : local_farm(); }
 
 }  // namespace pss::app

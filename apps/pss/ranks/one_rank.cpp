@@ -7,6 +7,7 @@ RankSession::RankSession(int&, char**&) {}
 RankSession::~RankSession() = default;
 bool RankSession::serves() const { return false; }
 int RankSession::serve() { return 0; }
+void run_alone() {}
 int rank_count() { return 1; }
 TileFarm& rank_farm() { return local_farm(); }
 

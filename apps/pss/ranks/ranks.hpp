@@ -20,7 +20,10 @@ class RankSession {
   int serve();          // works on rank 0's tiles until it lets go; the exit status
 };
 
-int rank_count();          // 1 outside mpirun
-TileFarm& rank_farm();     // every rank, from rank 0 (local_farm() when one)
+int rank_count();       // 1 outside mpirun
+TileFarm& rank_farm();  // every rank, from rank 0 (local_farm() when one, or once run_alone)
+// On rank 0: lets the other ranks go, and takes all of this machine's cores unless --threads
+// said otherwise; what follows is rank 0's alone (work that tiles do not do).
+void run_alone();
 
 }  // namespace pss::app

@@ -1,5 +1,5 @@
 // Where the tiles of a step are worked on (issue 28): in this process, one after another, or
-// spread over processes (`mpirun -np N pss project`: apps/pss/mpi). A tile's work is a pure
+// spread over processes (`mpirun -np N pss project`: apps/pss/ranks). A tile's work is a pure
 // function of its request's bytes (tile_work), so that any process gives the same result and
 // the output does not depend on how many processes shared it.
 #pragma once

@@ -3,8 +3,8 @@
 // rounding of sums taken in another order. Each step runs over the tiles, each tile with a
 // halo as wide as the step reads: the widths (tiles/support.hpp), the outliers' passes, the
 // projections, and the orientation of their normals, whose tiles agree on their signs where
-// their halos overlap (tiles/orient.hpp). The outliers' passes, the projections and the
-// orientations may be spread over processes (tiles/farm.hpp). The results wait in scratch files and come back in
+// their halos overlap (tiles/orient.hpp). Every step's tiles may be spread over processes
+// (tiles/farm.hpp). The results wait in scratch files and come back in
 // the cloud's order, a window at a time.
 #pragma once
 
