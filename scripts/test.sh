@@ -12,7 +12,8 @@ built() { echo "$1 was not built, though its packages are installed" >&2; exit 1
 [[ -x build/bench/peer_pcl_mls ]] || built "the PCL peer benchmark (bench/peer_pcl_mls)"
 build/pss view --help 2>&1 | grep -q "in a window" || built "the viewer's window (pss view: GLFW, Dear ImGui)"
 compgen -G "build/python/pss/_pss*.so" >/dev/null || built "the Python module (build/python/pss)"
-ldd build/pss | grep -q libmpi || built "pss's MPI ranks (mpirun -np N pss project)"
+# (a match, not `| grep -q`: grep's early exit would fail the pipe under pipefail)
+[[ $(ldd build/pss) == *libmpi* ]] || built "pss's MPI ranks (mpirun -np N pss project)"
 ctest --test-dir build --output-on-failure -j"$(nproc)"
 # The GPU kernels' stack frames (a CUDA build's test gpu.kernel_stacks, which fails above the
 # budget): the table, in the log.

@@ -30,11 +30,10 @@ struct Ranks {
 };
 Ranks world;
 
-// What mpirun (Open MPI, or a PMI/PMIx launcher) sets in each rank's environment. A process
-// started otherwise stays out of MPI: an MPI_Init of its own would start a runtime for one.
-bool started_by_mpirun() {
-  return std::getenv("OMPI_COMM_WORLD_SIZE") || std::getenv("PMIX_RANK") || std::getenv("PMI_RANK");
-}
+// What Open MPI's mpirun (or a PMIx launcher, as srun --mpi=pmix) sets in each rank's
+// environment. A process started otherwise stays out of MPI: an MPI_Init of its own would
+// start a runtime for one.
+bool started_by_mpirun() { return std::getenv("OMPI_COMM_WORLD_SIZE") || std::getenv("PMIX_RANK"); }
 
 // Bytes in pieces of at most 1 GiB: an MPI count is an int.
 constexpr std::uint64_t kPiece = std::uint64_t(1) << 30;
