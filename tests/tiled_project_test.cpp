@@ -39,8 +39,11 @@ Compared compare(const CloudProjection& in_core, const std::string& file, const 
   const TiledCloud tiles(file, dir, per_tile, 1 << 16);
   const TiledProjection tiled(tiles, params, Backend::cpu, dir, window, 1 << 16, stats);
   EXPECT_EQ(tiled.outliers().set_aside, in_core.outliers.set_aside);
-  EXPECT_EQ(tiled.counts().converged + tiled.counts().not_converged,
-            in_core.counts.converged + in_core.counts.not_converged);
+  // A stray whose few neighbours lie nearly on a line may read degenerate on one side of the
+  // rounding and not on the other (the sanitized build, compiled otherwise, differed by one
+  // in 14,341): a few in 10,000.
+  const auto projected = [](const StatusCounts& c) { return double(c.converged + c.not_converged); };
+  EXPECT_NEAR(projected(tiled.counts()), projected(in_core.counts), 1 + 5e-4 * double(in_core.cloud.size()));
   Compared c;
   c.tiles = std::size_t(tiles.tiles());
   std::uint64_t next = 0;
