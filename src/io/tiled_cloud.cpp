@@ -139,6 +139,13 @@ TilePoints TiledCloud::load(int tile, float halo) const {
   return out;
 }
 
+std::vector<int> TiledCloud::tiles_with_points() const {
+  std::vector<int> with;
+  for (int t = 0; t < tiles(); ++t)
+    if (tile_size(t) > 0) with.push_back(t);
+  return with;
+}
+
 std::vector<int> TiledCloud::tiles_near(int tile, float reach) const {
   const ivec3 c = tile_cell(tile);
   // Rings of neighbours as wide as the reach, at most the whole grid (a reach of 10^30 is no

@@ -74,14 +74,6 @@ double box_distance(const Aabb& a, const Aabb& b) {
                               glm::dvec3(0.0)));
 }
 
-// The tiles that hold points.
-std::vector<int> tiles_with_points(const TiledCloud& cloud) {
-  std::vector<int> tiles;
-  for (int t = 0; t < cloud.tiles(); ++t)
-    if (cloud.tile_size(t) > 0) tiles.push_back(t);
-  return tiles;
-}
-
 UnitTile unit_tile(const UnitSet& set) { return {set.unit, set.h, set.samples, set.points.own}; }
 
 // The outliers' passes (points/outliers.hpp): each sample's distance in its tile, then the
@@ -89,7 +81,7 @@ UnitTile unit_tile(const UnitSet& set) { return {set.unit, set.h, set.samples, s
 std::vector<char> samples_kept(const TiledCloud& cloud, const UnitFrame& frame, const std::vector<float>& h,
                                float kappa, double reach, TileFarm& farm, OutlierReport& report) {
   const std::uint64_t n = cloud.size();
-  const std::vector<int> tiles = tiles_with_points(cloud);
+  const std::vector<int> tiles = cloud.tiles_with_points();
   std::vector<char> kept(std::size_t(n), 1);
   for (int pass = 0; pass < kOutlierPasses; ++pass) {
     std::vector<float> distance(std::size_t(n), std::numeric_limits<float>::quiet_NaN());
@@ -192,7 +184,7 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
     };
     std::map<int, Own> own;
     farm.run(
-        TileStep::projection, tiles_with_points(cloud),
+        TileStep::projection, cloud.tiles_with_points(),
         [&](int t) {
           const UnitSet set = load_unit(cloud, t, world_halo(reach, frame_), frame_, h, kept);  // N(r) of each point
           const auto end = std::ptrdiff_t(set.points.own);
@@ -237,7 +229,7 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
     };
     std::map<int, Set> sets;
     farm.run(
-        TileStep::orientation, tiles_with_points(cloud),
+        TileStep::orientation, cloud.tiles_with_points(),
         [&](int t) {
           // Each own point lies within moved[t] of the box and links to points within the
           // widest ρ_j of it; a point of tile u lies within moved[u] of u's box.

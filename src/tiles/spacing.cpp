@@ -25,8 +25,7 @@ SpacingEstimate estimate_spacing(const TiledCloud& cloud, int k, std::size_t max
   std::vector<QuerySpacing> results(queries);
   const std::size_t noise_stride = noise_query_stride(queries);
   Progress progress("spacing", std::int64_t(n));
-  for (int t = 0; t < cloud.tiles(); ++t) {
-    if (cloud.tile_size(t) == 0) continue;
+  for (const int t : cloud.tiles_with_points()) {
     const Aabb box = cloud.tile_box(t);
     // A query's k nearest lie within its k-th distance of it, and the points its noise is
     // fitted to within its reach, so within that of the tile's box: a halo that wide holds

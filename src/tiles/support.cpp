@@ -50,16 +50,13 @@ HaloTile load_unit(const TiledCloud& cloud, int tile, float halo, const UnitFram
 template <class Request, class Use>
 void for_each_tile(const TiledCloud& cloud, const UnitFrame& frame, TileFarm& farm, TileStep step, Progress& progress,
                    Request&& request, Use&& use) {
-  std::vector<int> tiles;
-  for (int t = 0; t < cloud.tiles(); ++t)
-    if (cloud.tile_size(t) > 0) tiles.push_back(t);
   const auto first_halo = [&](int t) {
     const Aabb box = cloud.tile_box(t);
     return 0.125f * (box.hi.x - box.lo.x);
   };
   std::map<int, std::vector<std::uint64_t>> own;  // each tile's own points, till its result
   farm.run(
-      step, tiles,
+      step, cloud.tiles_with_points(),
       [&](int t) {
         const HaloTile tile = load_unit(cloud, t, first_halo(t), frame);
         own[t].assign(tile.points.index.begin(), tile.points.index.begin() + std::ptrdiff_t(tile.points.own));

@@ -52,6 +52,8 @@ class TiledCloud {
   TilePoints load(int tile, float halo) const;
   // The other tiles whose cubes lie within `reach` of the tile's, in their numbers' order.
   std::vector<int> tiles_near(int tile, float reach) const;
+  // The tiles that hold points, in their numbers' order.
+  std::vector<int> tiles_with_points() const;
 
  private:
   int tile_of(vec3 p) const;
