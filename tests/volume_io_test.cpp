@@ -19,6 +19,7 @@
 #include "pss/core/error.hpp"
 #include "pss/io/output_file.hpp"
 #include "pss/io/volume_file.hpp"
+#include "support/cli.hpp"
 #include "support/gzip.hpp"
 
 namespace pss {
@@ -27,11 +28,6 @@ namespace {
 namespace fs = std::filesystem;
 using test::gzip;
 
-fs::path temp_dir() {
-  const fs::path d = fs::temp_directory_path() / ("pss_volume_io_" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d;
-}
 
 void write_bytes(const fs::path& p, const std::string& bytes) {
   std::ofstream out(p, std::ios::binary);
@@ -58,7 +54,8 @@ std::string error_of(auto&& f) {
 }
 
 TEST(VolumeIo, RawUint8WithSpacing) {
-  const fs::path p = temp_dir() / "ramp.raw";
+  const test::TestFolder folder;
+  const fs::path p = folder.path() / "ramp.raw";
   write_bytes(p, ramp_uint8());
   RawVolumeFormat f;
   f.dims = parse_dims("2x3x4");
@@ -70,7 +67,8 @@ TEST(VolumeIo, RawUint8WithSpacing) {
 }
 
 TEST(VolumeIo, RawUint16BigEndianAndFloat32) {
-  const fs::path d = temp_dir();
+  const test::TestFolder folder;
+  const fs::path& d = folder.path();
   std::string big;
   for (int i = 0; i < 8; ++i) {
     const int v = 1000 * i + 1;
@@ -95,7 +93,8 @@ TEST(VolumeIo, RawUint16BigEndianAndFloat32) {
 }
 
 TEST(VolumeIo, NrrdAttachedDetachedAndGzip) {
-  const fs::path d = temp_dir();
+  const test::TestFolder folder;
+  const fs::path& d = folder.path();
   const std::string header =
       "NRRD0004\n# a comment\ntype: uchar\ndimension: 3\nsizes: 2 3 4\nspace dimension: 3\n"
       "space directions: (1,0,0) (0,2,0) (0,0,0.5)\nspace origin: (10,20,30)\nendian: little\n";
@@ -117,7 +116,8 @@ TEST(VolumeIo, NrrdAttachedDetachedAndGzip) {
 }
 
 TEST(VolumeIo, BadInputsAreOneLineErrors) {
-  const fs::path d = temp_dir();
+  const test::TestFolder folder;
+  const fs::path& d = folder.path();
   write_bytes(d / "short.raw", ramp_uint8().substr(1));
   RawVolumeFormat f;
   f.dims = ivec3(2, 3, 4);
@@ -150,7 +150,8 @@ TEST(VolumeIo, BadInputsAreOneLineErrors) {
 // writer came, for ever (a NRRD or MetaImage header naming one hung pss). Devices and FIFOs
 // are refused before the open.
 TEST(VolumeIo, DetachedDataThatIsAFifoIsRefusedWithoutWaiting) {
-  const fs::path d = temp_dir();
+  const test::TestFolder folder;
+  const fs::path& d = folder.path();
   const fs::path fifo = d / "fifo.raw";
   fs::remove(fifo);
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
@@ -169,7 +170,8 @@ TEST(VolumeIo, DetachedDataThatIsAFifoIsRefusedWithoutWaiting) {
 
 // The CLI: a bad volume is `pss: error: ...` on one line, exit status 1, and no image.
 TEST(VolumeIo, CliBadInputsLeaveNoOutput) {
-  const fs::path d = temp_dir();
+  const test::TestFolder folder;
+  const fs::path& d = folder.path();
   write_bytes(d / "short.raw", ramp_uint8().substr(1));
   const std::string header = "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 2 3 4\n";
   const std::string z = gzip(ramp_uint8());

@@ -3,20 +3,18 @@
 // spacing, an empty volume, a grazing ray; and `pss extract`'s point set.
 #include <gtest/gtest.h>
 
-#include <string>
-
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <string>
 
 #include "pss/core/error.hpp"
 #include "pss/io/ply.hpp"
 #include "pss/render/camera.hpp"
 #include "pss/volume/extract.hpp"
+#include "support/cli.hpp"
 #include "support/marching_tetrahedra.hpp"
 #include "support/volume_checks.hpp"
 #include "support/volumes.hpp"
@@ -419,8 +417,8 @@ namespace {
 // --spacing), and `pss render` ray traces the extracted set (the paper's Figure 5 flow).
 TEST(VolumeCli, HitsAndExtractionOnARawFloatSphere) {
   namespace fs = std::filesystem;
-  const fs::path d = fs::temp_directory_path() / ("pss_volume_cli_" + std::to_string(::getpid()));
-  fs::create_directories(d);
+  const test::TestFolder folder;
+  const fs::path& d = folder.path();
   const Field f = test::sphere_distance(vec3(16.0f, 16.0f, 24.0f), 10.0f);
   test::SampleVolumeOptions o;
   o.dims = ivec3(32, 32, 24);

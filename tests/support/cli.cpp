@@ -68,6 +68,18 @@ void CliTest::expect_clean_failure(const std::string& args, const std::string& n
     EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
 }
 
+TestFolder::TestFolder() {
+  const testing::TestInfo* test = testing::UnitTest::GetInstance()->current_test_info();
+  const std::string name = test ? std::string(test->test_suite_name()) + "-" + test->name() : "outside-a-test";
+  path_ = std::filesystem::temp_directory_path() / ("pss-" + name + "-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(path_);
+}
+
+TestFolder::~TestFolder() {
+  std::error_code ignored;
+  std::filesystem::remove_all(path_, ignored);
+}
+
 ScratchFolder::ScratchFolder(const std::filesystem::path& path) : path_(path) {
   std::filesystem::create_directories(path);
   if (const char* old = std::getenv("TMPDIR")) old_ = old;

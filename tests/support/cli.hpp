@@ -39,6 +39,20 @@ class CliTest : public testing::Test {
   std::filesystem::path dir_;
 };
 
+// A folder of the running test's own under the system's temporary folder, removed with
+// everything in it when the object goes.
+class TestFolder {
+ public:
+  TestFolder();
+  ~TestFolder();
+  TestFolder(const TestFolder&) = delete;
+  TestFolder& operator=(const TestFolder&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
 // $TMPDIR set to a folder of the test's while it lives (the tiles' scratch files go there).
 class ScratchFolder {
  public:
