@@ -78,7 +78,7 @@ struct SupportSteps::Tree {
 
 SupportSteps::SupportSteps(const SampleSet& set)
     : set_(set),
-      k_(int(std::min<std::uint64_t>(kSupportNeighbour, set.cloud_size - 1))),
+      k_(support_neighbours(set.cloud_size)),
       tree_(std::make_unique<Tree>(set.unit)) {}
 
 SupportSteps::~SupportSteps() = default;
@@ -272,6 +272,9 @@ SupportWidths support_widths(std::span<const vec3> points, const ProjectionParam
 
   const UnitFrame frame = unit_frame(points);
   const std::vector<vec3> unit = to_unit(points, frame);
+  // The noise first: its grid of every point is freed before the steps' tree and arrays are
+  // built (at 10^7 points both together set the in-core run's peak, issue 28).
+  const RegionalNoise noise = regional_noise(unit, support_neighbours(unit.size()));
   SupportSteps steps(SampleSet{unit, {}, {}, unit.size(), frame.scale});
   {
     Progress progress("support widths", 2 * std::int64_t(unit.size()));
@@ -282,7 +285,6 @@ SupportWidths support_widths(std::span<const vec3> points, const ProjectionParam
   if (!(median_d > 0)) return out;  // most samples coincide with k others: no spacing to follow
   const float widest = widest_width(h, params, frame.diagonal);
   steps.find_wide(median_d);
-  const RegionalNoise noise = regional_noise(unit, steps.k());
   cpu::parallel_for(std::int64_t(unit.size()), [&](std::int64_t s) {
     const auto i = std::size_t(s);
     out.h[i] = adaptive_width(h, widest, steps.wide(i), steps.spacing()[i], median_d, noise.about(unit[i]), frame.scale);

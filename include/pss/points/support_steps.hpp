@@ -6,6 +6,7 @@
 // sample's neighbours gives it the same answer, to the last bit.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -16,6 +17,7 @@
 #include "pss/core/types.hpp"
 #include "pss/points/projection.hpp"
 #include "pss/points/spacing.hpp"
+#include "pss/points/support.hpp"
 
 namespace pss {
 
@@ -27,6 +29,11 @@ struct SampleSet {
   double scale = 1;                        // the unit frame's
 };
 
+// kSupportNeighbour, or fewer in a cloud of fewer samples.
+inline int support_neighbours(std::uint64_t cloud_size) {
+  return int(std::min<std::uint64_t>(kSupportNeighbour, cloud_size - 1));
+}
+
 class SupportSteps {
  public:
   explicit SupportSteps(const SampleSet& set);
@@ -34,7 +41,7 @@ class SupportSteps {
   SupportSteps(const SupportSteps&) = delete;
   SupportSteps& operator=(const SupportSteps&) = delete;
 
-  int k() const { return k_; }  // kSupportNeighbour, or fewer in a cloud of fewer samples
+  int k() const { return k_; }  // support_neighbours of the cloud
 
   // s_i and the least d_k among p_i's neighbours over s_i (support.hpp), for every sample;
   // with `rows` (in core only), a cloud sampled in rows takes each row's gap (rows.hpp).
