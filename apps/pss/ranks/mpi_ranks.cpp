@@ -1,16 +1,21 @@
 // The ranks over Open MPI. Rank 0 reads and writes every file, and sends each tile's work
 // (its points and its halo's) in a message, so that no rank needs a file system shared with
-// it; the other ranks only compute (tile_work). Tiles go out in rounds, one a rank, rank 0
-// working on its own meanwhile, and their results are taken in the tiles' order.
+// it; the other ranks only compute (tile_work). Rank 0 works on tiles of its own beside the
+// messages (MpiFarm).
 #include <mpi.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <future>
+#include <map>
 #include <new>
 #include <string>
+#include <thread>
+#include <utility>
 #include <vector>
 
 #include "pss/backend/backend.hpp"
@@ -91,6 +96,10 @@ std::vector<std::byte> text_bytes(const std::string& text) {
   return {p, p + text.size()};
 }
 
+// A tile a rank at a time, each rank given its next as soon as it gives back its last, so
+// that no rank waits for a slower tile than its own; rank 0 works on tiles of its own on a
+// thread beside the messages. Results are taken in the tiles' order; at most kAhead tiles a
+// rank run ahead of the oldest not yet taken, which bounds the results rank 0 holds.
 class MpiFarm final : public TileFarm {
  public:
   int ranks() const override { return world.size; }
@@ -98,31 +107,69 @@ class MpiFarm final : public TileFarm {
   void run(TileStep step, std::span<const int> tiles, const Request& request, const Take& take) override {
     // Rank 0's --threads, where given, for every rank; else each its own share (0).
     const int threads = cpu_threads() == world.share ? 0 : cpu_threads();
-    for (std::size_t first = 0; first < tiles.size(); first += std::size_t(world.size)) {
-      const int count = int(std::min<std::size_t>(std::size_t(world.size), tiles.size() - first));
-      int sent = 0, taken = 0;  // ranks 1…sent hold a tile, 1…taken gave theirs back
-      try {
-        for (int k = 1; k < count; ++k) {
-          const std::vector<std::byte> work = request(tiles[first + std::size_t(k)]);
-          const int header[2] = {int(step), threads};
-          MPI_Send(header, 2, MPI_INT, k, kWork, MPI_COMM_WORLD);
-          send_bytes(work, k, kWork);
-          sent = k;
+    const int own_threads = cpu_threads();
+    const std::size_t n = tiles.size(), ahead = kAhead * std::size_t(world.size);
+    std::vector<std::ptrdiff_t> at_rank(std::size_t(world.size), -1);  // the tile (its place in `tiles`) each rank holds
+    std::map<std::size_t, std::pair<std::vector<std::byte>, int>> ready;  // results waiting for their turn, and their rank
+    std::future<std::vector<std::byte>> own;
+    std::size_t next = 0, taken = 0;
+    auto may_give = [&] { return next < n && next < taken + ahead; };
+    try {
+      for (;;) {
+        for (auto it = ready.begin(); it != ready.end() && it->first == taken; it = ready.erase(it), ++taken)
+          take(tiles[taken], it->second.first, it->second.second);
+        if (taken == n) break;
+        for (int k = 1; k < world.size; ++k)
+          if (at_rank[std::size_t(k)] < 0 && may_give()) {
+            const std::vector<std::byte> work = request(tiles[next]);
+            const int header[2] = {int(step), threads};
+            MPI_Send(header, 2, MPI_INT, k, kWork, MPI_COMM_WORLD);
+            send_bytes(work, k, kWork);
+            at_rank[std::size_t(k)] = std::ptrdiff_t(next++);
+          }
+        if (!own.valid() && may_give()) {
+          at_rank[0] = std::ptrdiff_t(next++);
+          own = std::async(std::launch::async, [step, own_threads, work = request(tiles[std::size_t(at_rank[0])])] {
+            set_cpu_threads(own_threads);  // a new thread starts from OpenMP's default
+            return tile_work(step, work);
+          });
         }
-        const std::vector<std::byte> own = tile_work(step, request(tiles[first]));
-        take(tiles[first], own, 0);
-        for (int k = 1; k < count; ++k) {
-          taken = k;  // a result half taken ends every rank (receive_bytes)
-          const Result result = receive_result(k);
-          if (!result.done)
-            throw Error("rank " + std::to_string(k) + ": " +
-                        std::string(reinterpret_cast<const char*>(result.bytes.data()), result.bytes.size()));
-          take(tiles[first + std::size_t(k)], result.bytes, k);
-        }
-      } catch (...) {
-        for (int k = taken + 1; k <= sent; ++k) receive_result(k);  // each rank free for the stop
-        throw;
+        wait_for_a_result(own, at_rank, ready);  // the tile `taken` is in flight
       }
+    } catch (...) {
+      if (own.valid()) own.wait();
+      for (int k = 1; k < world.size; ++k)  // each rank free for the stop
+        if (at_rank[std::size_t(k)] >= 0) receive_result(k);
+      throw;
+    }
+  }
+
+ private:
+  static constexpr std::size_t kAhead = 2;
+
+  // Until rank 0's own tile is done or another rank's result comes, which it files in `ready`.
+  static void wait_for_a_result(std::future<std::vector<std::byte>>& own, std::vector<std::ptrdiff_t>& at_rank,
+                                std::map<std::size_t, std::pair<std::vector<std::byte>, int>>& ready) {
+    for (;;) {
+      if (own.valid() && own.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+        const auto place = std::size_t(std::exchange(at_rank[0], -1));
+        ready.emplace(place, std::pair{own.get(), 0});
+        return;
+      }
+      int arrived = 0;
+      MPI_Status status;
+      MPI_Iprobe(MPI_ANY_SOURCE, kResult, MPI_COMM_WORLD, &arrived, &status);
+      if (arrived) {
+        const int k = status.MPI_SOURCE;
+        const auto place = std::size_t(std::exchange(at_rank[std::size_t(k)], -1));
+        Result result = receive_result(k);
+        if (!result.done)
+          throw Error("rank " + std::to_string(k) + ": " +
+                      std::string(reinterpret_cast<const char*>(result.bytes.data()), result.bytes.size()));
+        ready.emplace(place, std::pair{std::move(result.bytes), k});
+        return;
+      }
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
     }
   }
 };
