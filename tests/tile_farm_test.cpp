@@ -26,12 +26,13 @@ class Elsewhere final : public TileFarm {
  public:
   int ranks() const override { return 3; }
   void run(TileStep step, std::span<const int> tiles, const Request& request, const Take& take) override {
-    std::vector<std::vector<std::byte>> results(tiles.size());
+    std::vector<std::vector<std::byte>> results(tiles.size()), notes(tiles.size());
     for (std::size_t k = tiles.size(); k-- > 0;) {
-      const std::vector<std::byte> copy = request(tiles[k]);
-      results[k] = tile_work(step, copy);
+      const TileRequest copy = request(tiles[k]);
+      results[k] = tile_work(step, copy.work);
+      notes[k] = copy.notes;
     }
-    for (std::size_t k = 0; k < tiles.size(); ++k) take(tiles[k], results[k], tiles[k] % 3);
+    for (std::size_t k = 0; k < tiles.size(); ++k) take(tiles[k], results[k], notes[k], tiles[k] % 3);
   }
 };
 

@@ -28,6 +28,7 @@ namespace cuda {
 bool built() { return false; }
 int device_count() { return 0; }
 std::string device_name() { return "none"; }
+void use_device(int) {}
 }  // namespace cuda
 #endif
 

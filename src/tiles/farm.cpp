@@ -1,6 +1,7 @@
 #include "pss/tiles/farm.hpp"
 
 #include "pss/core/error.hpp"
+#include "pss/core/memory.hpp"
 #include "tile_works.hpp"
 
 namespace pss {
@@ -28,8 +29,10 @@ class LocalFarm final : public TileFarm {
   int ranks() const override { return 1; }
   void run(TileStep step, std::span<const int> tiles, const Request& request, const Take& take) override {
     for (const int tile : tiles) {
-      const std::vector<std::byte> result = tile_work(step, request(tile));  // the request freed first
-      take(tile, result, 0);
+      TileRequest asked = request(tile);
+      const std::vector<std::byte> result = tile_work(step, asked.work);
+      release(asked.work);
+      take(tile, result, asked.notes, 0);
     }
   }
 };

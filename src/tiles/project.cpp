@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 
 #include "pss/core/error.hpp"
 #include "pss/core/memory.hpp"
@@ -11,6 +10,7 @@
 #include "pss/points/outliers.hpp"
 #include "pss/tiles/orient.hpp"
 #include "pss/tiles/support.hpp"
+#include "tile_bytes.hpp"
 #include "tile_works.hpp"
 
 namespace pss {
@@ -76,6 +76,13 @@ double box_distance(const Aabb& a, const Aabb& b) {
 
 UnitTile unit_tile(const UnitSet& set) { return {set.unit, set.h, set.samples, set.points.own}; }
 
+// A tile's notes (tiles/farm.hpp): the indices of its own points in the cloud.
+std::vector<std::byte> own_points_notes(const TilePoints& points) {
+  ByteWriter notes;
+  notes.put_array(std::span(points.index).first(points.own));
+  return notes.take();
+}
+
 // The outliers' passes (points/outliers.hpp): each sample's distance in its tile, then the
 // threshold over the whole cloud's; whether each point is kept as a sample.
 std::vector<char> samples_kept(const TiledCloud& cloud, const UnitFrame& frame, const std::vector<float>& h,
@@ -86,18 +93,15 @@ std::vector<char> samples_kept(const TiledCloud& cloud, const UnitFrame& frame, 
   for (int pass = 0; pass < kOutlierPasses; ++pass) {
     std::vector<float> distance(std::size_t(n), std::numeric_limits<float>::quiet_NaN());
     Progress progress("outliers", std::int64_t(n));
-    std::map<int, std::vector<std::uint64_t>> own;  // each tile's own points, till its result
     farm.run(
         TileStep::outliers, tiles,
         [&](int t) {
           const UnitSet set = load_unit(cloud, t, world_halo(reach, frame), frame, h, kept);
-          own[t].assign(set.points.index.begin(), set.points.index.begin() + std::ptrdiff_t(set.points.own));
-          return outliers_request(unit_tile(set), kappa);
+          return TileRequest{outliers_request(unit_tile(set), kappa), own_points_notes(set.points)};
         },
-        [&](int t, std::span<const std::byte> result, int) {
+        [&](int, std::span<const std::byte> result, std::span<const std::byte> notes, int) {
           const std::vector<float> d = outliers_result(result);
-          const std::vector<std::uint64_t> index = std::move(own.at(t));
-          own.erase(t);
+          const std::vector<std::uint64_t> index = ByteReader(notes).get_array<std::uint64_t>();
           if (d.size() != index.size()) throw Error("a tile's outliers do not hold together");
           for (std::size_t i = 0; i < d.size(); ++i)
             if (!std::isnan(d[i])) distance[std::size_t(index[i])] = d[i];
@@ -178,25 +182,28 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
   {
     ScopedPhase phase(stats, "projection", false);  // its Progress shows it
     Progress progress("projecting", std::int64_t(n));
-    struct Own {  // a tile's own points, till its result
+    struct Own {  // a tile's own points: its notes
       std::vector<std::uint64_t> index;
       std::vector<vec3> unit;
     };
-    std::map<int, Own> own;
     farm.run(
         TileStep::projection, cloud.tiles_with_points(),
         [&](int t) {
           const UnitSet set = load_unit(cloud, t, world_halo(reach, frame_), frame_, h, kept);  // N(r) of each point
-          const auto end = std::ptrdiff_t(set.points.own);
-          own[t] = {{set.points.index.begin(), set.points.index.begin() + end}, {set.unit.begin(), set.unit.begin() + end}};
-          return projection_request(unit_tile(set), kappa, unit_params, backend);
+          ByteWriter notes;
+          notes.put_array(std::span(set.points.index).first(set.points.own));
+          notes.put_array(std::span<const vec3>(set.unit).first(set.points.own));
+          return TileRequest{projection_request(unit_tile(set), kappa, unit_params, backend), notes.take()};
         },
-        [&](int t, std::span<const std::byte> result, int rank) {
+        [&](int t, std::span<const std::byte> result, std::span<const std::byte> notes, int rank) {
           const TileProjections done = projection_result(result);
-          const Own tile = std::move(own.at(t));
-          own.erase(t);
+          ByteReader read(notes);
+          Own tile;
+          tile.index = read.get_array<std::uint64_t>();
+          tile.unit = read.get_array<vec3>();
           const std::size_t count = tile.index.size();
-          if (done.order.size() != count) throw Error("a tile's projections do not hold together");
+          if (done.order.size() != count || tile.unit.size() != count)
+            throw Error("a tile's projections do not hold together");
           for (std::size_t k = 0; k < count; ++k) {
             const auto i = std::size_t(done.order[k]);
             if (i >= count) throw Error("a tile's projections do not hold together");
@@ -223,11 +230,10 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
   {
     Progress progress("orient normals", std::int64_t(n));
     const double farthest = *std::max_element(moved.begin(), moved.end());
-    struct Set {  // a tile's projected points and its halo's, till their orientation
+    struct Set {  // a tile's projected points and its halo's: its notes
       std::vector<Projected> records;
       std::size_t own = 0;
     };
-    std::map<int, Set> sets;
     farm.run(
         TileStep::orientation, cloud.tiles_with_points(),
         [&](int t) {
@@ -236,7 +242,7 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
           const double reach_t = reach + moved[std::size_t(t)];
           const double halo = world_halo(reach_t, frame_);
           const Aabb box = cloud.tile_box(t);
-          Set& set = sets[t];
+          Set set;
           projected.for_each_record<Projected>(t, [&](const Projected& r) { set.records.push_back(r); });
           set.own = set.records.size();
           for (const int u : cloud.tiles_near(t, float(world_halo(reach_t + farthest, frame_)))) {
@@ -257,11 +263,17 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
             radius[i] = set.records[i].radius;
             id[i] = set.records[i].index;
           }
-          return orientation_request(points, normals, radius, id);
+          ByteWriter notes;
+          notes.put(std::uint64_t(set.own));
+          notes.put_array(std::span<const Projected>(set.records));
+          return TileRequest{orientation_request(points, normals, radius, id), notes.take()};
         },
-        [&](int t, std::span<const std::byte> result, int) {
-          const Set set = std::move(sets.at(t));
-          sets.erase(t);
+        [&](int, std::span<const std::byte> result, std::span<const std::byte> notes, int) {
+          ByteReader read(notes);
+          Set set;
+          set.own = std::size_t(read.get<std::uint64_t>());
+          set.records = read.get_array<Projected>();
+          if (set.own > set.records.size()) throw Error("a tile's orientation does not hold together");
           const TileOrientation oriented = orientation_result(result, set.records.size());
           const OrientedParts& parts = oriented.parts;
           // A halo's point alone in its part can only agree with its own tile's piece: no piece.

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <string>
 #include <vector>
 
@@ -11,6 +10,7 @@
 #include "pss/core/progress.hpp"
 #include "pss/points/support_steps.hpp"
 #include "pss/points/unit_frame.hpp"
+#include "tile_bytes.hpp"
 #include "tile_works.hpp"
 
 namespace pss {
@@ -54,22 +54,22 @@ void for_each_tile(const TiledCloud& cloud, const UnitFrame& frame, TileFarm& fa
     const Aabb box = cloud.tile_box(t);
     return 0.125f * (box.hi.x - box.lo.x);
   };
-  std::map<int, std::vector<std::uint64_t>> own;  // each tile's own points, till its result
   farm.run(
       step, cloud.tiles_with_points(),
       [&](int t) {
         const HaloTile tile = load_unit(cloud, t, first_halo(t), frame);
-        own[t].assign(tile.points.index.begin(), tile.points.index.begin() + std::ptrdiff_t(tile.points.own));
-        return request(tile);
+        ByteWriter notes;  // the tile's own points
+        notes.put_array(std::span(tile.points.index).first(tile.points.own));
+        return TileRequest{request(tile), notes.take()};
       },
-      [&](int t, std::span<const std::byte> result, int) {
+      [&](int t, std::span<const std::byte> result, std::span<const std::byte> notes, int) {
+        const std::vector<std::uint64_t> own = ByteReader(notes).get_array<std::uint64_t>();
         std::vector<std::byte> wider;
-        for (float halo = first_halo(t); !use(own.at(t), result);) {
+        for (float halo = first_halo(t); !use(own, result);) {
           halo *= 2;
           wider = tile_work(step, request(load_unit(cloud, t, halo, frame)));
           result = wider;
         }
-        own.erase(t);
         progress.advance(std::int64_t(cloud.tile_size(t)));
       });
 }

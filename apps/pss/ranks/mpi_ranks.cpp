@@ -32,6 +32,7 @@ struct Ranks {
   bool joined = false, released = false;  // released: the other ranks let go
   int rank = 0, size = 1;
   int share = 1, all = 1;  // this rank's share of its machine's cores, and all of them
+  int local = 0;           // its place among the ranks on its machine: its GPU's
 };
 Ranks world;
 
@@ -73,22 +74,25 @@ std::vector<std::byte> receive_bytes(int from, int tag) {
   return bytes;
 }
 
-// A rank's result: its bytes, or the one line of what went wrong there.
+// A rank's result: its bytes, or the one line of what went wrong there; and the tile's
+// notes it was sent with (farm.hpp), given back.
 struct Result {
   bool done = false;
-  std::vector<std::byte> bytes;
+  std::vector<std::byte> bytes, notes;
 };
 
 void send_result(const Result& result) {
   const int done = result.done;
   MPI_Send(&done, 1, MPI_INT, 0, kResult, MPI_COMM_WORLD);
   send_bytes(result.bytes, 0, kResult);
+  send_bytes(result.notes, 0, kResult);
 }
 
 Result receive_result(int from) {
   int done = 0;
   MPI_Recv(&done, 1, MPI_INT, from, kResult, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-  return {done != 0, receive_bytes(from, kResult)};
+  std::vector<std::byte> bytes = receive_bytes(from, kResult);
+  return {done != 0, std::move(bytes), receive_bytes(from, kResult)};
 }
 
 std::vector<std::byte> text_bytes(const std::string& text) {
@@ -110,28 +114,30 @@ class MpiFarm final : public TileFarm {
     const int own_threads = cpu_threads();
     const std::size_t n = tiles.size(), ahead = kAhead * std::size_t(world.size);
     std::vector<std::ptrdiff_t> at_rank(std::size_t(world.size), -1);  // the tile (its place in `tiles`) each rank holds
-    std::map<std::size_t, std::pair<std::vector<std::byte>, int>> ready;  // results waiting for their turn, and their rank
-    std::future<std::vector<std::byte>> own;
+    Ready ready;
+    std::future<Result> own;
     std::size_t next = 0, taken = 0;
     auto may_give = [&] { return next < n && next < taken + ahead; };
     try {
       for (;;) {
         for (auto it = ready.begin(); it != ready.end() && it->first == taken; it = ready.erase(it), ++taken)
-          take(tiles[taken], it->second.first, it->second.second);
+          take(tiles[taken], it->second.first.bytes, it->second.first.notes, it->second.second);
         if (taken == n) break;
         for (int k = 1; k < world.size; ++k)
           if (at_rank[std::size_t(k)] < 0 && may_give()) {
-            const std::vector<std::byte> work = request(tiles[next]);
+            const TileRequest asked = request(tiles[next]);
             const int header[2] = {int(step), threads};
             MPI_Send(header, 2, MPI_INT, k, kWork, MPI_COMM_WORLD);
-            send_bytes(work, k, kWork);
+            send_bytes(asked.work, k, kWork);
+            send_bytes(asked.notes, k, kWork);
             at_rank[std::size_t(k)] = std::ptrdiff_t(next++);
           }
         if (!own.valid() && may_give()) {
           at_rank[0] = std::ptrdiff_t(next++);
-          own = std::async(std::launch::async, [step, own_threads, work = request(tiles[std::size_t(at_rank[0])])] {
-            set_cpu_threads(own_threads);  // a new thread starts from OpenMP's default
-            return tile_work(step, work);
+          own = std::async(std::launch::async, [step, own_threads, asked = request(tiles[std::size_t(at_rank[0])])]() mutable {
+            set_cpu_threads(own_threads);  // a new thread starts from OpenMP's and CUDA's defaults
+            cuda::use_device(world.local);
+            return Result{true, tile_work(step, asked.work), std::move(asked.notes)};
           });
         }
         wait_for_a_result(own, at_rank, ready);  // the tile `taken` is in flight
@@ -146,10 +152,10 @@ class MpiFarm final : public TileFarm {
 
  private:
   static constexpr std::size_t kAhead = 2;
+  using Ready = std::map<std::size_t, std::pair<Result, int>>;  // results waiting for their turn, and their rank
 
   // Until rank 0's own tile is done or another rank's result comes, which it files in `ready`.
-  static void wait_for_a_result(std::future<std::vector<std::byte>>& own, std::vector<std::ptrdiff_t>& at_rank,
-                                std::map<std::size_t, std::pair<std::vector<std::byte>, int>>& ready) {
+  static void wait_for_a_result(std::future<Result>& own, std::vector<std::ptrdiff_t>& at_rank, Ready& ready) {
     for (;;) {
       if (own.valid() && own.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
         const auto place = std::size_t(std::exchange(at_rank[0], -1));
@@ -166,7 +172,7 @@ class MpiFarm final : public TileFarm {
         if (!result.done)
           throw Error("rank " + std::to_string(k) + ": " +
                       std::string(reinterpret_cast<const char*>(result.bytes.data()), result.bytes.size()));
-        ready.emplace(place, std::pair{std::move(result.bytes), k});
+        ready.emplace(place, std::pair{std::move(result), k});
         return;
       }
       std::this_thread::sleep_for(std::chrono::microseconds(200));
@@ -189,10 +195,12 @@ RankSession::RankSession(int& argc, char**& argv) {
   MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &here);
   int local = 1;
   MPI_Comm_size(here, &local);
+  MPI_Comm_rank(here, &world.local);
   MPI_Comm_free(&here);
   world.all = cpu_threads();
   world.share = std::max(1, world.all / local);
   set_cpu_threads(world.share);
+  cuda::use_device(world.local);
 }
 
 RankSession::~RankSession() {
@@ -218,15 +226,17 @@ int RankSession::serve() {
     MPI_Recv(header, 2, MPI_INT, 0, MPI_ANY_TAG, MPI_COMM_WORLD, &status);
     if (status.MPI_TAG == kStop) return 0;
     const std::vector<std::byte> work = receive_bytes(0, kWork);
+    std::vector<std::byte> notes = receive_bytes(0, kWork);
     set_cpu_threads(header[1] > 0 ? header[1] : world.share);
     Result result;
     try {
-      result = {true, tile_work(TileStep(header[0]), work)};
+      result = {true, tile_work(TileStep(header[0]), work), {}};
     } catch (const std::bad_alloc&) {
-      result = {false, text_bytes("out of memory")};
+      result = {false, text_bytes("out of memory"), {}};
     } catch (const std::exception& e) {
-      result = {false, text_bytes(e.what())};
+      result = {false, text_bytes(e.what()), {}};
     }
+    result.notes = std::move(notes);
     send_result(result);
   }
 }

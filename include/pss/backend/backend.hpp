@@ -26,7 +26,10 @@ int cpu_threads();
 namespace cuda {
 bool built();          // this binary has the CUDA backend
 int device_count();    // 0 without a driver or device
-std::string device_name();
+std::string device_name();  // this thread's device's
+// Makes the `index`-th device (modulo those found) this thread's for its CUDA work from now
+// on: each rank on a machine its own GPU (apps/pss/ranks). Nothing without CUDA or a device.
+void use_device(int index);
 
 #if PSS_HAVE_CUDA
 // Device memory for Mirror (mirror.hpp); each failure is an Error naming the call. A

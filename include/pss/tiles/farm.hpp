@@ -16,15 +16,23 @@ enum class TileStep : int { outliers = 1, projection = 2, orientation = 3, spaci
 // The result's bytes of a tile's work. Throws Error where the request does not hold together.
 std::vector<std::byte> tile_work(TileStep step, std::span<const std::byte> request);
 
+// A tile's work, and the notes of the process that asked for it (which of the cloud's points
+// are the tile's own, ...), carried with the work and given back with its result untouched,
+// so that the asking process holds nothing for a tile while another works on it.
+struct TileRequest {
+  std::vector<std::byte> work;
+  std::vector<std::byte> notes;
+};
+
 class TileFarm {
  public:
-  using Request = std::function<std::vector<std::byte>(int tile)>;
-  using Take = std::function<void(int tile, std::span<const std::byte> result, int rank)>;
+  using Request = std::function<TileRequest(int tile)>;
+  using Take = std::function<void(int tile, std::span<const std::byte> result, std::span<const std::byte> notes, int rank)>;
 
   virtual ~TileFarm() = default;
   virtual int ranks() const = 0;
-  // For each of `tiles`: request(tile) here, tile_work in some rank, then take(tile, result,
-  // that rank) here, in the order of `tiles`.
+  // For each of `tiles`: request(tile) here, tile_work of its work in some rank, then
+  // take(tile, result, notes, that rank) here, in the order of `tiles`.
   virtual void run(TileStep step, std::span<const int> tiles, const Request& request, const Take& take) = 0;
 };
 

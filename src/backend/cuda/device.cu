@@ -18,9 +18,16 @@ int device_count() {
 
 std::string device_name() {
   if (device_count() == 0) return "none";
+  int device = 0;
+  PSS_CUDA_CHECK(cudaGetDevice(&device));
   cudaDeviceProp prop{};
-  PSS_CUDA_CHECK(cudaGetDeviceProperties(&prop, 0));
+  PSS_CUDA_CHECK(cudaGetDeviceProperties(&prop, device));
   return prop.name;
+}
+
+void use_device(int index) {
+  const int count = device_count();
+  if (count > 0) PSS_CUDA_CHECK(cudaSetDevice(index % count));
 }
 
 void* allocate(std::size_t bytes) {
