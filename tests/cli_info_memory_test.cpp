@@ -45,10 +45,17 @@ TEST_F(InfoMemory, ACloudLargerThanTheBudgetGivesTheInCoreFiguresTileByTile) {
   for (const char* phase : {"reading into tiles: done", "spacing: done", "support widths: done"})
     EXPECT_NE(tiled.err.find(phase), std::string::npos) << tiled.err;
   int tiles = 0;
+  unsigned long long mean = 0, points = 0;
   const std::size_t at = tiled.out.find("memory          tile by tile: ");
   ASSERT_NE(at, std::string::npos) << tiled.out;
-  ASSERT_EQ(std::sscanf(tiled.out.c_str() + at, "memory          tile by tile: %d tiles", &tiles), 1);
+  ASSERT_EQ(std::sscanf(tiled.out.c_str() + at, "memory          tile by tile: %d tiles of about %llu points", &tiles,
+                        &mean),
+            2);
   EXPECT_GT(tiles, 4);
+  const std::size_t count = in_core.out.find("points          ");
+  ASSERT_NE(count, std::string::npos) << in_core.out;
+  ASSERT_EQ(std::sscanf(in_core.out.c_str() + count, "points          %llu", &points), 1);
+  EXPECT_NEAR(double(tiles) * double(mean), double(points), tiles / 2.0) << "the tiles' mean, not a tile's cap";
   EXPECT_EQ(lines_but(tiled.out, {"memory", "normals"}), lines_but(in_core.out, {"memory", "normals"}));
   EXPECT_NE(tiled.out.find("adaptive h_i    from "), std::string::npos) << tiled.out;
   EXPECT_NE(tiled.out.find("(with normals)"), std::string::npos) << tiled.out;
@@ -86,6 +93,16 @@ TEST_F(InfoMemory, BudgetsThatAreNoSizeOrTooSmallAreRefused) {
   EXPECT_EQ(test::line_count(small.err), 1) << small.err;
   EXPECT_NE(small.err.find("--memory 1 MiB is too small for " + file), std::string::npos) << small.err;
   EXPECT_TRUE(small.out.empty()) << small.out;
+  // The least budget it names is enough, and a KiB less is not (the tiles' buffer grows with
+  // the budget: the least is what holds the rest beside it).
+  unsigned long long least = 0;
+  const std::size_t named = small.err.find("(--memory ");
+  ASSERT_NE(named, std::string::npos) << small.err;
+  ASSERT_EQ(std::sscanf(small.err.c_str() + named, "(--memory %lluK)", &least), 1) << small.err;
+  EXPECT_EQ(test::run_pss("info " + file + " --memory " + std::to_string(least) + "K").exit_code, 0);
+  const test::CliResult less = test::run_pss("info " + file + " --memory " + std::to_string(least - 1) + "K");
+  EXPECT_NE(less.exit_code, 0);
+  EXPECT_NE(less.err.find("(--memory " + std::to_string(least) + "K)"), std::string::npos) << less.err;
   // Sizes in every unit read the same: 4096K, 4M and 4MiB are one budget.
   for (const char* same : {"4096K", "4M", "4MiB", "4mb", "0.00390625G"}) {
     SCOPED_TRACE(same);

@@ -194,11 +194,15 @@ TEST_F(MeshCli, OutliersAreSetAsideUnlessKept) {
   EXPECT_EQ(stats("k.json")["outliers_set_aside"].get<int>(), 0);
 }
 
-// Byte for byte the same file whatever the number of threads.
+// Byte for byte the same file whatever the number of threads; the summary names them.
 TEST_F(MeshCli, TheMeshIsTheSameForAnyThreadCount) {
   const std::string input = sphere();
-  ASSERT_EQ(mesh(input, "one.ply", "--threads 1").exit_code, 0);
-  ASSERT_EQ(mesh(input, "two.ply", "--threads 2").exit_code, 0);
+  const test::CliResult one = mesh(input, "one.ply", "--threads 1");
+  ASSERT_EQ(one.exit_code, 0);
+  EXPECT_NE(one.out.find(" backend, 1 thread)"), std::string::npos) << one.out;
+  const test::CliResult two = mesh(input, "two.ply", "--threads 2");
+  ASSERT_EQ(two.exit_code, 0);
+  EXPECT_NE(two.out.find(" backend, 2 threads)"), std::string::npos) << two.out;
   EXPECT_EQ(read(path("one.ply")), read(path("two.ply")));
 }
 

@@ -8,6 +8,7 @@
 
 #include "pss/backend/backend.hpp"
 #include "pss/core/stats.hpp"
+#include "pss/io/tiled_cloud.hpp"
 #include "pss/points/cloud.hpp"
 #include "pss/points/projection.hpp"
 #include "pss/points/sample_normals.hpp"
@@ -15,6 +16,9 @@
 #include "pss/points/support.hpp"
 
 namespace pss::app {
+
+// The point clouds' formats, for the commands' help.
+inline const std::string kCloudFormatsHelp = "point cloud (.ply, .xyz/.txt/.pts, .pwn, .obj, .off, .stl, .pcd, .las)";
 
 // Options every compute subcommand shares.
 struct ComputeOptions {
@@ -25,6 +29,9 @@ struct ComputeOptions {
 void add_compute_options(CLI::App& command, ComputeOptions& options);  // with --progress
 // --threads applied, and the backend --backend names.
 Backend start_compute(const ComputeOptions& options);
+
+// "1 thread" or "N threads": the CPU threads that the summary lines name.
+std::string threads_text();
 // The cloud of `file`, its reading timed (phase "read").
 PointCloud read_cloud(const std::string& file, Stats& stats);
 // What every command's --stats records of a run: the command, its input and output, backend
@@ -44,6 +51,8 @@ void add_progress_option(CLI::App& command);
 void add_memory_option(CLI::App& command, std::string& size, const std::string& what);
 // The budget --memory gives, or default_memory_budget() where it is not given.
 std::uint64_t memory_budget(const std::string& size);
+// "N tiles of about M points": the tiles that hold points, and their mean.
+std::string tiles_text(const TiledCloud& tiles);
 
 // estimate_spacing of a cloud read from `file`, its errors ("the points coincide") naming
 // the file.

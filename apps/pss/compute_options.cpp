@@ -28,6 +28,17 @@ Backend start_compute(const ComputeOptions& options) {
   return select_backend(options.backend);
 }
 
+std::string threads_text() {
+  const int threads = cpu_threads();
+  return std::to_string(threads) + (threads == 1 ? " thread" : " threads");
+}
+
+std::string tiles_text(const TiledCloud& tiles) {
+  const std::size_t count = tiles.tiles_with_points().size();
+  const std::uint64_t mean = count > 0 ? (tiles.size() + count / 2) / count : 0;
+  return std::to_string(count) + " tiles of about " + std::to_string(mean) + " points";
+}
+
 PointCloud read_cloud(const std::string& file, Stats& stats) {
   ScopedPhase phase(stats, "read");
   return read_point_cloud(file);

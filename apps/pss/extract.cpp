@@ -34,9 +34,9 @@ void run_extract(const ExtractOptions& o) {
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   stats.add_time("total", seconds);
-  std::printf("extracted %lld points from %s in %.3f s (projection %.3f s, %s backend, %d threads): "
+  std::printf("extracted %lld points from %s in %.3f s (projection %.3f s, %s backend, %s): "
               "%lld candidates, %lld accepted, b = %g\n", (long long)counts.kept, o.volume.input.c_str(), seconds,
-              stats.time("projection"), backend_name(backend), cpu_threads(), (long long)counts.candidates,
+              stats.time("projection"), backend_name(backend), threads_text().c_str(), (long long)counts.candidates,
               (long long)counts.accepted, volume.params.step);
   if (!o.compute.stats_path.empty()) {
     record_run(stats, "extract", o.volume.input, o.output, backend);

@@ -129,8 +129,8 @@ void print_cloud_in_core(const std::string& path, const MemoryPlan& plan) {
   }
   print_summary(path, c);
   if (cloud.size() >= 2 && cloud.has_normals()) print_file_normals(cloud, c.widths, params);
-  std::printf("memory          in core (about %s; --memory %s)\n", byte_size(double(cloud.size() * kInfoCosts.in_core)).c_str(),
-              byte_size(double(plan.budget)).c_str());
+  std::printf("memory          in core (pss info needs about %s; --memory %s)\n",
+              byte_size(double(cloud.size() * kInfoCosts.in_core)).c_str(), byte_size(double(plan.budget)).c_str());
 }
 
 // A cloud larger than the budget, tile by tile (issue 28): the same figures as in core.
@@ -153,8 +153,8 @@ void print_cloud_in_tiles(const std::string& path, const MemoryPlan& plan) {
   print_summary(path, c);
   if (tiles.size() >= 2 && tiles.has_normals())
     std::printf("normals         the file's (whether they agree with their neighbours' is checked in core only)\n");
-  std::printf("memory          tile by tile: %d tiles of about %llu points (--memory %s)\n", tiles.tiles(),
-              (unsigned long long)plan.points_per_tile, byte_size(double(plan.budget)).c_str());
+  std::printf("memory          tile by tile: %s (--memory %s)\n", tiles_text(tiles).c_str(),
+              byte_size(double(plan.budget)).c_str());
 }
 
 void print_cloud(const std::string& path, std::uint64_t budget) {
@@ -226,8 +226,7 @@ void add_info_command(CLI::App& app, Action action) {
   auto path = std::make_shared<std::string>();
   auto raw = std::make_shared<RawVolumeOptions>();
   command->add_option("file", *path,
-                      "point cloud (.ply, .xyz/.txt/.pts, .obj, .stl, .pcd, .las) or volume (.nrrd/.nhdr, .mhd/.mha, .nii/.nii.gz, or raw "
-                      "with --dims)")
+                      kCloudFormatsHelp + " or volume (.nrrd/.nhdr, .mhd/.mha, .nii/.nii.gz, or raw with --dims)")
       ->required();
   add_raw_volume_options(*command, *raw);
   auto memory = std::make_shared<std::string>();

@@ -90,9 +90,9 @@ MeshTopology write_and_summarise(const MeshOptions& o, const TriangleMesh& mesh,
   }
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   stats.add_time("total", total);
-  std::printf("meshed %s (%s) in %.3f s (%s backend, %d threads): %lld vertices, %lld triangles, %lld "
+  std::printf("meshed %s (%s) in %.3f s (%s backend, %s): %lld vertices, %lld triangles, %lld "
               "component%s, %s, %lld boundary edges, Euler characteristic %lld\n",
-              o.input.c_str(), size.c_str(), total, backend_name(backend), cpu_threads(), (long long)shape.vertices,
+              o.input.c_str(), size.c_str(), total, backend_name(backend), threads_text().c_str(), (long long)shape.vertices,
               (long long)shape.triangles, (long long)shape.components, shape.components == 1 ? "" : "s",
               shape.watertight() ? "watertight" : shape.manifold() ? "manifold with boundaries" : "NOT manifold",
               (long long)shape.boundary_edges, (long long)shape.euler_characteristic());
@@ -218,8 +218,7 @@ void add_mesh_command(CLI::App& app, Action action) {
   o->command = command;
   command
       ->add_option("file", o->input,
-                   "point cloud (.ply, .xyz/.txt/.pts, .pwn, .obj, .off, .stl, .pcd, .las) or volume (.nrrd/.nhdr, "
-                   ".mhd/.mha, .nii/.nii.gz, or raw with --dims and --type)")
+                   kCloudFormatsHelp + " or volume (.nrrd/.nhdr, .mhd/.mha, .nii/.nii.gz, or raw with --dims and --type)")
       ->required();
   command
       ->add_option("-o,--output", o->output,

@@ -157,11 +157,8 @@ ProjectRun project_in_tiles(const ProjectOptions& o, const MemoryPlan& plan, Bac
     if (stream->read(part, 1) > 0) throw file_error(o.input, "changed while it was read: it has more points than before");
     writer.commit();
   }
-  char memory[160];
-  std::snprintf(memory, sizeof memory, "tile by tile: %d tiles of about %llu points", tiles.tiles(),
-                (unsigned long long)plan.points_per_tile);
   return {tiles.size(), tiles.origin(), projected.counts(), projected.widths(), NormalsUsed::none, 0,
-          projected.outliers().set_aside, memory, projected.points_per_rank()};
+          projected.outliers().set_aside, "tile by tile: " + tiles_text(tiles), projected.points_per_rank()};
 }
 
 void run_project(const ProjectOptions& o) {
@@ -195,9 +192,9 @@ void run_project(const ProjectOptions& o) {
   const double projection_s = stats.time("projection");
   const auto& c = run.counts;
   const std::string ranks = rank_count() > 1 ? "; " + std::to_string(rank_count()) + " ranks" : "";
-  std::printf("projected %llu points onto the PSS in %.3f s (projection %.3f s, %.0f points/s, %s backend, %d threads; %s%s)\n",
+  std::printf("projected %llu points onto the PSS in %.3f s (projection %.3f s, %.0f points/s, %s backend, %s; %s%s)\n",
               (unsigned long long)run.points, total, projection_s, double(run.points) / projection_s,
-              backend_name(backend), cpu_threads(), run.memory.c_str(), ranks.c_str());
+              backend_name(backend), threads_text().c_str(), run.memory.c_str(), ranks.c_str());
   std::printf("%s surface%s, h = %g (%s), rho = %g, plane fit %s; converged %lld, not converged %lld, too few "
               "neighbours %lld, degenerate normal %lld; %lld outliers set aside (projected, not samples)\n",
               surface_name(params.surface), normals_text(run.normals), params.h,
@@ -236,7 +233,7 @@ void run_project(const ProjectOptions& o) {
 void add_project_command(CLI::App& app, Action action) {
   auto* command = app.add_subcommand("project", "Move every point onto the point set surface (MLS projection): .ply, .xyz");
   auto o = std::make_shared<ProjectOptions>();
-  command->add_option("file", o->input, "point cloud (.ply, .xyz/.txt/.pts, .obj, .stl, .pcd, .las)")->required();
+  command->add_option("file", o->input, kCloudFormatsHelp)->required();
   command
       ->add_option("-o,--output", o->output,
                    "output points, by extension: .ply (binary: x y z nx ny nz, red green blue when the input has "

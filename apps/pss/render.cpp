@@ -80,9 +80,9 @@ void run_render(const RenderCloudOptions& o) {
 
   const FrameSummary s = summarize(frame);
   std::printf("rendered %s (%zu points) at %dx%d in %.3f s: frame %.3f s (%.2f fps), preprocess %.3f s, "
-              "BVH %.3f s (%s backend, %d threads)\n", o.input.c_str(), cloud.size(), camera.width, camera.height,
+              "BVH %.3f s (%s backend, %s)\n", o.input.c_str(), cloud.size(), camera.width, camera.height,
               seconds, frame_s, 1.0 / frame_s, stats.time("preprocess"), stats.time("acceleration structure"),
-              backend_name(backend), cpu_threads());
+              backend_name(backend), threads_text().c_str());
   std::printf("%lld rays, %lld hits, %.2f projections per hit, %lld secondary rays; %s surface%s, borders %s, %lld "
               "outliers set aside, h = %g (%s), b = %g, eps = %g\n",
               (long long)s.rays, (long long)s.hits, s.mean_iterations, (long long)s.secondary_rays,
@@ -137,7 +137,7 @@ std::string check_iterations(const std::string& text) {
 void add_render_command(CLI::App& app, Action action) {
   auto* command = app.add_subcommand("render", "Ray trace the point set surface of a point cloud to an image: .png, .jpg, .exr (paper 5.2)");
   auto o = std::make_shared<RenderCloudOptions>();
-  command->add_option("file", o->input, "point cloud (.ply, .xyz/.txt/.pts, .obj, .stl, .pcd, .las)")->required();
+  command->add_option("file", o->input, kCloudFormatsHelp)->required();
   command->add_option("--h", o->h, "Gaussian width h (default: estimated from the spacing and the noise, see pss info)")
       ->check(finite_positive());
   command->add_option("--rho", o->rho, "range-query radius of the projection (default 2h; with adaptive support, at h)")

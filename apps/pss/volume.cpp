@@ -40,9 +40,9 @@ void run_volume(const VolumeCommandOptions& o) {
   const FrameSummary s = summarize(frame);
   const VolumeView v = volume.fields.volume.view();
   std::printf("rendered %s (%dx%dx%d) at %dx%d in %.3f s: frame %.3f s (%.2f fps), gradients %.3f s "
-              "(%s backend, %d threads)\n", o.volume.input.c_str(), v.dims.x, v.dims.y, v.dims.z, camera.width,
+              "(%s backend, %s)\n", o.volume.input.c_str(), v.dims.x, v.dims.y, v.dims.z, camera.width,
               camera.height, seconds, frame_s, 1.0 / frame_s, stats.time("gradients"), backend_name(backend),
-              cpu_threads());
+              threads_text().c_str());
   std::printf("%s, %lld hits of %lld rays, %.2f projections per hit; h = %g, b = %g, eps = %g, bricks %lld/%zu\n",
               o.volume.method.c_str(), (long long)s.hits, (long long)s.rays, s.mean_iterations, volume.params.h,
               volume.params.step, volume.params.epsilon, (long long)volume.bricks.occupied_count,

@@ -57,6 +57,19 @@ std::size_t buffer_bytes_of(std::uint64_t budget) {
   return std::size_t(std::clamp<std::uint64_t>(budget / 8, 1 << 16, std::uint64_t(64) << 20));
 }
 
+// The least budget that holds `bytes` beside the tiles' store, whose buffer grows with the
+// budget (buffer_bytes_of: an eighth of it, within 64 KiB and 64 MiB). What a budget holds
+// beside the buffer never shrinks as the budget grows: bisection.
+std::uint64_t least_budget(std::uint64_t bytes) {
+  std::uint64_t lo = bytes, hi = bytes + (std::uint64_t(64) << 20);
+  while (lo < hi) {
+    const std::uint64_t mid = lo + (hi - lo) / 2;
+    if (mid >= bytes + buffer_bytes_of(mid)) hi = mid;
+    else lo = mid + 1;
+  }
+  return lo;
+}
+
 }  // namespace
 
 MemoryPlan plan_memory(const std::filesystem::path& file, std::uint64_t budget, const MemoryCosts& costs) {
@@ -69,9 +82,13 @@ MemoryPlan plan_memory(const std::filesystem::path& file, std::uint64_t budget, 
   const std::uint64_t held = plan.points * costs.held + plan.buffer_bytes;
   // A tile's halo may hold as many points again on each side: four times its own.
   const std::uint64_t tile_bytes = 4 * costs.tile;
-  if (held + kLeastTilePoints * tile_bytes > budget)
-    throw Error("--memory " + byte_size(double(budget)) + " is too small for " + file.string() + "'s " + std::to_string(plan.points) +
-                " points: it needs at least " + byte_size(double(held + kLeastTilePoints * tile_bytes)));
+  if (held + kLeastTilePoints * tile_bytes > budget) {
+    const std::uint64_t least = least_budget(plan.points * costs.held + kLeastTilePoints * tile_bytes);
+    const std::uint64_t kib = std::max<std::uint64_t>((least + 1023) / 1024, 1024);  // --memory takes 1M at least
+    throw Error("--memory " + byte_size(double(budget)) + " is too small for " + file.string() + "'s " +
+                std::to_string(plan.points) + " points: it needs at least " + byte_size(double(kib * 1024)) +
+                " (--memory " + std::to_string(kib) + "K)");
+  }
   plan.points_per_tile = (budget - held) / tile_bytes;
   return plan;
 }

@@ -113,7 +113,7 @@ class MpiFarm final : public TileFarm {
     const int threads = cpu_threads() == world.share ? 0 : cpu_threads();
     const int own_threads = cpu_threads();
     const std::size_t n = tiles.size(), ahead = kAhead * std::size_t(world.size);
-    std::vector<std::ptrdiff_t> at_rank(std::size_t(world.size), -1);  // the tile (its place in `tiles`) each rank holds
+    std::vector<std::ptrdiff_t> at_rank(std::size_t(world.size), -1);  // each rank's tile: its place in `tiles`
     Ready ready;
     std::future<Result> own;
     std::size_t next = 0, taken = 0;
@@ -134,7 +134,8 @@ class MpiFarm final : public TileFarm {
           }
         if (!own.valid() && may_give()) {
           at_rank[0] = std::ptrdiff_t(next++);
-          own = std::async(std::launch::async, [step, own_threads, asked = request(tiles[std::size_t(at_rank[0])])]() mutable {
+          TileRequest asked = request(tiles[std::size_t(at_rank[0])]);
+          own = std::async(std::launch::async, [step, own_threads, asked = std::move(asked)]() mutable {
             set_cpu_threads(own_threads);  // a new thread starts from OpenMP's and CUDA's defaults
             cuda::use_device(world.local);
             return Result{true, tile_work(step, asked.work), std::move(asked.notes)};

@@ -27,7 +27,8 @@ struct TileRequest {
 class TileFarm {
  public:
   using Request = std::function<TileRequest(int tile)>;
-  using Take = std::function<void(int tile, std::span<const std::byte> result, std::span<const std::byte> notes, int rank)>;
+  using Take =
+      std::function<void(int tile, std::span<const std::byte> result, std::span<const std::byte> notes, int rank)>;
 
   virtual ~TileFarm() = default;
   virtual int ranks() const = 0;
