@@ -76,13 +76,6 @@ double box_distance(const Aabb& a, const Aabb& b) {
 
 UnitTile unit_tile(const UnitSet& set) { return {set.unit, set.h, set.samples, set.points.own}; }
 
-// A tile's notes (tiles/farm.hpp): the indices of its own points in the cloud.
-std::vector<std::byte> own_points_notes(const TilePoints& points) {
-  ByteWriter notes;
-  notes.put_array(std::span(points.index).first(points.own));
-  return notes.take();
-}
-
 // The outliers' passes (points/outliers.hpp): each sample's distance in its tile, then the
 // threshold over the whole cloud's; whether each point is kept as a sample.
 std::vector<char> samples_kept(const TiledCloud& cloud, const UnitFrame& frame, const std::vector<float>& h,
@@ -101,7 +94,7 @@ std::vector<char> samples_kept(const TiledCloud& cloud, const UnitFrame& frame, 
         },
         [&](int, std::span<const std::byte> result, std::span<const std::byte> notes, int) {
           const std::vector<float> d = outliers_result(result);
-          const std::vector<std::uint64_t> index = ByteReader(notes).get_array<std::uint64_t>();
+          const std::vector<std::uint64_t> index = own_points(notes);
           if (d.size() != index.size()) throw Error("a tile's outliers do not hold together");
           for (std::size_t i = 0; i < d.size(); ++i)
             if (!std::isnan(d[i])) distance[std::size_t(index[i])] = d[i];
@@ -182,15 +175,11 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
   {
     ScopedPhase phase(stats, "projection", false);  // its Progress shows it
     Progress progress("projecting", std::int64_t(n));
-    struct Own {  // a tile's own points: its notes
-      std::vector<std::uint64_t> index;
-      std::vector<vec3> unit;
-    };
     farm.run(
         TileStep::projection, cloud.tiles_with_points(),
         [&](int t) {
           const UnitSet set = load_unit(cloud, t, world_halo(reach, frame_), frame_, h, kept);  // N(r) of each point
-          ByteWriter notes;
+          ByteWriter notes;  // the own points' indices and unit positions
           notes.put_array(std::span(set.points.index).first(set.points.own));
           notes.put_array(std::span<const vec3>(set.unit).first(set.points.own));
           return TileRequest{projection_request(unit_tile(set), kappa, unit_params, backend), notes.take()};
@@ -198,18 +187,17 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
         [&](int t, std::span<const std::byte> result, std::span<const std::byte> notes, int rank) {
           const TileProjections done = projection_result(result);
           ByteReader read(notes);
-          Own tile;
-          tile.index = read.get_array<std::uint64_t>();
-          tile.unit = read.get_array<vec3>();
-          const std::size_t count = tile.index.size();
-          if (done.order.size() != count || tile.unit.size() != count)
+          const std::vector<std::uint64_t> index = read.get_array<std::uint64_t>();
+          const std::vector<vec3> unit = read.get_array<vec3>();
+          const std::size_t count = index.size();
+          if (done.order.size() != count || unit.size() != count)
             throw Error("a tile's projections do not hold together");
           for (std::size_t k = 0; k < count; ++k) {
             const auto i = std::size_t(done.order[k]);
             if (i >= count) throw Error("a tile's projections do not hold together");
             const ProjectedPoint& p = done.projected[k];
-            moved[std::size_t(t)] = std::max(moved[std::size_t(t)], double(glm::length(p.point - tile.unit[i])));
-            const Projected r{tile.index[i], p.point, p.normal, kappa * h[std::size_t(tile.index[i])], p.status};
+            moved[std::size_t(t)] = std::max(moved[std::size_t(t)], double(glm::length(p.point - unit[i])));
+            const Projected r{index[i], p.point, p.normal, kappa * h[std::size_t(index[i])], p.status};
             projected.append(t, &r);
             counts_.add(r.status);
           }

@@ -10,7 +10,6 @@
 #include "pss/core/progress.hpp"
 #include "pss/points/support_steps.hpp"
 #include "pss/points/unit_frame.hpp"
-#include "tile_bytes.hpp"
 #include "tile_works.hpp"
 
 namespace pss {
@@ -58,12 +57,10 @@ void for_each_tile(const TiledCloud& cloud, const UnitFrame& frame, TileFarm& fa
       step, cloud.tiles_with_points(),
       [&](int t) {
         const HaloTile tile = load_unit(cloud, t, first_halo(t), frame);
-        ByteWriter notes;  // the tile's own points
-        notes.put_array(std::span(tile.points.index).first(tile.points.own));
-        return TileRequest{request(tile), notes.take()};
+        return TileRequest{request(tile), own_points_notes(tile.points)};
       },
       [&](int t, std::span<const std::byte> result, std::span<const std::byte> notes, int) {
-        const std::vector<std::uint64_t> own = ByteReader(notes).get_array<std::uint64_t>();
+        const std::vector<std::uint64_t> own = own_points(notes);
         std::vector<std::byte> wider;
         for (float halo = first_halo(t); !use(own, result);) {
           halo *= 2;

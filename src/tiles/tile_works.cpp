@@ -16,6 +16,16 @@
 
 namespace pss {
 
+std::vector<std::byte> own_points_notes(const TilePoints& points) {
+  ByteWriter notes;
+  notes.put_array(std::span(points.index).first(points.own));
+  return notes.take();
+}
+
+std::vector<std::uint64_t> own_points(std::span<const std::byte> notes) {
+  return ByteReader(notes).get_array<std::uint64_t>();
+}
+
 namespace {
 
 void put_tile(ByteWriter& out, const UnitTile& tile, float kappa) {

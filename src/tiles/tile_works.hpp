@@ -9,11 +9,16 @@
 #include <vector>
 
 #include "pss/backend/backend.hpp"
+#include "pss/io/tiled_cloud.hpp"
 #include "pss/points/orient_normals.hpp"
 #include "pss/points/project_points.hpp"
 #include "pss/points/support_steps.hpp"
 
 namespace pss {
+
+// A tile's notes (tiles/farm.hpp) that name its own points: their indices in the cloud.
+std::vector<std::byte> own_points_notes(const TilePoints& points);
+std::vector<std::uint64_t> own_points(std::span<const std::byte> notes);
 
 // A tile and its halo in the unit frame: the tile's own points first.
 struct UnitTile {
