@@ -11,7 +11,6 @@
 #include <cstdlib>
 #include <exception>
 #include <future>
-#include <map>
 #include <new>
 #include <string>
 #include <thread>
@@ -20,6 +19,8 @@
 
 #include "pss/backend/backend.hpp"
 #include "pss/core/error.hpp"
+#include "pss/tiles/memory_plan.hpp"
+#include "pss/tiles/waiting_results.hpp"
 #include "ranks.hpp"
 
 namespace pss::app {
@@ -102,8 +103,9 @@ std::vector<std::byte> text_bytes(const std::string& text) {
 
 // A tile a rank at a time, each rank given its next as soon as it gives back its last, so
 // that no rank waits for a slower tile than its own; rank 0 works on tiles of its own on a
-// thread beside the messages. Results are taken in the tiles' order; at most kAhead tiles a
-// rank run ahead of the oldest not yet taken, which bounds the results rank 0 holds.
+// thread beside the messages. Results are taken in the tiles' order: one that comes back
+// before its turn waits in the scratch folder (tiles/waiting_results.hpp), so that rank 0
+// holds none in memory; at most kAhead tiles a rank run ahead of the oldest not yet taken.
 class MpiFarm final : public TileFarm {
  public:
   int ranks() const override { return world.size; }
@@ -114,15 +116,12 @@ class MpiFarm final : public TileFarm {
     const int own_threads = cpu_threads();
     const std::size_t n = tiles.size(), ahead = kAhead * std::size_t(world.size);
     std::vector<std::ptrdiff_t> at_rank(std::size_t(world.size), -1);  // each rank's tile: its place in `tiles`
-    Ready ready;
+    WaitingResults waiting(scratch_folder());
     std::future<Result> own;
     std::size_t next = 0, taken = 0;
     auto may_give = [&] { return next < n && next < taken + ahead; };
     try {
-      for (;;) {
-        for (auto it = ready.begin(); it != ready.end() && it->first == taken; it = ready.erase(it), ++taken)
-          take(tiles[taken], it->second.first.bytes, it->second.first.notes, it->second.second);
-        if (taken == n) break;
+      while (taken < n) {
         for (int k = 1; k < world.size; ++k)
           if (at_rank[std::size_t(k)] < 0 && may_give()) {
             const TileRequest asked = request(tiles[next]);
@@ -141,7 +140,16 @@ class MpiFarm final : public TileFarm {
             return Result{true, tile_work(step, asked.work), std::move(asked.notes)};
           });
         }
-        wait_for_a_result(own, at_rank, ready);  // the tile `taken` is in flight
+        const Arrived arrived = wait_for_a_result(own, at_rank);  // the tile `taken` is in flight
+        if (arrived.place != taken) {
+          waiting.put(arrived.place, arrived.rank, arrived.result.bytes, arrived.result.notes);
+          continue;
+        }
+        take(tiles[taken++], arrived.result.bytes, arrived.result.notes, arrived.rank);
+        for (; waiting.holds(taken); ++taken) {
+          const WaitingResults::Taken w = waiting.take(taken);
+          take(tiles[taken], w.result, w.notes, w.rank);
+        }
       }
     } catch (...) {
       if (own.valid()) own.wait();
@@ -153,15 +161,18 @@ class MpiFarm final : public TileFarm {
 
  private:
   static constexpr std::size_t kAhead = 2;
-  using Ready = std::map<std::size_t, std::pair<Result, int>>;  // results waiting for their turn, and their rank
+  struct Arrived {
+    std::size_t place;  // in `tiles`
+    int rank;
+    Result result;
+  };
 
-  // Until rank 0's own tile is done or another rank's result comes, which it files in `ready`.
-  static void wait_for_a_result(std::future<Result>& own, std::vector<std::ptrdiff_t>& at_rank, Ready& ready) {
+  // Until rank 0's own tile is done or another rank's result comes.
+  static Arrived wait_for_a_result(std::future<Result>& own, std::vector<std::ptrdiff_t>& at_rank) {
     for (;;) {
       if (own.valid() && own.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
         const auto place = std::size_t(std::exchange(at_rank[0], -1));
-        ready.emplace(place, std::pair{own.get(), 0});
-        return;
+        return {place, 0, own.get()};
       }
       int arrived = 0;
       MPI_Status status;
@@ -173,8 +184,7 @@ class MpiFarm final : public TileFarm {
         if (!result.done)
           throw Error("rank " + std::to_string(k) + ": " +
                       std::string(reinterpret_cast<const char*>(result.bytes.data()), result.bytes.size()));
-        ready.emplace(place, std::pair{std::move(result), k});
-        return;
+        return {place, k, std::move(result)};
       }
       std::this_thread::sleep_for(std::chrono::microseconds(200));
     }
