@@ -19,7 +19,7 @@ struct Points {
   std::vector<vec3> p;
   template <class F>
   void for_each(F&& f) const {
-    for (const vec3& q : p) f(q, 1.0f, 1.0f);
+    for (const vec3& q : p) f(q, 1.0f, 1.0f, 1.0f);
   }
 };
 

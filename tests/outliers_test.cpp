@@ -46,7 +46,7 @@ std::vector<char> kept(const PointCloud& cloud, float h, OutlierReport& report) 
   ProjectionParams params = ProjectionParams::from_h(h);
   params.support = Support::global;
   Stats stats;
-  const SupportGrid grid = grid_of_samples(cloud.positions, support_widths(cloud.positions, params).h, 2,
+  const SupportGrid grid = grid_of_samples(cloud.positions, support_widths(cloud.positions, params).h, {}, 2,
                                            OutlierPolicy::set_aside, Backend::cpu, stats, report);
   std::vector<char> keep(cloud.size(), 0);
   for (int i : grid.original_index()) keep[std::size_t(i)] = 1;

@@ -91,7 +91,7 @@ TEST(TileWork, ARequestCutShortOrOfNoStepIsAnError) {
   const std::vector<float> spacings(unit.size(), 0.01f), noise_measured = {0.0f};
   const std::vector<vec3> noise_at = {unit[0]};
   const std::vector<std::byte> widths =
-      widths_request(whole, {spacings, spacings, 0.01f, 0.01f, 0.04f, noise_at, noise_measured});
+      widths_request(whole, {spacings, spacings, 0.01f, 0.01f, 0.04f, 2.0f, noise_at, noise_measured});
   EXPECT_FALSE(spacing_result(tile_work(TileStep::spacing, spacing), 2).complete) << "4 points hold no 16 neighbours";
   const TileWidths w = widths_result(tile_work(TileStep::widths, widths), 2);
   EXPECT_TRUE(w.complete);

@@ -270,7 +270,7 @@ std::vector<vec3> estimated_normals(const std::vector<vec3>& points) {
   Stats stats;
   OutlierReport outliers;
   const SupportWidths widths = support_widths(points, params);
-  const SupportGrid grid = grid_of_samples(points, widths.h, params.rho / params.h, params.outliers, Backend::cpu,
+  const SupportGrid grid = grid_of_samples(points, widths.h, widths.merged, params.rho / params.h, params.outliers, Backend::cpu,
                                            stats, outliers);
   NormalsUsed used;
   const std::vector<vec3> sorted = sample_normals(grid, FileNormals{}, params, Backend::cpu, stats, used);

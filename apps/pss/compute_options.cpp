@@ -120,9 +120,15 @@ Support support_of(const std::string& choice, bool h_given) {
 
 std::string support_text(Support support, const SupportWidths& widths) {
   if (support == Support::global) return "global support";
-  char text[120];
+  char text[200];
   std::snprintf(text, sizeof text, "adaptive support, h_i from %g to %g", double(widths.least), double(widths.largest));
-  return text;
+  std::string out = text;
+  if (widths.merged_count > 0) {  // points/merged_samples.hpp
+    std::snprintf(text, sizeof text, ", %lld points merged into samples where a support held over %g",
+                  (long long)widths.merged_count, kSupportSamplesMost);
+    out += text;
+  }
+  return out;
 }
 
 void add_surface_options(CLI::App& command, SurfaceOptions& options) {

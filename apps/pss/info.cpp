@@ -111,6 +111,10 @@ void print_summary(const std::string& path, const CloudSummary& c) {
     std::printf("adaptive h_i    from %g to %g, median %g (wider where the spacing is, across the gaps of a cloud "
                 "sampled in rows, or where the noise is; --support global uses h everywhere)\n",
                 double(c.widths.least), double(c.widths.largest), double(c.widths.median));
+  if (c.widths_refused.empty() && c.widths.merged_count > 0)  // points/merged_samples.hpp
+    std::printf("merged samples  %lld points merged, a sample a cube of about h_i/2 to h_i weighing as many, where a "
+                "support would hold over %g in noise\n",
+                (long long)c.widths.merged_count, kSupportSamplesMost);
 }
 
 void print_cloud_in_core(const std::string& path, const MemoryPlan& plan) {

@@ -161,6 +161,7 @@ void run_cloud_mesh(const MeshOptions& o, Stats& stats, std::chrono::steady_cloc
                    {"max_mls_iterations", params.projection.max_mls_iterations}};
     record_mesh(stats, shape, result.counts);
     v["outliers_set_aside"] = result.outliers.set_aside;
+    v["points_merged"] = result.widths.merged_count;
     v["normals_turned"] = result.normals_turned;
     v["turned_outward"] = result.turned_outward;
   }

@@ -215,6 +215,7 @@ void run_project(const ProjectOptions& o) {
     v["status"] = {{"converged", c.converged}, {"not_converged", c.not_converged},
                    {"too_few_neighbours", c.too_few_neighbours}, {"degenerate_normal", c.degenerate_normal}};
     v["outliers_set_aside"] = run.set_aside;
+    v["points_merged"] = run.widths.merged_count;
     v["normals_turned"] = run.normals_turned;
     v["points_per_second"] = double(run.points) / projection_s;
     v["memory"] = {{"budget", plan.budget}, {"tiled", plan.tiled}};

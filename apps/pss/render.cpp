@@ -98,6 +98,7 @@ void run_render(const RenderCloudOptions& o) {
     v["points"] = cloud.size();
     v["samples_left_out"] = prepared.left_out();
     v["outliers_set_aside"] = prepared.outliers().set_aside;
+    v["points_merged"] = prepared.widths().merged_count;
     v["normals_turned"] = prepared.normals_turned();
     v["local_polynomials"] = prepared.locals().size();
     v["params"] = {{"h", params.projection.h}, {"rho", params.projection.rho}, {"b", params.ball_radius},

@@ -177,6 +177,8 @@ def render(points, h=None, *, normals=None, colors=None, surface="mls", outliers
     for a mesh's vertices, whose faces the points cannot tell).
     surface: 'mls', 'apss' or 'rimls', as for project (the given normals fitted, or estimated);
     outliers: 'set-aside' or 'keep', as for project (full_output's stats: outliers_set_aside).
+    Where noise widens the supports their samples are merged (full_output's stats:
+    points_merged; none with support='global').
     colors: (N, 3) sRGB colours of the points (uint8 0..255, or floats 0..1) to shade with, as
     `pss render --color`: averaged at each hit with the projection's weights, in linear light.
     """

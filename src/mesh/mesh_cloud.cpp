@@ -86,9 +86,10 @@ CloudMesh mesh_cloud(const PointCloud& cloud, const MeshParams& params, Backend 
   const Lattice lattice =
       lattice_over(box.lo, box.hi, std::max(2.0 * double(out.cell), reach), double(out.cell), "the cell size");
   check_band(expected_band_cubes(out.widths.h, out.cell), out.cell, "cloud");
-  SupportGrid grid = grid_of_samples(cloud.positions, out.widths.h, projection.rho / projection.h,
+  SupportGrid grid = grid_of_samples(cloud.positions, out.widths.h, out.widths.merged, projection.rho / projection.h,
                                      projection.outliers, backend, stats, out.outliers);
   out.widths.h = {};
+  out.widths.merged = {};
   // Every operator's mesh needs the samples' oriented normals: they say which side is out.
   const FileNormals file = file_normals(grid, cloud.normals, projection, stats);
   out.normals_turned = file.turned;

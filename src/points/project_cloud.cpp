@@ -109,20 +109,22 @@ CloudProjection project_cloud(PointCloud input, const ProjectionParams& params, 
     }
     ScopedPhase phase(stats, "spatial index");
     SupportGrid grid =
-        grid_of_samples(positions, widths.h, unit_params.rho / unit_params.h, params.outliers, backend, stats, outliers);
+        grid_of_samples(positions, widths.h, widths.merged, unit_params.rho / unit_params.h, params.outliers, backend, stats, outliers);
     phase.stop();
     const FileNormals file = file_normals(grid, input.normals, unit_params, stats);
     normals_turned = file.turned;
     file_hints = !file.sorted.empty();
     prepare_sample_normals(grid, file, unit_params, backend, stats, normals_used);
     // The points set aside are not samples, but points all the same: projected after the
-    // samples, with a hint from the nearest sample where the file has normals.
+    // samples, with a hint from the nearest sample where the file has normals. Where samples
+    // were merged, a merged sample's position is its cube's mean, not its point's: every
+    // point is projected as these are.
     const std::span<const int> original = grid.original_index();
-    const std::size_t m = original.size();
+    const std::size_t m = grid.masses().empty() ? original.size() : 0;
     std::vector<int> set_aside;
     if (m < n) {
       std::vector<char> sample(n, 0);
-      for (int i : original) sample[std::size_t(i)] = 1;
+      for (std::size_t k = 0; k < m; ++k) sample[std::size_t(original[k])] = 1;
       for (std::size_t i = 0; i < n; ++i)
         if (!sample[i]) set_aside.push_back(int(i));
     }
@@ -174,6 +176,7 @@ CloudProjection project_cloud(PointCloud input, const ProjectionParams& params, 
   out.widths.least = float(widths.least * frame.scale);
   out.widths.median = float(widths.median * frame.scale);
   out.widths.largest = float(widths.largest * frame.scale);
+  out.widths.merged_count = widths.merged_count;
   for (const ProjectionStatus status : out.status) out.counts.add(status);
   out.normals = normals_used;
   out.normals_turned = normals_turned;

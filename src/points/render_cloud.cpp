@@ -61,9 +61,10 @@ SupportGrid timed_grid(const PointCloud& cloud, const ProjectionParams& projecti
   }
   // Counting sorts (not timed: the fits after them are what takes time), and the outliers'
   // test, timed by its kernel.
-  SupportGrid grid = grid_of_samples(cloud.positions, widths.h, projection.rho / projection.h, projection.outliers,
+  SupportGrid grid = grid_of_samples(cloud.positions, widths.h, widths.merged, projection.rho / projection.h, projection.outliers,
                                      backend, stats, outliers);
   widths.h = {};  // the grid keeps them
+  widths.merged = {};
   return grid;
 }
 

@@ -205,7 +205,7 @@ struct RegionalNoise::Tree {
 };
 
 RegionalNoise::RegionalNoise(std::vector<vec3> at, std::vector<float> measured)
-    : at_(std::move(at)), tree_(std::make_unique<Tree>(at_)) {
+    : at_(std::move(at)), measured_(measured), tree_(std::make_unique<Tree>(at_)) {
   const points_detail::KdTree& tree = tree_->tree;
   // A query's σ stands where kRegionShare of the queries within the support it asks for
   // (ρ = 2·kNoiseWidths·σ), and at least its kRegionQueries nearest, measured at least half
@@ -248,6 +248,16 @@ float RegionalNoise::about(vec3 unit) const {
   return sigma;
 }
 
+float RegionalNoise::measured_about(vec3 unit) const {
+  unsigned index[kRegionQueries];
+  float d2[kRegionQueries];
+  const std::size_t found = at_.empty() ? 0 : tree_->tree.knnSearch(&unit.x, kRegionQueries, index, d2);
+  float sigma[kRegionQueries];
+  for (std::size_t j = 0; j < found; ++j) sigma[j] = measured_[index[j]];
+  std::sort(sigma, sigma + found);
+  return found > 0 ? sigma[found / 2] : 0.0f;
+}
+
 float adaptive_width(float h, float widest, bool wide, float spacing, float median_spacing, float noise, double scale) {
   // Never narrower than h: where the cloud is denser than its median the paper's width stays
   // (a narrower one only shows the scanner's noise and opens holes where dense rows leave
@@ -256,6 +266,38 @@ float adaptive_width(float h, float widest, bool wide, float spacing, float medi
   float width = h;
   if (wide) width = std::clamp(kSupportWidening * h * (spacing / median_spacing), h, widest);
   return std::max(width, std::min(widest, float(kNoiseWidths * double(noise) * scale)));
+}
+
+namespace {
+
+// The samples of a surface within r of a point on it, over π times their density per area,
+// where they scatter by σ along its normal: ∫ φ_σ(z)·(r² − z²) dz over |z| < r.
+double held_within(double r, double sigma) {
+  if (!(sigma > 0)) return r * r;
+  const double a = r / sigma;
+  const double within = std::erf(a / std::sqrt(2.0));
+  const double density = std::exp(-0.5 * a * a) / std::sqrt(2 * 3.14159265358979323846);
+  return r * r * within - sigma * sigma * (within - 2 * a * density);
+}
+
+}  // namespace
+
+bool merges_samples(float h, float spacing, float sigma, float kappa) {
+  if (!(spacing > 0) || !(sigma > 0)) return false;
+  // s_i holds k samples, ρ_i the same density over its wider disc; a noisy slab thicker than
+  // s_i packs s_i's k in less of the surface.
+  const double held = double(kSupportNeighbour) * held_within(double(kappa) * double(h), double(sigma)) /
+                      held_within(double(spacing), double(sigma));
+  return held > kSupportSamplesMost;
+}
+
+float noise_of_h(float h, float median_spacing) {
+  return h > 2 * median_spacing ? float(double(h) / kNoiseWidths) : 0.0f;
+}
+
+void take_merged(SupportWidths& widths, std::vector<char> merged) {
+  widths.merged_count = std::count(merged.begin(), merged.end(), char(1));
+  if (widths.merged_count > 0) widths.merged = std::move(merged);
 }
 
 float widest_width(float h, const ProjectionParams& params, double diagonal) {
@@ -285,10 +327,15 @@ SupportWidths support_widths(std::span<const vec3> points, const ProjectionParam
   if (!(median_d > 0)) return out;  // most samples coincide with k others: no spacing to follow
   const float widest = widest_width(h, params, frame.diagonal);
   steps.find_wide(median_d);
+  std::vector<char> merged(unit.size(), 0);
+  const float cloud_noise = noise_of_h(h, median_d);
   cpu::parallel_for(std::int64_t(unit.size()), [&](std::int64_t s) {
     const auto i = std::size_t(s);
     out.h[i] = adaptive_width(h, widest, steps.wide(i), steps.spacing()[i], median_d, noise.about(unit[i]), frame.scale);
+    const float sigma = std::max(cloud_noise, float(double(noise.measured_about(unit[i])) * frame.scale));
+    merged[i] = merges_samples(out.h[i], steps.spacing()[i], sigma, params.rho / params.h);
   });
+  take_merged(out, std::move(merged));
   out.least = *std::min_element(out.h.begin(), out.h.end());
   out.largest = *std::max_element(out.h.begin(), out.h.end());
   out.median = median_of(out.h);

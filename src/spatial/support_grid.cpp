@@ -95,11 +95,19 @@ SupportGridView SupportGrid::view() const {
   v.points = sorted_.data();
   v.inv_h2 = inv_h2_.data();
   v.normals = normals_.empty() ? nullptr : normals_.data();
+  v.mass = mass_.empty() ? nullptr : mass_.data();
   v.level = levels_.data();
   v.levels = int(levels_.size());
   v.count = int(sorted_.size());
   v.kappa2 = kappa_ * kappa_;
   return v;
+}
+
+void SupportGrid::set_masses(std::span<const float> mass_of_point) {
+  mass_.clear();
+  if (mass_of_point.empty()) return;
+  mass_.resize(sorted_.size());
+  for (std::size_t k = 0; k < sorted_.size(); ++k) mass_[k] = mass_of_point[std::size_t(original_index_[k])];
 }
 
 void SupportGrid::set_normals(std::vector<vec3> sorted_normals) {

@@ -155,6 +155,8 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
   {
     ScopedPhase phase(stats, "support widths", params.support == Support::global);
     SupportWidths widths = support_widths(cloud, params, farm);
+    if (widths.merged_count > 0)  // points/merged_samples.hpp
+      throw NotTiled("tile by tile, pss project does not merge the samples of noise wider than the spacing so far");
     widths_ = {{}, widths.least, widths.median, widths.largest};
     h = std::move(widths.h);
   }

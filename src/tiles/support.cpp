@@ -119,7 +119,9 @@ SupportWidths support_widths(const TiledCloud& cloud, const ProjectionParams& pa
   if (!(median_d > 0)) return out;  // most samples coincide with k others: no spacing to follow
   const float widest = widest_width(h, params, frame.diagonal);
 
-  // The second pass: which samples widen, and each width, from the first's spacings.
+  // The second pass: which samples widen, and each width, from the first's spacings; which
+  // are merged.
+  std::vector<char> merged(std::size_t(n), 0);
   Progress progress("support widths", std::int64_t(n));
   for_each_tile(
       cloud, frame, farm, TileStep::widths, progress,
@@ -129,14 +131,18 @@ SupportWidths support_widths(const TiledCloud& cloud, const ProjectionParams& pa
           set_spacing[i] = spacing[std::size_t(tile.points.index[i])];
           set_least[i] = least[std::size_t(tile.points.index[i])];
         }
-        return widths_request(tile.view(n, frame.scale), {set_spacing, set_least, median_d, h, widest, at, measured});
+        return widths_request(tile.view(n, frame.scale), {set_spacing, set_least, median_d, h, widest, params.rho / params.h, at, measured});
       },
       [&](const std::vector<std::uint64_t>& own, std::span<const std::byte> result) {
         const TileWidths w = widths_result(result, own.size());
         if (!w.complete) return false;
-        for (std::size_t i = 0; i < own.size(); ++i) out.h[std::size_t(own[i])] = w.h[i];
+        for (std::size_t i = 0; i < own.size(); ++i) {
+          out.h[std::size_t(own[i])] = w.h[i];
+          merged[std::size_t(own[i])] = w.merged[i];
+        }
         return true;
       });
+  take_merged(out, std::move(merged));
   out.least = *std::min_element(out.h.begin(), out.h.end());
   out.largest = *std::max_element(out.h.begin(), out.h.end());
   out.median = median_of(out.h);

@@ -305,6 +305,7 @@ std::vector<std::byte> widths_request(const MarginTile& tile, const WidthsInputs
   out.put(inputs.median_spacing);
   out.put(inputs.h);
   out.put(inputs.widest);
+  out.put(inputs.kappa);
   out.put_array(inputs.noise_at);
   out.put_array(inputs.noise_measured);
   return out.take();
@@ -315,7 +316,7 @@ std::vector<std::byte> work_widths(std::span<const std::byte> request) {
   const MarginArrays t = get_margin_tile(in);
   auto spacing = in.get_array<float>();
   auto least = in.get_array<float>();
-  const auto median = in.get<float>(), h = in.get<float>(), widest = in.get<float>();
+  const auto median = in.get<float>(), h = in.get<float>(), widest = in.get<float>(), kappa = in.get<float>();
   auto at = in.get_array<vec3>();
   auto measured = in.get_array<float>();
   if (spacing.size() != t.unit.size() || least.size() != t.unit.size() || measured.size() != at.size())
@@ -327,13 +328,18 @@ std::vector<std::byte> work_widths(std::span<const std::byte> request) {
     if (!steps.complete(i)) return incomplete();
   const RegionalNoise noise(std::move(at), std::move(measured));
   std::vector<float> width(t.own);
+  std::vector<char> merged(t.own);
+  const float cloud_noise = noise_of_h(h, median);
   cpu::parallel_for(std::int64_t(t.own), [&](std::int64_t s) {
     const auto i = std::size_t(s);
     width[i] = adaptive_width(h, widest, steps.wide(i), steps.spacing()[i], median, noise.about(t.unit[i]), t.scale);
+    const float sigma = std::max(cloud_noise, float(double(noise.measured_about(t.unit[i])) * t.scale));
+    merged[i] = merges_samples(width[i], steps.spacing()[i], sigma, kappa);
   });
   ByteWriter out;
   out.put(std::uint8_t(1));
   out.put_array<float>(width);
+  out.put_array<char>(merged);
   return out.take();
 }
 
@@ -343,7 +349,8 @@ TileWidths widths_result(std::span<const std::byte> result, std::size_t own) {
   w.complete = in.get<std::uint8_t>() != 0;
   if (!w.complete) return w;
   w.h = in.get_array<float>();
-  if (w.h.size() != own) throw Error("a tile's widths do not hold together");
+  w.merged = in.get_array<char>();
+  if (w.h.size() != own || w.merged.size() != own) throw Error("a tile's widths do not hold together");
   return w;
 }
 

@@ -85,7 +85,7 @@ TileSpacing spacing_result(std::span<const std::byte> result, std::size_t own);
 // its halo, their median over the cloud, and σ at every noise query of the cloud.
 struct WidthsInputs {
   std::span<const float> spacing, least;  // of each point of the tile and its halo
-  float median_spacing = 0, h = 0, widest = 0;
+  float median_spacing = 0, h = 0, widest = 0, kappa = 2;
   std::span<const vec3> noise_at;
   std::span<const float> noise_measured;
 };
@@ -93,7 +93,8 @@ std::vector<std::byte> widths_request(const MarginTile& tile, const WidthsInputs
 std::vector<std::byte> work_widths(std::span<const std::byte> request);
 struct TileWidths {
   bool complete = false;
-  std::vector<float> h;  // of each own sample
+  std::vector<float> h;       // of each own sample
+  std::vector<char> merged;  // likewise (support.hpp, merges_samples)
 };
 TileWidths widths_result(std::span<const std::byte> result, std::size_t own);
 

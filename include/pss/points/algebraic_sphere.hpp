@@ -38,7 +38,7 @@ PSS_HOST_DEVICE AlgebraicSphere fit_algebraic_sphere(const Samples& samples, vec
   vec3 sp(0.0f), sn(0.0f);
   samples.for_each_sample([&](vec3 p, int i) {
     const vec3 d = p - origin;
-    const float w = gaussian_weight(length2(d), samples.grid->inv_h2[i]);
+    const float w = samples.grid->mass_of(i) * gaussian_weight(length2(d), samples.grid->inv_h2[i]);
     const vec3 y = d * inv_scale;
     const vec3 n = samples.grid->normals[i];
     sw += w;

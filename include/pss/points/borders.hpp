@@ -34,7 +34,7 @@ template <class Nb>
 PSS_HOST_DEVICE bool samples_surround(const Nb& neighbours, vec3 x, vec3 normal) {
   const Frame frame = Frame::from_normal(x, normal);
   std::uint64_t occupied = 0;
-  neighbours.for_each([&](vec3 p, float, float) {
+  neighbours.for_each([&](vec3 p, float, float, float) {
     const vec3 l = frame.direction_to_local(p - x);
     const float bin = detail::diamond_angle(l.x, l.y) * 16;
     if (!(bin >= 0)) return;  // NaN: straight above or below x, or a normal not finite

@@ -1,4 +1,5 @@
-// The neighbourhood N(r) of a point with its Gaussian weights θ3(‖pᵢ − r‖) = exp(−‖pᵢ − r‖²/hᵢ²):
+// The neighbourhood N(r) of a point with its Gaussian weights θ3(‖pᵢ − r‖) = mᵢ·exp(−‖pᵢ − r‖²/hᵢ²)
+// (mᵢ the points a merged sample stands for, points/merged_samples.hpp; 1 for all others):
 // the samples whose support holds r (‖pᵢ − r‖ ≤ ρᵢ; one global h gives every sample the
 // same, the paper's ρ-neighbourhood), gathered once: every sum of one projection runs over
 // the same samples (Eq. 1, 2 and the polynomial), so later passes need no grid walk, and
@@ -29,7 +30,7 @@ struct NeighbourhoodOf {
   // Slot Capacity takes the candidates the gather rejects once the buffer is full; the
   // slots after the last sample, up to a multiple of the sum lanes, hold zeros (add_all).
   static constexpr int kSlots = Capacity + PSS_SUM_LANES;
-  float dx[kSlots], dy[kSlots], dz[kSlots], weight[kSlots], inv_h2[kSlots];
+  float dx[kSlots], dy[kSlots], dz[kSlots], weight[kSlots], inv_h2[kSlots], mass[kSlots];
 
   PSS_HOST_DEVICE NeighbourhoodOf(const SupportGridView& g, vec3 c) : grid(&g), center(c) {
     grid->for_each_near(center, [&](vec3 p, int i) {
@@ -42,25 +43,27 @@ struct NeighbourhoodOf {
       dz[slot] = d.z;
       weight[slot] = d2;
       inv_h2[slot] = q;
+      mass[slot] = grid->mass_of(i);
       count += grid->covers(i, d2) ? 1 : 0;
     });
     const int n = stored();
-    for (int i = 0; i < n; ++i) weight[i] = gaussian_weight(weight[i], inv_h2[i]);
-    for (int i = n; i % PSS_SUM_LANES != 0; ++i) dx[i] = dy[i] = dz[i] = weight[i] = inv_h2[i] = 0;
+    for (int i = 0; i < n; ++i) weight[i] = mass[i] * gaussian_weight(weight[i], inv_h2[i]);
+    for (int i = n; i % PSS_SUM_LANES != 0; ++i) dx[i] = dy[i] = dz[i] = weight[i] = inv_h2[i] = mass[i] = 0;
   }
 
   PSS_HOST_DEVICE bool overflowed() const { return count > Capacity; }
   PSS_HOST_DEVICE int stored() const { return count < Capacity ? count : Capacity; }
 
-  // f(p, w, 1/h²) for every sample again, in the same order.
+  // f(p, w, 1/h², m) for every sample again, in the same order.
   template <class F>
   PSS_HOST_DEVICE void for_each(F&& f) const {
     if (!overflowed()) {
-      for (int i = 0; i < count; ++i) f(center + vec3(dx[i], dy[i], dz[i]), weight[i], inv_h2[i]);
+      for (int i = 0; i < count; ++i) f(center + vec3(dx[i], dy[i], dz[i]), weight[i], inv_h2[i], mass[i]);
     } else {
       grid->for_each_covering(center, [&](vec3 p, float d2, int i) {
         const float q = grid->inv_h2[i];
-        f(p, gaussian_weight(d2, q), q);
+        const float m = grid->mass_of(i);
+        f(p, m * gaussian_weight(d2, q), q, m);
       });
     }
   }
@@ -72,7 +75,7 @@ struct NeighbourhoodOf {
       m.add_all(count, [&](int i) { return vec3(dx[i], dy[i], dz[i]); }, [&](int i) { return weight[i]; });
       for (int i = 0; i < count; ++i) m.inv_h2_sum += weight[i] * inv_h2[i];
     } else {
-      for_each([&](vec3 p, float w, float q) {
+      for_each([&](vec3 p, float w, float q, float) {
         m.add(p, w);
         m.inv_h2_sum += w * q;
       });
@@ -88,14 +91,14 @@ struct NeighbourhoodOf {
       const vec3 o = frame.to_local(center);
       auto local = [&](int i) { return o + frame.direction_to_local(vec3(dx[i], dy[i], dz[i])); };
       if (weights_at_origin)
-        // The padding's weight must be 0 (add_all): a factor, not a branch, so it vectorises.
-        fit.add_all(count, local, [&](int i) { return gaussian_weight(length2(local(i)), inv_h2[i]) * (i < count ? 1.0f : 0.0f); });
+        // The padding's weight must be 0 (add_all): its mass is.
+        fit.add_all(count, local, [&](int i) { return mass[i] * gaussian_weight(length2(local(i)), inv_h2[i]); });
       else
         fit.add_all(count, local, [&](int i) { return weight[i]; });
     } else {
-      for_each([&](vec3 p, float w_r, float q) {
+      for_each([&](vec3 p, float w_r, float q, float m) {
         const vec3 l = frame.to_local(p);
-        fit.add(l, weights_at_origin ? gaussian_weight(length2(l), q) : w_r);
+        fit.add(l, weights_at_origin ? m * gaussian_weight(length2(l), q) : w_r);
       });
     }
     return fit;
@@ -135,18 +138,19 @@ struct NeighbourIndicesOf {
     }
   }
 
-  // f(p, w, 1/h²) for every sample again, in the same order.
+  // f(p, w, 1/h², m) for every sample again, in the same order.
   template <class F>
   PSS_HOST_DEVICE void for_each(F&& f) const {
     for_each_sample([&](vec3 p, int i) {
       const float q = grid->inv_h2[i];
-      f(p, gaussian_weight(length2(p - center), q), q);
+      const float m = grid->mass_of(i);
+      f(p, m * gaussian_weight(length2(p - center), q), q, m);
     });
   }
 
   PSS_HOST_DEVICE WeightedMoments moments() const {
     WeightedMoments m(center);
-    for_each([&](vec3 p, float w, float q) {
+    for_each([&](vec3 p, float w, float q, float) {
       m.add(p, w);
       m.inv_h2_sum += w * q;
     });
@@ -155,9 +159,9 @@ struct NeighbourIndicesOf {
 
   PSS_HOST_DEVICE PolynomialFit polynomial_fit(const Frame& frame, bool weights_at_origin, float scale) const {
     PolynomialFit fit(scale);
-    for_each([&](vec3 p, float w_r, float q) {
+    for_each([&](vec3 p, float w_r, float q, float m) {
       const vec3 l = frame.to_local(p);
-      fit.add(l, weights_at_origin ? gaussian_weight(length2(l), q) : w_r);
+      fit.add(l, weights_at_origin ? m * gaussian_weight(length2(l), q) : w_r);
     });
     return fit;
   }

@@ -41,7 +41,7 @@ struct OutlierDistanceKernel {
     const vec3 p = grid.points[i];
     WeightedMoments m(p);
     grid.for_each_covering(p, [&](vec3 q, float d2, int j) {
-      if (j != i) m.add(q, gaussian_weight(d2, grid.inv_h2[j]));
+      if (j != i) m.add(q, grid.mass_of(j) * gaussian_weight(d2, grid.inv_h2[j]));
     });
     if (m.count < 3 || !(m.weight_sum > 0)) {
       out[i] = kInfinity;
@@ -58,17 +58,21 @@ struct OutlierReport {
 };
 
 // The largest distance a sample on the surface lies at: kOutlierSigmas robust standard
-// deviations of the finite distances, and at least kOutlierFloor.
-float outlier_threshold(std::vector<float> distance);
+// deviations of the finite distances, and at least kOutlierFloor. With `mass` (one per
+// distance: merged samples, points/merged_samples.hpp), the median weighs each by its mass,
+// so that the few points of a cube at the noise's edge count as few.
+float outlier_threshold(std::vector<float> distance, std::span<const float> mass = {});
 
 // keep[i] for each sorted sample of `grid` (phase "outliers" on `backend`), with
 // report.threshold when it is set, else with the threshold of these distances (set then).
 std::vector<char> samples_on_the_surface(const SupportGrid& grid, Backend backend, Stats& stats, OutlierReport& report);
 
-// The range-query grid of `points` with widths h[i] (kappa = ρ/h) and, with
-// OutlierPolicy::set_aside, without the samples set aside (in kOutlierPasses passes, each
-// on the grid of the last's samples); its original_index() still counts in `points`.
-SupportGrid grid_of_samples(std::span<const vec3> points, std::span<const float> h, float kappa, OutlierPolicy policy,
-                            Backend backend, Stats& stats, OutlierReport& report);
+// The range-query grid of `points` with widths h[i] (kappa = ρ/h), the points `merge` marks
+// (support.hpp; empty: none) merged (points/merged_samples.hpp) and, with
+// OutlierPolicy::set_aside, without the samples set aside (in kOutlierPasses passes, each on
+// the grid of the last's samples); its original_index() still counts in `points` (a merged
+// sample's is its cube's first point's).
+SupportGrid grid_of_samples(std::span<const vec3> points, std::span<const float> h, std::span<const char> merge,
+                            float kappa, OutlierPolicy policy, Backend backend, Stats& stats, OutlierReport& report);
 
 }  // namespace pss

@@ -158,11 +158,11 @@ struct MlsEnergy {
 
   PSS_HOST_DEVICE float operator()(float t, float& derivative) const {
     float e = 0, de = 0;
-    neighbours.for_each([&](vec3 p, float, float inv_h2) {
+    neighbours.for_each([&](vec3 p, float, float inv_h2, float m) {
       const float d2 = length2(p - r);
       const float z = glm::dot(p - r, n);
       const float s = z - t;
-      const float w = exp_nonpositive(-(d2 - 2 * t * z + t * t) * inv_h2);  // inline: Brent calls it most
+      const float w = m * exp_nonpositive(-(d2 - 2 * t * z + t * t) * inv_h2);  // inline: Brent calls it most
       e += w * s * s;
       de += w * s * 2 * (s * s * inv_h2 - 1);
     });
@@ -208,7 +208,8 @@ PSS_HOST_DEVICE Projection project_mls(const Nb& neighbours, vec3 r, const Proje
       const float t_next = brent_minimize(energy, t - h, t + h, t, t_tolerance).x;
       const vec3 q = r + t_next * n;
       WeightedMoments at_q(q);
-      neighbours.for_each([&](vec3 p, float, float inv_h2) { at_q.add(p, gaussian_weight(length2(p - q), inv_h2)); });
+      neighbours.for_each(
+          [&](vec3 p, float, float inv_h2, float m) { at_q.add(p, m * gaussian_weight(length2(p - q), inv_h2)); });
       eig = smallest_eigenvector(at_q.covariance_about_origin(), n);
       const float moved = abs(t_next - t) + h * glm::length(eig.vector - n);
       n = eig.vector;

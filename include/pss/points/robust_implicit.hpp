@@ -44,7 +44,7 @@ PSS_HOST_DEVICE RobustImplicit fit_robust_implicit(const Samples& samples, vec3 
       const vec3 n = samples.grid->normals[i];
       const float q = samples.grid->inv_h2[i];
       const float fi = glm::dot(d, n);
-      const float phi = gaussian_weight(length2(d), q);
+      const float phi = samples.grid->mass_of(i) * gaussian_weight(length2(d), q);
       float alpha = 1;
       if (k > 0) {
         const float residual = fi - fit.f;

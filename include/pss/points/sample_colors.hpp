@@ -15,7 +15,7 @@ PSS_INLINE vec3 interpolated_color(const SupportGridView& grid, const vec3* colo
   vec3 sum(0.0f);
   float weight_sum = 0;
   grid.for_each_covering(x, [&](vec3, float d2, int i) {
-    const float w = gaussian_weight(d2, grid.inv_h2[i]);
+    const float w = grid.mass_of(i) * gaussian_weight(d2, grid.inv_h2[i]);
     sum += w * colors[i];
     weight_sum += w;
   });

@@ -4,6 +4,7 @@
 // support holds about as many samples where the cloud is sparse as where it is dense.
 #pragma once
 
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -58,16 +59,38 @@ inline constexpr double kRegionShare = 0.67;
 inline Support default_support(bool h_given) { return h_given ? Support::global : Support::adaptive; }
 inline const char* support_name(Support s) { return s == Support::global ? "global" : "adaptive"; }
 
+// The most samples a support needs: where one would hold more (the widths noise widens,
+// h_i = kNoiseWidths·σ_i, take in thousands where σ is a few spacings), its samples are merged
+// (points/merged_samples.hpp). Evenly sampled clouds at the spacing's h hold about 60 (ρ = 2h,
+// h = s): never merged.
+inline constexpr double kSupportSamplesMost = 400;
+
+// Whether a sample's support would hold over kSupportSamplesMost samples where it lies in
+// noise (σ_i > 0; clean clouds keep every sample, however their sampling runs), from its
+// width h_i, its spacing s_i (the distance to its k-th neighbour) and σ_i in the same units,
+// and kappa = ρ_i/h_i.
+bool merges_samples(float h, float spacing, float sigma, float kappa);
+
+// The noise the cloud's h stands for: h/kNoiseWidths where h is over twice the median spacing
+// (the default h is the larger of the spacing's and kNoiseWidths·σ̂, spacing.hpp), else 0. The
+// noise queries near a sample miss noise above about 1.5 spacings (docs/paper-notes.md)
+// that the cloud's σ̂ saw.
+float noise_of_h(float h, float median_spacing);
+
 struct SupportWidths {
   std::vector<float> h;  // one per point, in the input's order
   float least = 0, median = 0, largest = 0;
+  // Per point, whether merges_samples holds, and its samples are merged; empty where none is.
+  std::vector<char> merged;
+  std::int64_t merged_count = 0;
 };
 
 // params.h for every point (Support::global), or (Support::adaptive) h_i = params.h ·
 // max(1, kSupportWidening·s_i / median s) where p_i lies on a sparse surface (above), else
 // params.h, and at least kNoiseWidths·σ_i (above); s_i the median over p_i and its k nearest
 // neighbours of their distances to their own k-th nearest other sample. ρ_i = ρ·h_i/h is kept
-// within the cloud's bounding-box diagonal.
+// within the cloud's bounding-box diagonal. With adaptive support, `merged` marks the samples
+// whose supports hold too many (global support keeps every sample, as the paper).
 // Throws Error for a width that is not a positive number.
 SupportWidths support_widths(std::span<const vec3> points, const ProjectionParams& params);
 

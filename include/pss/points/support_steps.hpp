@@ -84,10 +84,15 @@ class RegionalNoise {
   RegionalNoise(std::vector<vec3> at, std::vector<float> measured);
   ~RegionalNoise();
   float about(vec3 unit) const;
+  // The median σ the kRegionQueries queries nearest `unit` measured, regions or not: whether
+  // the samples there scatter (merges_samples), where about() may leave a noisy cloud's
+  // widths to its global h.
+  float measured_about(vec3 unit) const;
 
  private:
   struct Tree;
   std::vector<vec3> at_;
+  std::vector<float> measured_;
   std::vector<float> spread_;
   std::unique_ptr<Tree> tree_;
 };
@@ -103,5 +108,8 @@ float widest_width(float h, const ProjectionParams& params, double diagonal);
 // h_i (support.hpp) from the steps' answers: `spacing` and `median_spacing` in the input's
 // units, `noise` in the unit frame.
 float adaptive_width(float h, float widest, bool wide, float spacing, float median_spacing, float noise, double scale);
+
+// Sets widths.merged to `merged` and counts it, or leaves it empty where no point is marked.
+void take_merged(SupportWidths& widths, std::vector<char> merged);
 
 }  // namespace pss

@@ -14,6 +14,7 @@ class GridMirror {
       : points_(backend, grid.sorted_points()),
         inv_h2_(backend, grid.inv_h2()),
         normals_(backend, grid.normals()),
+        mass_(backend, grid.masses()),
         cell_start_(backend, grid.cell_starts()),
         pointed_(levels_pointing_to(grid, points_.data(), cell_start_.data())),
         levels_(backend, pointed_),
@@ -21,6 +22,7 @@ class GridMirror {
     view_.points = points_.data();
     view_.inv_h2 = inv_h2_.data();
     view_.normals = grid.normals().empty() ? nullptr : normals_.data();
+    view_.mass = grid.masses().empty() ? nullptr : mass_.data();
     view_.level = levels_.data();
   }
   const SupportGridView& view() const { return view_; }
@@ -40,6 +42,7 @@ class GridMirror {
   Mirror<vec3> points_;
   Mirror<float> inv_h2_;
   Mirror<vec3> normals_;
+  Mirror<float> mass_;
   Mirror<int> cell_start_;
   std::vector<SupportLevel> pointed_;  // what levels_ mirrors (on the CPU, is)
   Mirror<SupportLevel> levels_;

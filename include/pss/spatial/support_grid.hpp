@@ -32,6 +32,9 @@ struct SupportGridView {
   // Unit normals of the sorted samples, consistently oriented: what APSS and RIMLS fit
   // (points/algebraic_sphere.hpp, points/robust_implicit.hpp); null for the paper's MLS.
   const vec3* normals = nullptr;
+  // How many points each sorted sample stands for (points/merged_samples.hpp): its weight's
+  // factor; null where every sample is one point.
+  const float* mass = nullptr;
   const SupportLevel* level = nullptr;
   int levels = 0;
   int count = 0;
@@ -45,6 +48,7 @@ struct SupportGridView {
   }
 
   PSS_HOST_DEVICE bool covers(int i, float distance2) const { return distance2 * inv_h2[i] <= kappa2; }
+  PSS_HOST_DEVICE float mass_of(int i) const { return mass ? mass[i] : 1.0f; }
 
   // f(point, squared distance, sorted index) for every sample whose support holds c.
   template <class F>
@@ -92,6 +96,10 @@ class SupportGrid {
   // The samples' oriented unit normals in sorted order (points/sample_normals.hpp), or none.
   std::span<const vec3> normals() const { return normals_; }
   void set_normals(std::vector<vec3> sorted_normals);
+  // Each sample's mass (SupportGridView::mass), indexed as the points the grid was built of;
+  // empty: one each.
+  std::span<const float> masses() const { return mass_; }  // in sorted order
+  void set_masses(std::span<const float> mass_of_point);
   std::span<const int> cell_starts() const { return cell_start_; }  // every level's, one after another
   // The levels as on the host; a level's cells begin at level_cell_offset()[l] in cell_starts().
   std::span<const SupportLevel> levels_on_host() const { return levels_; }
@@ -109,6 +117,7 @@ class SupportGrid {
   std::vector<vec3> sorted_;
   std::vector<float> inv_h2_;
   std::vector<vec3> normals_;
+  std::vector<float> mass_;
   std::vector<int> cell_start_;
   std::vector<int> level_offset_;
   std::vector<SupportLevel> levels_;
