@@ -20,7 +20,7 @@ class MergedSamplesCli : public test::CliTest {
     CliTest::SetUp();
     test::SampleOptions o;
     o.count = 60000;
-    o.noise = 0.04f;  // h = 3σ: some 2,000 samples a support
+    o.noise = 0.06f;  // h = 3σ: some 3,000 samples a support
     write_ply(path("noisy.ply"), test::sample(test::Torus{}, o));
   }
   std::int64_t merged_in(const std::string& stats) const {

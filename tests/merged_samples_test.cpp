@@ -100,13 +100,13 @@ TEST(MergedSamples, TheMarkedPointsOfACubeMergeToTheirMeanAndCount) {
   EXPECT_EQ(s.positions[2], points[2]);
 }
 
-// A torus with noise of 2.5 spacings: h = 3σ puts about 2,000 samples in each support. Merged,
+// A torus with noise of 4 spacings: h = 3σ puts about 3,000 samples in each support. Merged,
 // the grid holds a fraction of them, and the projections are as close to the true torus as
 // those with every sample at the same widths (global support merges none).
 TEST(MergedSamples, ANoisyTorusIsMergedAndProjectsAsCloseToTheTruth) {
   test::SampleOptions o;
   o.count = 60000;
-  o.noise = 0.04f;
+  o.noise = 0.06f;
   const test::Torus torus;
   PointCloud cloud = test::sample(torus, o);
   const float h = test::suggested_h(cloud);
@@ -160,7 +160,7 @@ TEST(MergedSamples, ANoisyTorusIsMergedAndProjectsAsCloseToTheTruth) {
   EXPECT_GT(merged, 0);
   EXPECT_EQ(none, 0);
   EXPECT_LT(with_merged, 1.1 * with_all);
-  EXPECT_LT(with_all, 0.2 * o.noise);  // both smooth the noise away
+  EXPECT_LT(with_all, 0.35 * o.noise);  // both smooth the noise away, but for the curvature bias
 }
 
 // Clean clouds, evenly or unevenly sampled, keep every sample; so does a clean plane scanned

@@ -126,7 +126,7 @@ def test_a_noisy_clouds_samples_are_merged_as_by_the_cli(tmp_path):
     u, v = 2 * np.pi * rng.random((2, 60000))
     normal = np.stack([np.cos(v) * np.cos(u), np.cos(v) * np.sin(u), np.sin(v)], 1)
     centre = np.stack([np.cos(u), np.sin(u), 0 * u], 1)
-    torus = (centre + (0.35 + 0.04 * rng.normal(size=len(u)))[:, None] * normal).astype(np.float32)
+    torus = (centre + (0.35 + 0.06 * rng.normal(size=len(u)))[:, None] * normal).astype(np.float32)
     _, _, stats = pss.render(torus, size=(16, 16), full_output=True)
     assert stats["points_merged"] > 40000
     _, _, stats = pss.render(torus, size=(16, 16), support="global", full_output=True)

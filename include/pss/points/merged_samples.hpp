@@ -5,10 +5,10 @@
 // side h_i/2 to h_i become one, at their mean, weighing as many as it stands for
 // (SupportGridView::mass): a fit's sums over them are the sums over all of them but for the
 // spread within the cubes, small against h_i, so the surface stays where all of them put it.
-// On a 300,000-point torus with noise 0.03 R `pss project`'s points lie 0.00397 R (rms) from
-// the true torus against 0.00427 R with every sample, and its projection takes a tenth of the
-// time; a random share of the samples instead made the surface visibly bumpier
-// (bench/merged_samples.py, docs/paper-notes.md).
+// On a 300,000-point torus with noise 0.03 R `pss project`'s points lie 0.00402 R (rms) from
+// the true torus against 0.00427 R with every sample, and it takes 28.7 s against 75.7 s
+// (`pss render` 6.6 s against 38.7 s); a random share of the samples instead made the surface
+// visibly bumpier (bench/merged_samples.py, docs/paper-notes.md).
 #pragma once
 
 #include <cstdint>
@@ -23,7 +23,8 @@ namespace pss {
 // that samples of nearby widths share cubes, and tiles and ranks, which see the same positions
 // and widths, the same cubes. With cubes of h_i/4 to h_i/2 the 300,000-point torus's
 // projection took 25 s, with h_i/2 to h_i 7 s (the smaller left several hundred merged samples
-// in a support, over the 128 a neighbourhood holds), the two as close to the truth.
+// in a support, over the 128 a neighbourhood holds), the two as close to the truth (merging
+// where a support held over 400).
 inline constexpr float kMergeCell = 1.0f;
 
 struct MergedSamples {
