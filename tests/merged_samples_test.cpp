@@ -87,17 +87,11 @@ TEST(MergedSamples, TheMarkedPointsOfACubeMergeToTheirMeanAndCount) {
   // 0 and 2 share the cube [0,1)³; 3 is not marked; 1, 4 and 5 are alone in theirs.
   EXPECT_EQ(m.samples, (std::vector<int>{0, 1, 3, 4, 5}));
   EXPECT_EQ(m.mass, (std::vector<float>{2, 1, 0, 1, 1, 1}));
-  EXPECT_EQ(m.merged_away, 1);
   EXPECT_NEAR(m.positions[0].x, 0.4f, 1e-6f);
   EXPECT_NEAR(m.positions[0].y, 0.2f, 1e-6f);
   EXPECT_NEAR(m.positions[0].z, 0.5f, 1e-6f);
   EXPECT_EQ(m.positions[3], points[3]);
   EXPECT_EQ(m.positions[4], points[4]);
-  // A subset merges its own points only.
-  const std::vector<int> subset = {2, 3, 4};
-  const MergedSamples s = merge_samples(points, widths, merge, subset);
-  EXPECT_EQ(s.samples, subset);
-  EXPECT_EQ(s.positions[2], points[2]);
 }
 
 // A torus with noise of 4 spacings: h = 3σ puts about 3,000 samples in each support. Merged,

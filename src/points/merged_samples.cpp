@@ -34,33 +34,24 @@ Cube cube_of(vec3 p, float h) {
 
 }  // namespace
 
-MergedSamples merge_samples(std::span<const vec3> points, std::span<const float> h, std::span<const char> merge,
-                            std::span<const int> subset) {
+MergedSamples merge_samples(std::span<const vec3> points, std::span<const float> h, std::span<const char> merge) {
   MergedSamples out;
   out.positions.assign(points.begin(), points.end());
   out.mass.assign(points.size(), 0.0f);
-  std::vector<int> all;
-  if (subset.empty()) {
-    all.resize(points.size());
-    for (std::size_t i = 0; i < all.size(); ++i) all[i] = int(i);
-    subset = all;
-  }
-  std::vector<int> order(subset.begin(), subset.end());
-  std::sort(order.begin(), order.end());
   struct Sum {
     int first;
     std::int64_t count = 0;
     double x = 0, y = 0, z = 0;
   };
   std::unordered_map<Cube, Sum, CubeHash> cubes;
-  for (const int i : order) {
-    const vec3 p = points[std::size_t(i)];
-    if (!merge[std::size_t(i)] || !std::isfinite(h[std::size_t(i)])) {
-      out.mass[std::size_t(i)] = 1;
-      out.samples.push_back(i);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const vec3 p = points[i];
+    if (!merge[i] || !std::isfinite(h[i])) {
+      out.mass[i] = 1;
+      out.samples.push_back(int(i));
       continue;
     }
-    Sum& s = cubes.try_emplace(cube_of(p, h[std::size_t(i)]), Sum{i}).first->second;
+    Sum& s = cubes.try_emplace(cube_of(p, h[i]), Sum{int(i)}).first->second;
     ++s.count;
     s.x += p.x;
     s.y += p.y;
@@ -71,7 +62,6 @@ MergedSamples merge_samples(std::span<const vec3> points, std::span<const float>
     out.positions[i] = vec3(float(s.x / double(s.count)), float(s.y / double(s.count)), float(s.z / double(s.count)));
     out.mass[i] = float(s.count);
     out.samples.push_back(s.first);
-    out.merged_away += s.count - 1;
   }
   std::sort(out.samples.begin(), out.samples.end());
   return out;

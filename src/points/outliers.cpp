@@ -1,13 +1,12 @@
 #include "pss/points/outliers.hpp"
 
-#include "pss/points/merged_samples.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <memory>
 
 #include "pss/backend/mirror.hpp"
 #include "pss/backend/parallel_for.hpp"
+#include "pss/points/merged_samples.hpp"
 #include "pss/spatial/grid_mirror.hpp"
 
 namespace pss {

@@ -32,13 +32,11 @@ struct MergedSamples {
   std::vector<vec3> positions;
   std::vector<int> samples;  // the cubes' first points and the points not merged, ascending
   std::vector<float> mass;   // per point: how many points it stands for (0: merged into another)
-  std::int64_t merged_away = 0;  // points that are no sample of their own now
 };
 
 // Merges the points that `merge` marks (support.hpp, SupportWidths::merged), each in its cube
-// of side 2^⌊log2(kMergeCell·h_i)⌋ (cubes of different sides apart), among the points `subset`
-// holds (empty: all). The means are summed in doubles in the order of the points' indices.
-MergedSamples merge_samples(std::span<const vec3> points, std::span<const float> h, std::span<const char> merge,
-                            std::span<const int> subset = {});
+// of side 2^⌊log2(kMergeCell·h_i)⌋ (cubes of different sides apart). The means are summed in
+// doubles in the order of the points' indices.
+MergedSamples merge_samples(std::span<const vec3> points, std::span<const float> h, std::span<const char> merge);
 
 }  // namespace pss
