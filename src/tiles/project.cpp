@@ -157,7 +157,7 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
     SupportWidths widths = support_widths(cloud, params, farm);
     if (widths.merged_count > 0)  // points/merged_samples.hpp
       throw NotTiled("tile by tile, pss project does not merge the samples of noise wider than the spacing so far");
-    widths_ = {{}, widths.least, widths.median, widths.largest};
+    widths_ = {{}, widths.least, widths.median, widths.largest, {}, 0};
     h = std::move(widths.h);
   }
   for (float& w : h) w = float(double(w) / frame_.scale);

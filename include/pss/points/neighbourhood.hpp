@@ -31,24 +31,15 @@ struct NeighbourhoodOf {
   // slots after the last sample, up to a multiple of the sum lanes, hold zeros (add_all).
   static constexpr int kSlots = Capacity + PSS_SUM_LANES;
   float dx[kSlots], dy[kSlots], dz[kSlots], weight[kSlots], inv_h2[kSlots], mass[kSlots];
+  bool massive;  // mass[] is filled (the grid has masses); otherwise every mass is 1
 
-  PSS_HOST_DEVICE NeighbourhoodOf(const SupportGridView& g, vec3 c) : grid(&g), center(c) {
-    grid->for_each_near(center, [&](vec3 p, int i) {
-      const vec3 d = p - center;
-      const float d2 = length2(d);
-      const float q = grid->inv_h2[i];
-      const int slot = count < Capacity ? count : Capacity;
-      dx[slot] = d.x;
-      dy[slot] = d.y;
-      dz[slot] = d.z;
-      weight[slot] = d2;
-      inv_h2[slot] = q;
-      mass[slot] = grid->mass_of(i);
-      count += grid->covers(i, d2) ? 1 : 0;
-    });
-    const int n = stored();
-    for (int i = 0; i < n; ++i) weight[i] = mass[i] * gaussian_weight(weight[i], inv_h2[i]);
-    for (int i = n; i % PSS_SUM_LANES != 0; ++i) dx[i] = dy[i] = dz[i] = weight[i] = inv_h2[i] = mass[i] = 0;
+  PSS_HOST_DEVICE NeighbourhoodOf(const SupportGridView& g, vec3 c) : grid(&g), center(c), massive(g.mass != nullptr) {
+    // The masses only where the cloud has merged samples: others pay no load, store or
+    // multiply for them in the gather, the hot loop of every projection.
+    if (massive)
+      gather<true>();
+    else
+      gather<false>();
   }
 
   PSS_HOST_DEVICE bool overflowed() const { return count > Capacity; }
@@ -57,8 +48,11 @@ struct NeighbourhoodOf {
   // f(p, w, 1/h², m) for every sample again, in the same order.
   template <class F>
   PSS_HOST_DEVICE void for_each(F&& f) const {
-    if (!overflowed()) {
+    if (!overflowed() && massive) {
       for (int i = 0; i < count; ++i) f(center + vec3(dx[i], dy[i], dz[i]), weight[i], inv_h2[i], mass[i]);
+    } else if (!overflowed()) {
+      // A constant mass, which the callers' products by it fold away (MlsEnergy, Brent's).
+      for (int i = 0; i < count; ++i) f(center + vec3(dx[i], dy[i], dz[i]), weight[i], inv_h2[i], 1.0f);
     } else {
       grid->for_each_covering(center, [&](vec3 p, float d2, int i) {
         const float q = grid->inv_h2[i];
@@ -90,9 +84,12 @@ struct NeighbourhoodOf {
     if (!overflowed()) {
       const vec3 o = frame.to_local(center);
       auto local = [&](int i) { return o + frame.direction_to_local(vec3(dx[i], dy[i], dz[i])); };
-      if (weights_at_origin)
+      if (weights_at_origin && massive)
         // The padding's weight must be 0 (add_all): its mass is.
         fit.add_all(count, local, [&](int i) { return mass[i] * gaussian_weight(length2(local(i)), inv_h2[i]); });
+      else if (weights_at_origin)
+        // A factor, not a branch, so that it vectorises.
+        fit.add_all(count, local, [&](int i) { return gaussian_weight(length2(local(i)), inv_h2[i]) * (i < count ? 1.0f : 0.0f); });
       else
         fit.add_all(count, local, [&](int i) { return weight[i]; });
     } else {
@@ -102,6 +99,29 @@ struct NeighbourhoodOf {
       });
     }
     return fit;
+  }
+
+ private:
+  template <bool kMassive>
+  PSS_HOST_DEVICE void gather() {
+    grid->for_each_near(center, [&](vec3 p, int i) {
+      const vec3 d = p - center;
+      const float d2 = length2(d);
+      const float q = grid->inv_h2[i];
+      const int slot = count < Capacity ? count : Capacity;
+      dx[slot] = d.x;
+      dy[slot] = d.y;
+      dz[slot] = d.z;
+      weight[slot] = d2;
+      inv_h2[slot] = q;
+      if constexpr (kMassive) mass[slot] = grid->mass[i];
+      count += grid->covers(i, d2) ? 1 : 0;
+    });
+    const int n = stored();
+    for (int i = 0; i < n; ++i) weight[i] = gaussian_weight(weight[i], inv_h2[i]);
+    if constexpr (kMassive)
+      for (int i = 0; i < n; ++i) weight[i] *= mass[i];
+    for (int i = n; i % PSS_SUM_LANES != 0; ++i) dx[i] = dy[i] = dz[i] = weight[i] = inv_h2[i] = mass[i] = 0;
   }
 };
 
