@@ -131,26 +131,30 @@ TEST(MergedSamples, ANoisyTorusIsMergedAndProjectsAsCloseToTheTruth) {
   for (std::size_t i = surface; i < cloud.size(); ++i) strays_kept += sample[i];
   EXPECT_EQ(strays_kept, 0);
 
-  auto mean_error = [&](const ProjectionParams& params, std::int64_t& merged) {
+  auto mean_error = [&](const ProjectionParams& params, std::int64_t& merged, std::size_t& n) {
     PointCloud copy = cloud;
     Stats s;
     const CloudProjection p = project_cloud(std::move(copy), params, Backend::cpu, s);
     merged = p.widths.merged_count;
     double sum = 0;
-    std::size_t n = 0;
+    n = 0;
     for (std::size_t i = 0; i < p.cloud.size(); ++i)
       if (p.status[i] == ProjectionStatus::converged) {
         sum += std::abs(torus.distance(p.cloud.positions[i]));
         ++n;
       }
-    EXPECT_GT(n, surface * 95 / 100);
+    EXPECT_GT(n, surface * 9 / 10);
     return sum / double(n);
   };
   std::int64_t merged = 0, none = 0;
-  const double with_merged = mean_error(adaptive, merged);
+  std::size_t converged_merged = 0, converged_all = 0;
+  const double with_merged = mean_error(adaptive, merged, converged_merged);
   ProjectionParams global = adaptive;
   global.support = Support::global;
-  const double with_all = mean_error(global, none);
+  const double with_all = mean_error(global, none, converged_all);
+  // Points 3σ out with supports as wide as the tube still move at the iteration cap, a few
+  // percent of them (4.6 % with every sample); merging leaves about as many.
+  EXPECT_GT(converged_merged, converged_all * 97 / 100);
   EXPECT_GT(merged, 0);
   EXPECT_EQ(none, 0);
   EXPECT_LT(with_merged, 1.1 * with_all);

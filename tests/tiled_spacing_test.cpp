@@ -4,8 +4,11 @@
 // neighbours).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 #include <tuple>
+#include <utility>
+#include <vector>
 
 #include "pss/io/point_cloud_file.hpp"
 #include "pss/points/spacing.hpp"
@@ -43,20 +46,31 @@ TEST_F(TiledSpacingTest, TheTilesGiveTheInCoreEstimateToTheLastBit) {
 
 // A noisy torus, whose noise sets h: each query's noise is fitted to the points within a
 // reach of several times the noise, beyond its k-th neighbour, and the tiles' halos hold them.
+// And a sphere under noise of twice the spacing beside a block of points that fill a volume:
+// reaches of up to 24 k-th distances, read through the thinned grids (points/noise.hpp).
 TEST_F(TiledSpacingTest, TheNoiseIsTheInCoreNoiseToTheLastBit) {
   test::SampleOptions o;
   o.count = 8000;
   o.noise = 0.05f;
-  std::string text;
-  for (const vec3& p : test::sample(test::Torus{}, o).positions)
-    text += std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z) + "\n";
-  const std::string file = write("noisy.xyz", text);
-  const PointCloud cloud = read_point_cloud(file);
-  const SpacingEstimate e = estimate_spacing(cloud.positions);
-  ASSERT_GT(e.suggested_h, e.median_kth) << "the noise sets h";
-  for (const std::uint64_t per_tile : {300u, 3000u}) {
-    SCOPED_TRACE(per_tile);
-    expect_same(estimate_spacing(TiledCloud(file, dir_, per_tile, 1 << 16)), e);
+  std::vector<vec3> torus = test::sample(test::Torus{}, o).positions;
+  o.count = 3000;
+  o.noise = 0.3f;
+  std::vector<vec3> sphere = test::sample(test::Sphere{}, o).positions;
+  for (int i = 0; i < 1000; ++i)
+    sphere.push_back(vec3(2.5f + 0.001f * float(i % 10), 0.01f * float(i / 10 % 10), 0.01f * float(i / 100)) +
+                     0.3f * vec3(std::sin(float(i)), std::cos(float(3 * i)), std::sin(float(7 * i))));
+  for (const auto& [name, points] : {std::pair{"noisy.xyz", torus}, {"thick.xyz", sphere}}) {
+    SCOPED_TRACE(name);
+    std::string text;
+    for (const vec3& p : points) text += std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z) + "\n";
+    const std::string file = write(name, text);
+    const PointCloud cloud = read_point_cloud(file);
+    const SpacingEstimate e = estimate_spacing(cloud.positions);
+    ASSERT_GT(e.suggested_h, e.median_kth) << "the noise sets h";
+    for (const std::uint64_t per_tile : {300u, 3000u}) {
+      SCOPED_TRACE(per_tile);
+      expect_same(estimate_spacing(TiledCloud(file, dir_, per_tile, 1 << 16)), e);
+    }
   }
 }
 

@@ -32,9 +32,10 @@ SpacingEstimate estimate_spacing(std::span<const vec3> input, int k, std::size_t
   const std::size_t queries = (points.size() + stride - 1) / stride;
   std::vector<QuerySpacing> results(queries);
   const std::size_t noise_stride = noise_query_stride(queries);
+  const NoiseGrids noise(points, view);
   cpu::parallel_for(std::int64_t(queries), [&](std::int64_t q) {
     const auto query = std::size_t(q);
-    results[query] = query_spacing(view, cell, points[query * stride], k, query % noise_stride == 0);
+    results[query] = query_spacing(view, cell, points[query * stride], k, query % noise_stride == 0 ? &noise.views() : nullptr);
   });
   return spacing_of(results, k, frame.scale);
 }
@@ -47,7 +48,7 @@ std::size_t noise_query_stride(std::size_t queries) {
   return std::max<std::size_t>(1, queries / kNoiseQueries);
 }
 
-QuerySpacing query_spacing(const GridView& view, float cell, vec3 c, int k, bool noise) {
+QuerySpacing query_spacing(const GridView& view, float cell, vec3 c, int k, const NoiseViews* noise) {
   thread_local std::vector<float> d2;
   // A ball that doubles until it holds k + 1 points (the query's own among them, at
   // distance 0): the k nearest of those are the k nearest of all.
@@ -60,7 +61,7 @@ QuerySpacing query_spacing(const GridView& view, float cell, vec3 c, int k, bool
   const double kth = std::sqrt(double(d2[std::size_t(k)]));
   const double nearest = std::sqrt(double(d2[std::size_t(std::min(1, k))]));
   if (!noise) return {nearest, kth, std::numeric_limits<double>::quiet_NaN(), kth};
-  const QueryNoise n = noise_near(view, c, kth);
+  const QueryNoise n = noise_near(*noise, c, kth);
   return {nearest, kth, n.sigma, std::max(kth, n.reach)};
 }
 

@@ -13,6 +13,7 @@
 #include "pss/spatial/uniform_grid.hpp"
 #include "kd_tree.hpp"
 #include "rows.hpp"
+#include "pss/points/noise.hpp"
 #include "pss/points/spacing.hpp"
 #include "pss/points/unit_frame.hpp"
 
@@ -58,9 +59,10 @@ RegionalNoise regional_noise(std::span<const vec3> unit, int k) {
   const std::size_t stride = noise_query_stride(unit.size());
   std::vector<vec3> at((unit.size() + stride - 1) / stride);
   std::vector<float> measured(at.size());
+  const NoiseGrids noise(unit, view);
   cpu::parallel_for(std::int64_t(at.size()), [&](std::int64_t q) {
     at[std::size_t(q)] = unit[std::size_t(q) * stride];
-    measured[std::size_t(q)] = measured_noise(query_spacing(view, cell, at[std::size_t(q)], k, true));
+    measured[std::size_t(q)] = measured_noise(query_spacing(view, cell, at[std::size_t(q)], k, &noise.views()));
   });
   return RegionalNoise(std::move(at), std::move(measured));
 }

@@ -7,6 +7,7 @@
 #include "pss/backend/cpu/parallel_for.hpp"
 #include "pss/core/error.hpp"
 #include "pss/core/progress.hpp"
+#include "pss/points/noise.hpp"
 #include "pss/points/unit_frame.hpp"
 #include "pss/spatial/uniform_grid.hpp"
 
@@ -38,6 +39,7 @@ SpacingEstimate estimate_spacing(const TiledCloud& cloud, int k, std::size_t max
       const UniformGrid grid(unit, 1e-7f, std::max<long long>(4096, (long long)unit.size()));
       const GridView view = grid.view();
       const float cell = 1.0f / view.inv_cell;
+      const NoiseGrids noise(unit, view);
       std::vector<std::size_t> mine;
       for (std::size_t i = 0; i < tile.own; ++i)
         if (tile.index[i] % stride == 0) mine.push_back(i);
@@ -45,7 +47,7 @@ SpacingEstimate estimate_spacing(const TiledCloud& cloud, int k, std::size_t max
       cpu::parallel_for(std::int64_t(mine.size()), [&](std::int64_t m) {
         const std::size_t i = mine[std::size_t(m)];
         const auto query = std::size_t(tile.index[i] / stride);
-        const QuerySpacing s = query_spacing(view, cell, unit[i], k, query % noise_stride == 0);
+        const QuerySpacing s = query_spacing(view, cell, unit[i], k, query % noise_stride == 0 ? &noise.views() : nullptr);
         results[query] = s;
         held[std::size_t(m)] = s.reach * scale * (1 + 1e-6) <= double(halo) || tile.positions.size() == n;
       });

@@ -8,6 +8,7 @@
 #include "pss/backend/parallel_for.hpp"
 #include "pss/core/stats.hpp"
 #include "pss/points/outliers.hpp"
+#include "pss/points/noise.hpp"
 #include "pss/points/spacing.hpp"
 #include "pss/spatial/grid_mirror.hpp"
 #include "pss/spatial/support_grid.hpp"
@@ -247,12 +248,13 @@ std::vector<std::byte> work_spacing(std::span<const std::byte> request) {
   const UniformGrid grid(t.unit, 1e-7f, std::max<long long>(4096, (long long)t.unit.size()));
   const GridView view = grid.view();
   const float cell = 1.0f / view.inv_cell;
+  const NoiseGrids noise(t.unit, view);
   std::vector<float> measured(t.own);
   std::vector<char> held(t.own, 1);
   cpu::parallel_for(std::int64_t(t.own), [&](std::int64_t s) {
     const auto i = std::size_t(s);
     if (t.id[i] % stride == 0) {
-      const QuerySpacing q = query_spacing(view, cell, t.unit[i], steps.k(), true);
+      const QuerySpacing q = query_spacing(view, cell, t.unit[i], steps.k(), &noise.views());
       measured[i] = measured_noise(q);
       held[i] = t.margin.empty() || q.reach <= t.margin[i];
     }

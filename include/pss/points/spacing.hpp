@@ -35,14 +35,15 @@ SpacingEstimate estimate_spacing(std::span<const vec3> points, int k = 15, std::
 std::size_t spacing_stride(std::size_t points, std::size_t max_samples);
 // a query's distances to its nearest and k-th nearest other points, in a grid of points in
 // the cloud's unit frame with cells of `cell` (exact wherever the grid holds every point
-// within the k-th distance of c);
+// within the k-th distance of c), and with `noise` (the same points' NoiseGrids) its noise;
 struct QuerySpacing {
   double nearest, kth;
   double noise;  // noise_near at that k-th distance (points/noise.hpp), or NaN
   double reach;  // the farthest a point it used lies: exact wherever the grid holds that
 };
 struct GridView;
-QuerySpacing query_spacing(const GridView& view, float cell, vec3 c, int k, bool noise);
+struct NoiseViews;
+QuerySpacing query_spacing(const GridView& view, float cell, vec3 c, int k, const NoiseViews* noise);
 // the noise measured at every noise_query_stride-th query only: at most ~kNoiseQueries of
 // them, plenty for a median, since a noisy cloud's wider reach costs more per query;
 inline constexpr std::size_t kNoiseQueries = 5000;
