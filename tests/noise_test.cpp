@@ -71,6 +71,19 @@ TEST(Noise, ACurvedTubesNoiseIsReadAcrossItNotAlong) {
   EXPECT_NEAR(e.noise, 0.06, 0.04 * 0.06);
 }
 
+// A scan's duplicates: 30 copies of one sample, whose 15th neighbour lies at distance 0. Its
+// reach of 0 fits nothing (a fixed-point scale of 1/0 would overflow the moments' sums: the
+// sanitized build reports it), and the sphere's noise stays ~0.
+TEST(Noise, DuplicatesOfASampleFitNothing) {
+  std::vector<vec3> points = noisy(test::Sphere{}, 20000, 0).positions;
+  for (int i = 0; i < 30; ++i) points.push_back(points[0]);
+  const SpacingEstimate e = estimate_spacing(points, 15, points.size());
+  EXPECT_LT(e.noise, 1e-3 * e.median_kth);
+  const UniformGrid grid(points, 1e-7f, (long long)points.size());
+  const NoiseGrids levels(points, grid.view());
+  EXPECT_TRUE(std::isnan(noise_near(levels.views(), points[0], 0.0).sigma));
+}
+
 TEST(Noise, ACleanCurvedSurfaceHasNone) {
   for (const PointCloud& cloud : {noisy(test::Sphere{}, 20000, 0), noisy(test::Torus{}, 20000, 0)}) {
     const SpacingEstimate e = estimate_spacing(cloud.positions);

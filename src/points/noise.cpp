@@ -57,7 +57,8 @@ NoiseAtReach query_noise(const GridView& view, vec3 c, float reach, float latera
   near.clear();
   view.for_each_in_radius(c, reach, [&](vec3 p, float, int) { near.push_back(p - c); });
   const NoiseAtReach none{kNaN, 0};
-  if (near.size() < std::size_t(kNoiseFit)) return none;
+  // (A reach of 0: a query with 15 duplicates of itself, which no fixed point can scale.)
+  if (near.size() < std::size_t(kNoiseFit) || !(reach > 0)) return none;
   // The principal plane from moments summed in fixed point, exactly: the same in any order
   // (a cloud read tile by tile holds the same points in another order, and gives the same σ
   // to the last bit, tiles/spacing.hpp).
