@@ -65,15 +65,19 @@ NoiseAtReach query_noise(const GridView& view, vec3 c, float reach, float latera
   const double unit = double(1 << 20) / double(reach);
   __int128 first[3] = {0, 0, 0}, second[6] = {0, 0, 0, 0, 0, 0};
   for (const vec3& d : near) {
-    const long long q[3] = {std::llround(double(d.x) * unit), std::llround(double(d.y) * unit), std::llround(double(d.z) * unit)};
+    const __int128 q[3] = {std::llround(double(d.x) * unit), std::llround(double(d.y) * unit),
+                           std::llround(double(d.z) * unit)};
     for (int i = 0; i < 3; ++i) first[i] += q[i];
-    second[0] += __int128(q[0]) * q[0], second[1] += __int128(q[0]) * q[1], second[2] += __int128(q[0]) * q[2];
-    second[3] += __int128(q[1]) * q[1], second[4] += __int128(q[1]) * q[2], second[5] += __int128(q[2]) * q[2];
+    second[0] += q[0] * q[0], second[1] += q[0] * q[1], second[2] += q[0] * q[2];
+    second[3] += q[1] * q[1], second[4] += q[1] * q[2], second[5] += q[2] * q[2];
   }
-  const double count_near = double(near.size());
-  const glm::dvec3 mean(double(first[0]) / count_near, double(first[1]) / count_near, double(first[2]) / count_near);
-  auto central = [&](int k, int i, int j) { return float((double(second[k]) / count_near - mean[i] * mean[j]) / (unit * unit)); };
-  const Sym3 covariance{central(0, 0, 0), central(1, 0, 1), central(2, 0, 2), central(3, 1, 1), central(4, 1, 2), central(5, 2, 2)};
+  const double n = double(near.size());
+  const glm::dvec3 mean(double(first[0]) / n, double(first[1]) / n, double(first[2]) / n);
+  auto central = [&](int k, int i, int j) {
+    return float((double(second[k]) / n - mean[i] * mean[j]) / (unit * unit));
+  };
+  const Sym3 covariance{central(0, 0, 0), central(1, 0, 1), central(2, 0, 2),
+                        central(3, 1, 1), central(4, 1, 2), central(5, 2, 2)};
   const EigenResult normal = smallest_eigenvector(covariance, vec3(0.0f));
   if (normal.status == EigenStatus::invalid) return none;
   const Frame frame = Frame::from_normal(vec3(mean / unit), normal.vector);
@@ -110,7 +114,8 @@ NoiseAtReach query_noise(const GridView& view, vec3 c, float reach, float latera
     // tube of radius 6 kth with σ = 1.1 kth read 1.07σ, 0.99σ across). A fit of fewer samples
     // knows its slope too roughly for that (σ = kth/3 read 0.93σ with it, 1.0σ without).
     const double gx = 2 * b[0] * l.x + b[1] * l.y + b[3], gy = b[1] * l.x + 2 * b[2] * l.y + b[4];
-    residual.push_back(std::abs(l.z - height) / (local.size() >= kNoiseSlopeFit ? std::sqrt(1 + gx * gx + gy * gy) : 1.0));
+    const double slope = local.size() >= kNoiseSlopeFit ? std::sqrt(1 + gx * gx + gy * gy) : 1.0;
+    residual.push_back(std::abs(l.z - height) / slope);
   }
   const auto middle = residual.begin() + std::ptrdiff_t(residual.size() / 2);
   std::nth_element(residual.begin(), middle, residual.end());
@@ -153,7 +158,9 @@ QueryNoise noise_near(const NoiseViews& views, vec3 c, double kth) {
   QueryNoise out{kNaN, kth};
   const double farthest = kNoiseReachMost * kth;
   // How far from the query's axis a fit at `reach` takes samples.
-  auto lateral = [&](double reach) { return std::min(reach, std::max(kNoiseLateral * kth, kNoiseLateralShare * reach)); };
+  auto lateral = [&](double reach) {
+    return std::min(reach, std::max(kNoiseLateral * kth, kNoiseLateralShare * reach));
+  };
   int level = 0;
   for (;;) {
     const NoiseAtReach fit = query_noise(views.level[level], c, float(out.reach), float(lateral(out.reach)));

@@ -18,14 +18,16 @@ namespace pss {
 // A query's noise: σ of its neighbours (within `reach`, in the grid's frame, and within
 // `lateral` of the axis along their principal plane's normal: a cylinder, where the reach is
 // the wider) about the quadric height field z = ax² + bxy + cy² + dx + ey + f fitted to them
-// by least squares over that plane. The quadric takes the surface's curvature, so a clean
-// curved surface gives ~0 (to third order in the lateral reach), and Gaussian noise gives its σ: 1.4826
-// times the median absolute residual, corrected for the six fitted coefficients. Robust to
-// a crease or a stray among the neighbours. NaN with too few neighbours to fit (kNoiseFit),
-// where they lie along a line (a cloud of rows: no surface at this reach), or where the
-// residuals' lower quartile is over sheets_quartile of their median: Gaussian residuals give
-// 0.47 (over 0.5 + 1.2/√N in 3 % of fits of N, by simulation), two sheets fitted by one
-// surface more (0.68–0.85 for two noisy sheets in reach, both faces of a thin part).
+// by least squares over that plane, measured as the distance to it where the fit holds
+// enough samples to know its slope. The quadric takes the surface's curvature, so a clean
+// curved surface gives ~0 (to third order in the lateral reach), and Gaussian noise gives
+// its σ: 1.4826 times the median absolute residual, corrected for the six fitted
+// coefficients. Robust to a crease or a stray among the neighbours. NaN with too few
+// neighbours to fit (kNoiseFit), where they lie along a line (a cloud of rows: no surface at
+// this reach), or where the residuals' lower quartile is over sheets_quartile of their
+// median: Gaussian residuals give 0.47 (over 0.5 + 1.2/√N in 3 % of fits of N, by
+// simulation), two sheets fitted by one surface more (0.68–0.85 for two noisy sheets in
+// reach, both faces of a thin part).
 struct NoiseAtReach {
   double sigma;
   std::size_t points;  // the neighbours fitted (none where σ is NaN)
@@ -37,8 +39,8 @@ inline double sheets_quartile(double fitted) { return 0.5 + 1.2 / std::sqrt(fitt
 
 // The grids the noise reads. A farther reach is asked only where σ asks for it, but there it
 // may hold many samples (~200,000 in a volume at 24 k-th distances), and a fit needs a few
-// hundred: level L holds the samples whose hash of position falls below
-// 8⁻ᴸ of its range (level 0 all of them). Each sample chooses alone, so that a tile and its
+// hundred: level L holds the samples whose hash of position falls below 8⁻ᴸ of its range
+// (level 0 all of them). Each sample chooses alone, so that a tile and its
 // halo hold the same of them as the whole cloud (tiles/spacing.hpp).
 inline constexpr int kNoiseLevels = 3;
 struct NoiseViews {
@@ -63,8 +65,8 @@ bool in_noise_level(vec3 p, int level);
 // ~4σ looks thinner than it is: 0.58σ at 2σ, 0.89σ at 4σ, 0.92–0.97σ at 6σ), up to
 // kNoiseReachMost·kth, each reach read at the coarsest level that still fits
 // kNoiseFitLeast samples. Laterally the fit reaches the larger of kNoiseLateral·kth and
-// kNoiseLateralShare of the reach: a cylinder across the slab. NaN where a reach gives NaN (a thin part's
-// faces come into a wider ball: not noise), or where the last reach is still short of
+// kNoiseLateralShare of the reach: a cylinder across the slab. NaN where a reach gives NaN
+// (a thin part's faces come into a wider ball: not noise), or where the last reach is still short of
 // kNoiseReach·σ: points that fill every ball (a volume, trees in a LiDAR tile: σ ~ a third
 // of any reach) are no slab about a surface, and neither is noise too thick to see across
 // within the farthest reach.
