@@ -144,11 +144,16 @@ bool in_noise_level(vec3 p, int level) {
 NoiseGrids::NoiseGrids(std::span<const vec3> points, const GridView& all) {
   views_.level[0] = all;
   thinned_.reserve(kNoiseLevels - 1);
-  std::vector<vec3> share;
+  // Each level's share lies within the one before (a lower bound on the same hash), so each
+  // is chosen from that one's, in the same order.
+  std::span<const vec3> finer = points;
+  std::vector<vec3> share, coarser;
   for (int level = 1; level < kNoiseLevels; ++level) {
-    share.clear();
-    for (const vec3& p : points)
-      if (in_noise_level(p, level)) share.push_back(p);
+    coarser.clear();
+    for (const vec3& p : finer)
+      if (in_noise_level(p, level)) coarser.push_back(p);
+    share.swap(coarser);
+    finer = share;
     thinned_.emplace_back(share, 1e-7f, std::max<long long>(4096, (long long)share.size()));
     views_.level[level] = thinned_.back().view();
   }
