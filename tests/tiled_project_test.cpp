@@ -11,6 +11,7 @@
 
 #include "pss/core/error.hpp"
 #include "pss/io/point_cloud_file.hpp"
+#include "pss/points/facing_vote.hpp"
 #include "pss/tiles/orient.hpp"
 #include "pss/tiles/project.hpp"
 #include "support/cli.hpp"
@@ -101,15 +102,24 @@ TEST_F(TiledProjectTest, ATorusAndASphereApartProjectInTilesAsInCore) {
 // first's threshold, as in core, though the strays set aside moved the distances' median. The
 // strays' own projections are no surface's (most stop at the iteration cap, within the
 // sphere or outside it), and their normals' signs follow trees through them that rounding
-// changes; the sphere's converged points face as in core.
+// changes; the sphere's converged points face as in core, outward: from these strays' seed
+// the tree turned the sphere inward until each part faced as its points vote, in core and
+// tile by tile (points/facing_vote.hpp).
 TEST_F(TiledProjectTest, TheOutliersPassesSetAsideWhatTheyDoInCore) {
-  const std::vector<vec3> points = test::noisy_sphere_with_strays(2400, 5, 4);
+  const std::vector<vec3> points = test::noisy_sphere_with_strays(2400, 5, 9);
   const std::string file = write("sphere.xyz", test::xyz_text(points));
   ProjectionParams params = ProjectionParams::from_h(test::suggested_h(read_point_cloud(file)));
   params.support = Support::adaptive;
   Stats stats;
   const CloudProjection in_core = project_cloud(read_point_cloud(file), params, Backend::cpu, stats);
   EXPECT_GT(in_core.outliers.set_aside, 200);
+  std::size_t inward = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const vec3 p = in_core.cloud.positions[i];
+    inward += std::abs(glm::length(p) - 1) < 0.05f && in_core.status[i] == ProjectionStatus::converged &&
+              glm::dot(p, in_core.cloud.normals[i]) < 0;
+  }
+  EXPECT_EQ(inward, 0u);
   const Compared c = compare(in_core, file, dir_, params, 1500, 5000,
                              [](vec3 p) { return std::abs(glm::length(p) - 1) < 0.05f; });
   EXPECT_GT(c.tiles, 8u);
@@ -121,7 +131,7 @@ TEST_F(TiledProjectTest, TheOutliersPassesSetAsideWhatTheyDoInCore) {
 TEST(PieceSigns, TheStrongestVotesJoinPiecesAndTheHighestPieceKeepsItsSign) {
   PieceSigns signs;
   std::uint64_t root = 10;
-  for (const float z : {0.1f, 0.9f, 0.5f, 0.3f, 0.3f}) signs.add_piece(z, root++);
+  for (const float z : {0.1f, 0.9f, 0.5f, 0.3f, 0.3f}) signs.add_piece(z, root++, {});
   for (int k = 0; k < 5; ++k) signs.vote(0, 1, false);  // 0 and 1 face apart
   for (int k = 0; k < 4; ++k) signs.vote(2, 1, true);
   for (int k = 0; k < 3; ++k) signs.vote(0, 2, true);  // outvoted: 0 is apart from 1, so from 2
@@ -129,14 +139,32 @@ TEST(PieceSigns, TheStrongestVotesJoinPiecesAndTheHighestPieceKeepsItsSign) {
   EXPECT_EQ(signs.turns(), (std::vector<char>{1, 0, 0, 0, 1}));  // 3 ties 4 in height: the lower index keeps
 }
 
+// A sphere's cap (the highest piece), its normals inward, and the rest, outward, facing apart
+// where they meet: joined, the part faces as the rest's many normals vote, each piece's vote
+// taken with its turn, so the cap turns and the rest stays.
+TEST(PieceSigns, EachPartFacesAsItsPiecesVoteWithTheirTurns) {
+  FacingVote cap, rest;
+  for (int i = 0; i < 4000; ++i) {
+    const float z = 1 - 2 * (float(i) + 0.5f) / 4000, r = std::sqrt(1 - z * z), a = float(i) * 2.39996323f;
+    const vec3 p(r * std::cos(a), r * std::sin(a), z);
+    if (z > 0.9f) cap.add(p, -p, 1.0f / (0.05f * 0.05f), ProjectionStatus::converged);
+    else rest.add(p, p, 1.0f / (0.05f * 0.05f), ProjectionStatus::converged);
+  }
+  PieceSigns signs;
+  signs.add_piece(1.0f, 0, cap);
+  signs.add_piece(0.9f, 1, rest);
+  signs.vote(0, 1, false);
+  EXPECT_EQ(signs.turns(), (std::vector<char>{1, 0}));
+}
+
 TEST(PieceSigns, TiesInHeightGoByTheRootsIndex) {
   PieceSigns signs;
-  signs.add_piece(0.3f, 7);
-  signs.add_piece(0.3f, 2);
+  signs.add_piece(0.3f, 7, {});
+  signs.add_piece(0.3f, 2, {});
   signs.vote(0, 1, false);
   EXPECT_EQ(signs.turns(), (std::vector<char>{1, 0}));
   PieceSigns alone;
-  alone.add_piece(0.0f, 0);
+  alone.add_piece(0.0f, 0, {});
   EXPECT_EQ(alone.turns(), (std::vector<char>{0}));
 }
 

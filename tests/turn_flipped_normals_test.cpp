@@ -226,7 +226,8 @@ TEST(TurnFlippedNormals, TheBunnysOrientedNormalsFaceAsItsMesh) {
   for (std::size_t i = 0; i < points.size(); ++i)
     normals[i] = (rng() % 2 ? 1.0f : -1.0f) * (glm::length(truth[i]) > 0 ? glm::normalize(truth[i]) : vec3(0, 0, 1));
   const std::vector<float> support(points.size(), 0.0056f);  // ρ = 2h at the bunny's h
-  orient_normals_consistently(points, normals, support);
+  const std::vector<ProjectionStatus> converged(points.size(), ProjectionStatus::converged);
+  orient_normals_consistently(points, normals, support, converged);
   std::size_t with = 0, against = 0;
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (glm::length(truth[i]) == 0) continue;
@@ -244,10 +245,11 @@ TEST(OrientNormals, LentArraysComeBackAsTheSpanOverloadLeavesThem) {
   std::mt19937 rng(3);
   for (std::size_t i = 0; i < points.size(); ++i) normals[i] = (rng() % 2 ? 1.0f : -1.0f) * glm::normalize(truth[i] + vec3(1e-6f));
   const std::vector<float> support(points.size(), 0.0056f);
+  const std::vector<ProjectionStatus> converged(points.size(), ProjectionStatus::converged);
   std::vector<vec3> by_span = normals;
-  orient_normals_consistently(std::span<const vec3>(points), by_span, support);
+  orient_normals_consistently(std::span<const vec3>(points), by_span, support, converged);
   std::vector<vec3> lent_points = points, lent_normals = normals;
-  orient_normals_consistently(lent_points, lent_normals, std::vector<float>(support));
+  orient_normals_consistently(lent_points, lent_normals, std::vector<float>(support), converged);
   EXPECT_EQ(lent_points, points);
   EXPECT_EQ(lent_normals, by_span);
   EXPECT_NE(by_span, normals);  // the orientation turned some
@@ -256,8 +258,11 @@ TEST(OrientNormals, LentArraysComeBackAsTheSpanOverloadLeavesThem) {
 TEST(OrientNormals, OneNormalPerPointIsNeeded) {
   std::vector<vec3> points{vec3(0), vec3(1, 0, 0), vec3(0, 1, 0)}, normals(2, vec3(0, 0, 1));
   const std::vector<float> radius(3, 2.0f);
-  EXPECT_THROW(orient_normals_consistently(std::span<const vec3>(points), normals, radius), Error);
-  EXPECT_THROW(orient_normals_consistently(points, normals, std::vector<float>(radius)), Error);
+  const std::vector<ProjectionStatus> status(3, ProjectionStatus::converged);
+  EXPECT_THROW(orient_normals_consistently(std::span<const vec3>(points), normals, radius, status), Error);
+  EXPECT_THROW(orient_normals_consistently(points, normals, std::vector<float>(radius), status), Error);
+  std::vector<vec3> three(3, vec3(0, 0, 1));
+  EXPECT_THROW(orient_normals_consistently(std::span<const vec3>(points), three, radius, std::span(status).first(2)), Error);
   EXPECT_EQ(points.size(), 3u);  // nothing lent was freed
   EXPECT_EQ(normals.size(), 2u);
 }

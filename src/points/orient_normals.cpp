@@ -9,18 +9,18 @@
 #include "pss/core/indexed_min_heap.hpp"
 #include "pss/core/memory.hpp"
 #include "pss/core/progress.hpp"
+#include "pss/points/facing_vote.hpp"
 #include "pss/spatial/support_grid.hpp"
 
 namespace pss {
 
 namespace {
 
-// Orients `sorted`, the normals of the grid's samples in its sorted order; rank(k) is sorted
-// point k's place in the cloud. `parts`, when given, takes each sorted point's part and each
-// part's root, in sorted indices.
+// Orients `sorted`, the normals of the grid's samples in its sorted order, each part from its
+// highest point's +z; rank(k) is sorted point k's place in the cloud. Returns each sorted
+// point's part and each part's root, in sorted indices.
 template <class Rank>
-void orient_sorted(const SupportGrid& grid, std::vector<vec3>& sorted, Rank rank, Progress* progress,
-                   OrientedParts* parts = nullptr) {
+OrientedParts orient_sorted(const SupportGrid& grid, std::vector<vec3>& sorted, Rank rank, Progress* progress) {
   const SupportGridView view = grid.view();
   // The tree grows in the grid's order, where a point's neighbours lie near it in memory.
   // Ties go by the cloud's order, so the tree is the one that order gives.
@@ -45,10 +45,11 @@ void orient_sorted(const SupportGrid& grid, std::vector<vec3>& sorted, Rank rank
   });
   // One thread: advancing once per 4096 points oriented keeps the atomic out of the inner loop.
   std::size_t oriented = 0;
-  if (parts) parts->of_point.assign(n, -1);
+  OrientedParts parts;
+  parts.of_point.assign(n, -1);
   for (int seed : by_height) {
     if (state[std::size_t(seed)] & kDone) continue;
-    if (parts) parts->root.push_back(seed);
+    parts.root.push_back(seed);
     if (sorted[seed].z < 0) sorted[seed] = -sorted[seed];
     cheapest[std::size_t(seed)] = 0;
     frontier.lowered(seed);
@@ -57,7 +58,7 @@ void orient_sorted(const SupportGrid& grid, std::vector<vec3>& sorted, Rank rank
       // Prim's order: the cheapest edge to i when it is reached is its tree edge.
       if (state[std::size_t(i)] & kAgainst) sorted[i] = -sorted[i];
       state[std::size_t(i)] = kDone;
-      if (parts) parts->of_point[std::size_t(i)] = int(parts->root.size()) - 1;
+      parts.of_point[std::size_t(i)] = int(parts.root.size()) - 1;
       if (++oriented % 4096 == 0 && progress) progress->advance(4096);
       view.for_each_covering(at[i], [&](vec3 q, float d2, int j) {
         if (state[std::size_t(j)] & kDone) return;
@@ -73,6 +74,20 @@ void orient_sorted(const SupportGrid& grid, std::vector<vec3>& sorted, Rank rank
       });
     }
   }
+  return parts;
+}
+
+// Turns each part whose converged points vote that it faces inward (facing_vote.hpp); the
+// grid's widths are the supports ρ (κ = 1).
+template <class Status>
+void face_as_voted(const SupportGrid& grid, std::vector<vec3>& sorted, const OrientedParts& parts, Status status) {
+  const std::span<const vec3> at = grid.sorted_points();
+  const std::span<const float> inv_h2 = grid.inv_h2();
+  std::vector<FacingVote> votes(parts.root.size());
+  for (std::size_t k = 0; k < sorted.size(); ++k)
+    votes[std::size_t(parts.of_point[k])].add(at[k], sorted[k], inv_h2[k], status(k));
+  for (std::size_t k = 0; k < sorted.size(); ++k)
+    if (votes[std::size_t(parts.of_point[k])].sign() < 0) sorted[k] = -sorted[k];
 }
 
 std::vector<vec3> sorted_normals(const SupportGrid& grid, std::span<const vec3> normals) {
@@ -82,31 +97,34 @@ std::vector<vec3> sorted_normals(const SupportGrid& grid, std::span<const vec3> 
   return sorted;
 }
 
-void check_one_normal_per_point(std::size_t points, std::size_t normals) {
+void check_one_normal_per_point(std::size_t points, std::size_t normals, std::size_t status) {
   if (normals != points) throw Error("orient normals: one normal per point is needed");
+  if (status != points) throw Error("orient normals: one projection status per point is needed");
 }
 
 }  // namespace
 
-void orient_normals_consistently(std::span<const vec3> points, std::span<vec3> normals, std::span<const float> radius) {
-  check_one_normal_per_point(points.size(), normals.size());
+void orient_normals_consistently(std::span<const vec3> points, std::span<vec3> normals, std::span<const float> radius,
+                                 std::span<const ProjectionStatus> status) {
+  check_one_normal_per_point(points.size(), normals.size(), status.size());
   const SupportGrid grid(points, radius, 1.0f);
   std::vector<vec3> sorted = sorted_normals(grid, normals);
   const std::span<const int> original = grid.original_index();
   Progress progress("orient normals", std::int64_t(points.size()));
-  orient_sorted(grid, sorted, [&](int k) { return original[std::size_t(k)]; }, &progress);
+  const OrientedParts parts = orient_sorted(grid, sorted, [&](int k) { return original[std::size_t(k)]; }, &progress);
+  face_as_voted(grid, sorted, parts, [&](std::size_t k) { return status[std::size_t(original[k])]; });
   for (std::size_t k = 0; k < sorted.size(); ++k) normals[std::size_t(original[k])] = sorted[k];
 }
 
 OrientedParts orient_normals_in_parts(std::span<const vec3> points, std::span<vec3> normals,
                                       std::span<const float> radius, std::span<const std::uint64_t> id) {
-  check_one_normal_per_point(points.size(), normals.size());
+  check_one_normal_per_point(points.size(), normals.size(), points.size());
   if (id.size() != points.size()) throw Error("orient normals: one index per point is needed");
   const SupportGrid grid(points, radius, 1.0f);
   std::vector<vec3> sorted = sorted_normals(grid, normals);
   const std::span<const int> original = grid.original_index();
-  OrientedParts sorted_parts;
-  orient_sorted(grid, sorted, [&](int k) { return id[std::size_t(original[std::size_t(k)])]; }, nullptr, &sorted_parts);
+  const OrientedParts sorted_parts =
+      orient_sorted(grid, sorted, [&](int k) { return id[std::size_t(original[std::size_t(k)])]; }, nullptr);
   OrientedParts parts;
   parts.of_point.resize(points.size());
   for (std::size_t k = 0; k < sorted.size(); ++k) {
@@ -117,8 +135,9 @@ OrientedParts orient_normals_in_parts(std::span<const vec3> points, std::span<ve
   return parts;
 }
 
-void orient_normals_consistently(std::vector<vec3>& points, std::vector<vec3>& normals, std::vector<float>&& radius) {
-  check_one_normal_per_point(points.size(), normals.size());
+void orient_normals_consistently(std::vector<vec3>& points, std::vector<vec3>& normals, std::vector<float>&& radius,
+                                 std::span<const ProjectionStatus> status) {
+  check_one_normal_per_point(points.size(), normals.size(), status.size());
   const SupportGrid grid(points, radius, 1.0f);
   // Each array freed as soon as it is copied: the grid's copy of the points and the sorted
   // normals are never held beside the lent ones.
@@ -129,7 +148,8 @@ void orient_normals_consistently(std::vector<vec3>& points, std::vector<vec3>& n
   const std::span<const int> original = grid.original_index();
   {
     Progress progress("orient normals", std::int64_t(original.size()));
-    orient_sorted(grid, sorted, [&](int k) { return original[std::size_t(k)]; }, &progress);
+    const OrientedParts parts = orient_sorted(grid, sorted, [&](int k) { return original[std::size_t(k)]; }, &progress);
+    face_as_voted(grid, sorted, parts, [&](std::size_t k) { return status[std::size_t(original[k])]; });
   }
   const std::size_t n = original.size();
   normals.resize(n);

@@ -186,7 +186,7 @@ CloudProjection project_cloud(PointCloud input, const ProjectionParams& params, 
     ScopedPhase phase(stats, "orient normals", false);  // its Progress shows it
     std::vector<float> support = std::move(widths.h);  // ρ_i: the orientation links the samples of each N(p_i)
     for (float& rho : support) rho *= unit_params.rho / unit_params.h;
-    orient_normals_consistently(positions, out.cloud.normals, std::move(support));
+    orient_normals_consistently(positions, out.cloud.normals, std::move(support), out.status);
   }
   for (vec3& p : positions) p = frame.from_unit(p);
   return out;

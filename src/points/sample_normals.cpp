@@ -36,6 +36,7 @@ std::vector<vec3> sample_normals(const SupportGrid& grid, const FileNormals& fil
   }
   used = NormalsUsed::estimated;
   std::vector<vec3> normals;
+  std::vector<ProjectionStatus> status;  // whether each plane was fitted: which may seed the orientation
   const std::size_t n = grid.sorted_points().size();
   ProjectionParams plane = params;
   plane.surface = SurfaceOperator::mls;
@@ -49,12 +50,16 @@ std::vector<vec3> sample_normals(const SupportGrid& grid, const FileNormals& fil
                  ProjectPointsKernel{g.view(), g.view().points, nullptr, out.data(), plane}, stats, &progress);
     const std::vector<ProjectedPoint> fitted = out.take();
     normals.resize(n);
-    for (std::size_t i = 0; i < n; ++i) normals[i] = fitted[i].normal;
+    status.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      normals[i] = fitted[i].normal;
+      status[i] = fitted[i].status;
+    }
   }
   ScopedPhase phase(stats, "orient normals", false);  // its Progress shows it
   std::vector<float> support(n);  // ρ_i: the orientation links the samples of each N(p_i)
   for (std::size_t i = 0; i < n; ++i) support[i] = grid.kappa() / std::sqrt(grid.inv_h2()[i]);
-  orient_normals_consistently(grid.sorted_points(), normals, support);
+  orient_normals_consistently(grid.sorted_points(), normals, support, status);
   return normals;
 }
 

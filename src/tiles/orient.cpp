@@ -9,10 +9,11 @@
 
 namespace pss {
 
-std::uint32_t PieceSigns::add_piece(float z, std::uint64_t root) {
+std::uint32_t PieceSigns::add_piece(float z, std::uint64_t root, const FacingVote& vote) {
   if (roots_.size() >= std::size_t(std::numeric_limits<std::uint32_t>::max()))
     throw Error("the normals' orientation has more than 2^32 pieces across its tiles");
   roots_.push_back({z, root});
+  facing_.push_back(vote);
   return std::uint32_t(roots_.size() - 1);
 }
 
@@ -71,10 +72,14 @@ std::vector<char> PieceSigns::turns() const {
       t = p;
   }
   std::vector<char> turn(n);
+  std::vector<FacingVote> facing(n);  // by each part's root in the forest
   for (std::uint32_t p = 0; p < n; ++p) {
     const std::uint32_t r = find(p);
     turn[p] = char(against[p] ^ against[top[r]]);
+    facing[r].add(facing_[p], turn[p]);
   }
+  for (std::uint32_t p = 0; p < n; ++p)
+    if (facing[find(p)].sign() < 0) turn[p] ^= 1;
   return turn;
 }
 

@@ -269,10 +269,16 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
           // A halo's point alone in its part can only agree with its own tile's piece: no piece.
           std::vector<int> size(parts.root.size(), 0);
           for (const int part : parts.of_point) ++size[std::size_t(part)];
+          std::vector<FacingVote> vote(parts.root.size());
+          for (std::size_t i = 0; i < set.own; ++i) {
+            const Projected& r = set.records[i];
+            vote[std::size_t(parts.of_point[i])].add(r.point, oriented.normals[i], 1.0f / (r.radius * r.radius), r.status);
+          }
           std::vector<std::uint32_t> piece(parts.root.size(), kNoPiece);
           for (std::size_t p = 0; p < piece.size(); ++p) {
             const Projected& root = set.records[std::size_t(parts.root[p])];
-            if (size[p] > 1 || std::size_t(parts.root[p]) < set.own) piece[p] = signs.add_piece(root.point.z, root.index);
+            if (size[p] > 1 || std::size_t(parts.root[p]) < set.own)
+              piece[p] = signs.add_piece(root.point.z, root.index, vote[p]);
           }
           for (std::size_t i = 0; i < set.records.size(); ++i) {
             const std::uint32_t p = piece[std::size_t(parts.of_point[i])];

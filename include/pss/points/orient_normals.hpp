@@ -1,7 +1,8 @@
 // Consistent orientation of unoriented normals (Hoppe et al. 1992): a minimum spanning tree
 // over the neighbour graph with edge cost 1 − |nᵢ·nⱼ|, plus how far p_j lies off p_i's
 // tangent plane, propagates the sign along the smoothest paths on the surface; each
-// connected part starts from its highest point, oriented to +z. The graph links p_i to
+// connected part grows from its highest point, and then faces the way its converged points
+// vote (facing_vote.hpp), the highest point's +z where they have no say. The graph links p_i to
 // every p_j within radius[j] of it: with the samples' supports ρ_j, the samples of p_i's own
 // neighbourhood N(p_i), so that a sparse part, whose samples lie farther apart, stays
 // connected. The seams' turn that a file's normals go through (turn_flipped_normals.hpp) is
@@ -14,17 +15,21 @@
 #include <vector>
 
 #include "pss/core/types.hpp"
+#include "pss/points/projection.hpp"
 
 namespace pss {
 
-// Throws Error unless there is one normal and one radius per point.
-void orient_normals_consistently(std::span<const vec3> points, std::span<vec3> normals, std::span<const float> radius);
+// Throws Error unless there is one normal, one radius and one status (the projection's that
+// gave the normal: which normals vote) per point.
+void orient_normals_consistently(std::span<const vec3> points, std::span<vec3> normals, std::span<const float> radius,
+                                 std::span<const ProjectionStatus> status);
 
 // The same, for a caller that lends its arrays (pss project at 10^7 points, issue 28): the
 // tree grows over the grid's sorted copies while the points and normals are freed; they come
 // back as they were, the normals oriented. The radii are freed once indexed. Where it throws
 // (an interrupt through Progress), the lent arrays may come back empty.
-void orient_normals_consistently(std::vector<vec3>& points, std::vector<vec3>& normals, std::vector<float>&& radius);
+void orient_normals_consistently(std::vector<vec3>& points, std::vector<vec3>& normals, std::vector<float>&& radius,
+                                 std::span<const ProjectionStatus> status);
 
 // The connected parts an orientation grew: each point's part, and each part's first point
 // (its highest), by the points' indices; parts in the order they were grown.
@@ -34,8 +39,9 @@ struct OrientedParts {
 };
 
 // The same over a set of a cloud's points (a tile and its halo, issue 28), without a progress
-// of its own: ties go by id, each point's index in the cloud, so that the tree is the cloud's
-// where the set holds it; the parts say which signs the tiles must agree on (tiles/orient.hpp).
+// of its own and without the vote: ties go by id, each point's index in the cloud, so that
+// the tree is the cloud's where the set holds it; each part faces as its highest point's +z.
+// The parts say which signs the tiles must agree on, and whose votes add (tiles/orient.hpp).
 OrientedParts orient_normals_in_parts(std::span<const vec3> points, std::span<vec3> normals,
                                       std::span<const float> radius, std::span<const std::uint64_t> id);
 
