@@ -5,11 +5,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numeric>
 #include <random>
 
 #include "pss/points/merged_samples.hpp"
 #include "pss/points/outliers.hpp"
 #include "pss/points/project_cloud.hpp"
+#include "pss/points/sample_normals.hpp"
 #include "pss/points/spacing.hpp"
 #include "pss/points/support.hpp"
 #include "pss/points/surface_projection.hpp"
@@ -27,16 +29,21 @@ TEST(MergedSamples, ASampleOfMassThreeActsAsThreeCoincidentSamples) {
   const PointCloud cloud = test::sample(test::Sphere{}, o);
   const float h = test::suggested_h(cloud);
   std::vector<vec3> copies = cloud.positions;
-  std::vector<float> mass(cloud.size(), 1.0f);
+  std::vector<int> into(cloud.size()), samples(cloud.size());
+  std::iota(into.begin(), into.end(), 0);
+  std::iota(samples.begin(), samples.end(), 0);
   for (std::size_t i = 0; i < cloud.size(); i += 7) {
-    mass[i] = 3;
-    copies.push_back(cloud.positions[i]);
-    copies.push_back(cloud.positions[i]);
+    for (int copy = 0; copy < 2; ++copy) {
+      copies.push_back(cloud.positions[i]);
+      into.push_back(int(i));
+    }
   }
-  SupportGrid weighed(cloud.positions, std::vector<float>(cloud.size(), h), 2.0f);
-  weighed.set_masses(mass);
+  // The grid holds the cloud's points; each copy joins its original's sample.
+  SupportGrid weighed(copies, std::vector<float>(copies.size(), h), samples, 2.0f);
+  weighed.set_members(into);
   const SupportGrid repeated(copies, std::vector<float>(copies.size(), h), 2.0f);
   ASSERT_EQ(weighed.masses().size(), cloud.size());
+  EXPECT_EQ(*std::max_element(weighed.masses().begin(), weighed.masses().end()), 3.0f);
   auto normals_of = [](const SupportGrid& g) {
     std::vector<vec3> n;
     for (const vec3& p : g.sorted_points()) n.push_back(glm::normalize(p));
@@ -86,12 +93,32 @@ TEST(MergedSamples, TheMarkedPointsOfACubeMergeToTheirMeanAndCount) {
   const MergedSamples m = merge_samples(points, widths, merge);
   // 0 and 2 share the cube [0,1)³; 3 is not marked; 1, 4 and 5 are alone in theirs.
   EXPECT_EQ(m.samples, (std::vector<int>{0, 1, 3, 4, 5}));
-  EXPECT_EQ(m.mass, (std::vector<float>{2, 1, 0, 1, 1, 1}));
+  EXPECT_EQ(m.into, (std::vector<int>{0, 1, 0, 3, 4, 5}));
   EXPECT_NEAR(m.positions[0].x, 0.4f, 1e-6f);
   EXPECT_NEAR(m.positions[0].y, 0.2f, 1e-6f);
   EXPECT_NEAR(m.positions[0].z, 0.5f, 1e-6f);
   EXPECT_EQ(m.positions[3], points[3]);
   EXPECT_EQ(m.positions[4], points[4]);
+}
+
+// A merged sample's file normal is the mean of its points' normals, each turned first to the
+// side of the sample's own (a file whose normals face both ways: the seams' turn comes after).
+TEST(MergedSamples, AMergedSamplesFileNormalIsItsPointsMeanTurnedToItsSide) {
+  const std::vector<vec3> points = {{0, 0, 0}, {0.1f, 0, 0}, {0, 0.1f, 0}, {0.1f, 0.1f, 0}, {3, 0, 0}};
+  const std::vector<vec3> normals = {{0, 0, 1}, glm::normalize(vec3(0.4f, 0, 1)), {0, 0, -1},
+                                     glm::normalize(vec3(0, -0.6f, 1)), {0, 0, 1}};
+  const std::vector<int> samples = {0, 4}, into = {0, 0, 0, 0, 4};
+  SupportGrid grid(points, std::vector<float>(points.size(), 0.5f), samples, 2.0f);
+  grid.set_members(into);
+  Stats stats;
+  const FileNormals file = file_normals(grid, normals, ProjectionParams::from_h(0.5f), stats);
+  ASSERT_EQ(file.sorted.size(), 2u);
+  const vec3 expected = glm::normalize(normals[0] + normals[1] - normals[2] + normals[3]);
+  for (std::size_t k = 0; k < 2; ++k) {
+    const int i = grid.original_index()[k];
+    const vec3 want = i == 0 ? expected : normals[4];
+    EXPECT_NEAR(glm::dot(file.sorted[k], want), 1.0f, 1e-6f) << i;
+  }
 }
 
 // A torus with noise of 4 spacings: h = 3σ puts about 3,000 samples in each support. Merged,

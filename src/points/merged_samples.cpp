@@ -37,7 +37,7 @@ Cube cube_of(vec3 p, float h) {
 MergedSamples merge_samples(std::span<const vec3> points, std::span<const float> h, std::span<const char> merge) {
   MergedSamples out;
   out.positions.assign(points.begin(), points.end());
-  out.mass.assign(points.size(), 0.0f);
+  out.into.resize(points.size());
   struct Sum {
     int first;
     std::int64_t count = 0;
@@ -47,11 +47,12 @@ MergedSamples merge_samples(std::span<const vec3> points, std::span<const float>
   for (std::size_t i = 0; i < points.size(); ++i) {
     const vec3 p = points[i];
     if (!merge[i] || !std::isfinite(h[i])) {
-      out.mass[i] = 1;
+      out.into[i] = int(i);
       out.samples.push_back(int(i));
       continue;
     }
     Sum& s = cubes.try_emplace(cube_of(p, h[i]), Sum{int(i)}).first->second;
+    out.into[i] = s.first;
     ++s.count;
     s.x += p.x;
     s.y += p.y;
@@ -60,7 +61,6 @@ MergedSamples merge_samples(std::span<const vec3> points, std::span<const float>
   for (const auto& [cube, s] : cubes) {
     const auto i = std::size_t(s.first);
     out.positions[i] = vec3(float(s.x / double(s.count)), float(s.y / double(s.count)), float(s.z / double(s.count)));
-    out.mass[i] = float(s.count);
     out.samples.push_back(s.first);
   }
   std::sort(out.samples.begin(), out.samples.end());

@@ -66,7 +66,7 @@ SupportGrid grid_of_samples(std::span<const vec3> points, std::span<const float>
   // emplace does the same, but GCC 12 then warns of its vectors as maybe uninitialised).
   auto grid = merge.empty() ? std::make_unique<SupportGrid>(points, h, kappa)
                             : std::make_unique<SupportGrid>(points, h, merged.samples, kappa);
-  grid->set_masses(merged.mass);
+  grid->set_members(merged.into);
   if (policy == OutlierPolicy::keep) return std::move(*grid);
   // Twice: a stray next to another stray fits its plane through it, and stands out once the
   // other is gone. The second pass keeps the first's threshold.
@@ -82,7 +82,7 @@ SupportGrid grid_of_samples(std::span<const vec3> points, std::span<const float>
     report.set_aside += std::int64_t(keep.size() - kept);
     grid.reset();  // before the next is built: two grids at once were the phase's peak (issue 28)
     grid = std::make_unique<SupportGrid>(points, h, input_index, kappa);
-    grid->set_masses(merged.mass);
+    grid->set_members(merged.into);
   }
   return std::move(*grid);
 }

@@ -91,10 +91,20 @@ std::vector<Aabb> disc_boxes(const std::vector<LocalPolynomial>& locals) {
 std::vector<vec3> linear_colors(const SupportGrid& grid, const PointCloud& cloud) {
   if (!cloud.has_colors()) throw Error("the point cloud has no per-point colours");
   const std::span<const int> original = grid.original_index();
+  auto linear = [&](int i) {
+    const Rgb8 c = cloud.colors[std::size_t(i)];
+    return vec3(srgb8_to_linear(c.r), srgb8_to_linear(c.g), srgb8_to_linear(c.b));
+  };
   std::vector<vec3> colors(original.size());
   for (std::size_t i = 0; i < colors.size(); ++i) {
-    const Rgb8 c = cloud.colors[std::size_t(original[i])];
-    colors[i] = vec3(srgb8_to_linear(c.r), srgb8_to_linear(c.g), srgb8_to_linear(c.b));
+    const std::span<const int> members = grid.members(i);  // a merged sample's colour: its points' mean
+    if (members.empty()) {
+      colors[i] = linear(original[i]);
+      continue;
+    }
+    vec3 sum(0.0f);
+    for (const int j : members) sum += linear(j);
+    colors[i] = sum / float(members.size());
   }
   return colors;
 }

@@ -103,11 +103,28 @@ SupportGridView SupportGrid::view() const {
   return v;
 }
 
-void SupportGrid::set_masses(std::span<const float> mass_of_point) {
+void SupportGrid::set_members(std::span<const int> into) {
   mass_.clear();
-  if (mass_of_point.empty()) return;
-  mass_.resize(sorted_.size());
-  for (std::size_t k = 0; k < sorted_.size(); ++k) mass_[k] = mass_of_point[std::size_t(original_index_[k])];
+  member_start_.clear();
+  member_.clear();
+  if (into.empty()) return;
+  const std::size_t m = sorted_.size();
+  std::vector<int> sorted_of(into.size(), -1);  // each sample's place in sorted order
+  for (std::size_t k = 0; k < m; ++k) sorted_of[std::size_t(original_index_[k])] = int(k);
+  member_start_.assign(m + 1, 0);
+  for (const int rep : into) {
+    const int k = sorted_of[std::size_t(rep)];
+    if (k >= 0) ++member_start_[std::size_t(k) + 1];
+  }
+  for (std::size_t k = 0; k < m; ++k) member_start_[k + 1] += member_start_[k];
+  member_.resize(std::size_t(member_start_[m]));
+  std::vector<int> next(member_start_.begin(), member_start_.end() - 1);
+  for (std::size_t i = 0; i < into.size(); ++i) {
+    const int k = sorted_of[std::size_t(into[i])];
+    if (k >= 0) member_[std::size_t(next[std::size_t(k)]++)] = int(i);
+  }
+  mass_.resize(m);
+  for (std::size_t k = 0; k < m; ++k) mass_[k] = float(member_start_[k + 1] - member_start_[k]);
 }
 
 void SupportGrid::set_normals(std::vector<vec3> sorted_normals) {

@@ -96,10 +96,17 @@ class SupportGrid {
   // The samples' oriented unit normals in sorted order (points/sample_normals.hpp), or none.
   std::span<const vec3> normals() const { return normals_; }
   void set_normals(std::vector<vec3> sorted_normals);
-  // Each sample's mass (SupportGridView::mass), indexed as the points the grid was built of;
-  // empty: one each.
-  std::span<const float> masses() const { return mass_; }  // in sorted order
-  void set_masses(std::span<const float> mass_of_point);
+  // Where samples stand for several points (points/merged_samples.hpp): into[i], per point
+  // the grid was built of, is the point whose sample point i joined (i itself for a sample).
+  // Each sample's mass (SupportGridView::mass) is then how many points joined it, and
+  // members(k) are sorted sample k's, ascending: what its file normal and colour are the
+  // mean of. Points that joined a sample the grid does not hold (set aside) count nowhere.
+  void set_members(std::span<const int> into);
+  std::span<const float> masses() const { return mass_; }  // in sorted order; empty: one each
+  std::span<const int> members(std::size_t k) const {  // empty where no sample was merged
+    if (member_start_.empty()) return {};
+    return {member_.data() + member_start_[k], member_.data() + member_start_[k + 1]};
+  }
   std::span<const int> cell_starts() const { return cell_start_; }  // every level's, one after another
   // The levels as on the host; a level's cells begin at level_cell_offset()[l] in cell_starts().
   std::span<const SupportLevel> levels_on_host() const { return levels_; }
@@ -118,6 +125,7 @@ class SupportGrid {
   std::vector<float> inv_h2_;
   std::vector<vec3> normals_;
   std::vector<float> mass_;
+  std::vector<int> member_start_, member_;  // members(k): member_[member_start_[k] ..)
   std::vector<int> cell_start_;
   std::vector<int> level_offset_;
   std::vector<SupportLevel> levels_;
