@@ -165,12 +165,15 @@ TEST(MergedSamples, ANoisyTorusIsMergedAndProjectsAsCloseToTheTruth) {
     merged = p.widths.merged_count;
     double sum = 0;
     n = 0;
+    std::size_t inward = 0;  // merged, the tree grows over the samples' points; the rest follow
     for (std::size_t i = 0; i < p.cloud.size(); ++i)
       if (p.status[i] == ProjectionStatus::converged) {
         sum += std::abs(torus.distance(p.cloud.positions[i]));
+        inward += glm::dot(p.cloud.normals[i], torus.normal(p.cloud.positions[i])) < 0;
         ++n;
       }
     EXPECT_GT(n, surface * 9 / 10);
+    EXPECT_EQ(inward, 0u);
     return sum / double(n);
   };
   std::int64_t merged = 0, none = 0;
