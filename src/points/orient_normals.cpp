@@ -86,8 +86,11 @@ void face_as_voted(const SupportGrid& grid, std::vector<vec3>& sorted, const Ori
   std::vector<FacingVote> votes(parts.root.size());
   for (std::size_t k = 0; k < sorted.size(); ++k)
     votes[std::size_t(parts.of_point[k])].add(at[k], sorted[k], inv_h2[k], status(k));
+  std::vector<char> turns(votes.size());
+  for (std::size_t p = 0; p < votes.size(); ++p) turns[p] = votes[p].sign() < 0;
+  release(votes);
   for (std::size_t k = 0; k < sorted.size(); ++k)
-    if (votes[std::size_t(parts.of_point[k])].sign() < 0) sorted[k] = -sorted[k];
+    if (turns[std::size_t(parts.of_point[k])]) sorted[k] = -sorted[k];
 }
 
 std::vector<vec3> sorted_normals(const SupportGrid& grid, std::span<const vec3> normals) {
@@ -97,8 +100,11 @@ std::vector<vec3> sorted_normals(const SupportGrid& grid, std::span<const vec3> 
   return sorted;
 }
 
-void check_one_normal_per_point(std::size_t points, std::size_t normals, std::size_t status) {
+void check_one_normal_per_point(std::size_t points, std::size_t normals) {
   if (normals != points) throw Error("orient normals: one normal per point is needed");
+}
+
+void check_one_status_per_point(std::size_t points, std::size_t status) {
   if (status != points) throw Error("orient normals: one projection status per point is needed");
 }
 
@@ -106,7 +112,8 @@ void check_one_normal_per_point(std::size_t points, std::size_t normals, std::si
 
 void orient_normals_consistently(std::span<const vec3> points, std::span<vec3> normals, std::span<const float> radius,
                                  std::span<const ProjectionStatus> status) {
-  check_one_normal_per_point(points.size(), normals.size(), status.size());
+  check_one_normal_per_point(points.size(), normals.size());
+  check_one_status_per_point(points.size(), status.size());
   const SupportGrid grid(points, radius, 1.0f);
   std::vector<vec3> sorted = sorted_normals(grid, normals);
   const std::span<const int> original = grid.original_index();
@@ -118,7 +125,7 @@ void orient_normals_consistently(std::span<const vec3> points, std::span<vec3> n
 
 OrientedParts orient_normals_in_parts(std::span<const vec3> points, std::span<vec3> normals,
                                       std::span<const float> radius, std::span<const std::uint64_t> id) {
-  check_one_normal_per_point(points.size(), normals.size(), points.size());
+  check_one_normal_per_point(points.size(), normals.size());
   if (id.size() != points.size()) throw Error("orient normals: one index per point is needed");
   const SupportGrid grid(points, radius, 1.0f);
   std::vector<vec3> sorted = sorted_normals(grid, normals);
@@ -137,7 +144,8 @@ OrientedParts orient_normals_in_parts(std::span<const vec3> points, std::span<ve
 
 void orient_normals_consistently(std::vector<vec3>& points, std::vector<vec3>& normals, std::vector<float>&& radius,
                                  std::span<const ProjectionStatus> status) {
-  check_one_normal_per_point(points.size(), normals.size(), status.size());
+  check_one_normal_per_point(points.size(), normals.size());
+  check_one_status_per_point(points.size(), status.size());
   const SupportGrid grid(points, radius, 1.0f);
   // Each array freed as soon as it is copied: the grid's copy of the points and the sorted
   // normals are never held beside the lent ones.

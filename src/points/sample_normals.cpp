@@ -16,14 +16,14 @@ FileNormals file_normals(const SupportGrid& grid, std::span<const vec3> input_no
   FileNormals file;
   if (input_normals.empty() || params.normals != NormalSource::file) return file;
   const std::span<const int> original = grid.original_index();
-  const bool merged = !grid.masses().empty();
   file.sorted.resize(original.size());
   for (std::size_t i = 0; i < file.sorted.size(); ++i) {
     vec3 n = input_normals[std::size_t(original[i])];
-    if (merged) {  // the mean of the normals its points carry, each turned to the sample's own side
+    const std::span<const int> members = grid.members(i);
+    if (!members.empty()) {  // merged: the mean of its points' normals, each turned to the sample's own side
       const vec3 own = n;
       n = vec3(0.0f);
-      for (const int j : grid.members(i)) {
+      for (const int j : members) {
         const vec3 m = input_normals[std::size_t(j)];
         n += glm::dot(m, own) < 0 ? -m : m;
       }

@@ -78,8 +78,9 @@ std::vector<char> PieceSigns::turns() const {
     turn[p] = char(against[p] ^ against[top[r]]);
     facing[r].add(facing_[p], turn[p]);
   }
-  for (std::uint32_t p = 0; p < n; ++p)
-    if (facing[find(p)].sign() < 0) turn[p] ^= 1;
+  std::vector<char> inward(n);  // by each part's root
+  for (std::uint32_t r = 0; r < n; ++r) inward[r] = facing[r].sign() < 0;
+  for (std::uint32_t p = 0; p < n; ++p) turn[p] ^= inward[find(p)];
   return turn;
 }
 
