@@ -1,6 +1,6 @@
 // The merged samples from the command line (points/merged_samples.hpp, issue 26): pss info,
 // project, render and mesh say how many points were merged, in their summaries and --stats;
-// --support global merges none; tile by tile a cloud that merges is refused in one line.
+// --support global merges none; tile by tile a cloud merges as in core.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "pss/io/ply.hpp"
+#include "pss/io/point_cloud_file.hpp"
 #include "support/cli.hpp"
 #include "support/output_readers.hpp"
 #include "support/shapes.hpp"
@@ -85,15 +86,33 @@ TEST_F(MergedSamplesCli, AMergedSamplesColourIsItsPointsMean) {
   EXPECT_LT(apart[apart.size() * 9 / 10], 0.27);
 }
 
-TEST_F(MergedSamplesCli, TileByTileACloudThatMergesIsRefusedInOneLine) {
+// Tile by tile each tile merges the cubes of its samples whole, as in core (tiles/project.cpp):
+// the same points merged, and the same surface to the rounding of sums taken in another order.
+TEST_F(MergedSamplesCli, TileByTileACloudMergesAsInCore) {
   const test::ScratchFolder scratch(dir_ / "scratch");
-  const test::CliResult r = test::run_pss("project " + path("noisy.ply") + " -o " + path("o.ply") + " --memory 6M");
-  EXPECT_EQ(r.exit_code, 1);
-  EXPECT_EQ(test::line_count(r.err), 1) << r.err;
-  EXPECT_NE(r.err.find("tile by tile"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("merge"), std::string::npos) << r.err;
-  EXPECT_FALSE(std::filesystem::exists(path("o.ply")));
+  const test::CliResult core = test::run_pss("project " + path("noisy.ply") + " -o " + path("c.ply") + " --stats " +
+                                             path("c.json"));
+  ASSERT_EQ(core.exit_code, 0) << core.err;
+  const test::CliResult tiled = test::run_pss("project " + path("noisy.ply") + " -o " + path("t.ply") +
+                                              " --memory 7M --stats " + path("t.json"));
+  ASSERT_EQ(tiled.exit_code, 0) << tiled.err;
+  EXPECT_NE(tiled.out.find("tile by tile"), std::string::npos) << tiled.out;
+  EXPECT_NE(tiled.out.find("points merged into samples"), std::string::npos) << tiled.out;
+  EXPECT_GT(merged_in(path("t.json")), 40000);
+  EXPECT_EQ(merged_in(path("t.json")), merged_in(path("c.json")));
   EXPECT_TRUE(scratch.empty());
+  const PointCloud c = read_point_cloud(path("c.ply")), t = read_point_cloud(path("t.ply"));
+  ASSERT_EQ(c.size(), t.size());
+  std::ifstream in(path("c.json"));
+  const float h = nlohmann::json::parse(in).at("params").at("h").get<float>();
+  float farthest = 0;
+  std::size_t apart = 0;
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    farthest = std::max(farthest, glm::length(c.positions[i] - t.positions[i]));
+    apart += glm::dot(c.normals[i], t.normals[i]) < 0;
+  }
+  EXPECT_LT(farthest, 2e-3f * h);  // twice MLS's tolerance on t
+  EXPECT_EQ(apart, 0u);
 }
 
 }  // namespace

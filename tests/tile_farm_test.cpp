@@ -82,7 +82,11 @@ TEST(TileWork, ARequestCutShortOrOfNoStepIsAnError) {
   const std::vector<float> radius(unit.size(), 0.02f);
   const std::vector<std::uint64_t> id = {5, 6, 7, 8};
   const std::vector<std::byte> orientation = orientation_request(unit, normals, radius, id);
-  EXPECT_EQ(outliers_result(tile_work(TileStep::outliers, outliers)).size(), 2u);
+  EXPECT_EQ(outliers_result(tile_work(TileStep::outliers, outliers)).distance.size(), 2u);
+  // Merged samples: a cube's first point out of the set is refused, not followed.
+  const std::vector<int> into = {0, 0, 2, 9};
+  const UnitTile merged{unit, h, samples, 2, unit, into};
+  EXPECT_THROW(tile_work(TileStep::outliers, outliers_request(merged, 2)), Error);
   EXPECT_EQ(projection_result(tile_work(TileStep::projection, projection)).projected.size(), 2u);
   EXPECT_EQ(orientation_result(tile_work(TileStep::orientation, orientation), 4).parts.of_point.size(), 4u);
   EXPECT_THROW(orientation_result(tile_work(TileStep::orientation, orientation), 5), Error);

@@ -40,6 +40,7 @@ Compared compare(const CloudProjection& in_core, const std::string& file, const 
   const TiledCloud tiles(file, dir, per_tile, 1 << 16);
   const TiledProjection tiled(tiles, params, Backend::cpu, dir, window, 1 << 16, stats);
   EXPECT_EQ(tiled.outliers().set_aside, in_core.outliers.set_aside);
+  EXPECT_EQ(tiled.widths().merged_count, in_core.widths.merged_count);
   // A stray whose few neighbours lie nearly on a line may read degenerate on one side of the
   // rounding and not on the other (the sanitized build, compiled otherwise, differed by one
   // in 14,341): a few in 10,000.
@@ -124,6 +125,38 @@ TEST_F(TiledProjectTest, TheOutliersPassesSetAsideWhatTheyDoInCore) {
                              [](vec3 p) { return std::abs(glm::length(p) - 1) < 0.05f; });
   EXPECT_GT(c.tiles, 8u);
   EXPECT_EQ(c.facing_apart_on, 0u);
+}
+
+// A torus with noise of 3 spacings, whose supports would hold over 1,000 samples: merged
+// (points/merged_samples.hpp) in each tile as in core, every cube whole in the tile that
+// measures or uses its sample, summed in the points' order; strays 5σ out set aside by the
+// threshold that weighs the merged samples' masses, as in core.
+TEST_F(TiledProjectTest, ANoisyTorusMergesItsSamplesInTilesAsInCore) {
+  test::SampleOptions o;
+  o.count = 20000;
+  o.noise = 0.08f;
+  const test::Torus torus;
+  std::vector<vec3> points = test::sample(torus, o).positions;
+  for (int i = 0; i < 30; ++i) {
+    const float u = 0.21f * float(i), v = 0.37f * float(i);
+    const vec3 on(std::cos(u) * (torus.major + torus.minor * std::cos(v)),
+                  std::sin(u) * (torus.major + torus.minor * std::cos(v)), torus.minor * std::sin(v));
+    points.push_back(on + 5 * o.noise * torus.normal(on));
+  }
+  const std::string file = write("noisy.xyz", test::xyz_text(points));
+  ProjectionParams params = ProjectionParams::from_h(test::suggested_h(read_point_cloud(file)));
+  params.support = Support::adaptive;
+  Stats stats;
+  const CloudProjection in_core = project_cloud(read_point_cloud(file), params, Backend::cpu, stats);
+  ASSERT_GT(in_core.widths.merged_count, std::int64_t(points.size() / 2));
+  EXPECT_GT(in_core.outliers.set_aside, 10);  // the strays outward (those inward cross the tube)
+  const Compared c = compare(in_core, file, dir_, params, 2500, 7001);
+  EXPECT_GT(c.tiles, 8u);
+  // Points within 3σ of the tube stop at the iteration cap, a fifth of them: rounding moves
+  // some across MLS's stopping test (a twentieth), all within the tolerance on t.
+  EXPECT_LT(c.farthest, 2 * params.t_tolerance) << "a point's projections in core and in tiles lie apart";
+  EXPECT_LT(c.status_differ, points.size() / 10);
+  EXPECT_EQ(c.facing_apart, 0u) << "of " << points.size() << " normals face otherwise than in core";
 }
 
 // Pieces 0-1-2 one part, 3-4 another: the strongest votes join them, a weaker vote against

@@ -35,6 +35,8 @@ void put_tile(ByteWriter& out, const UnitTile& tile, float kappa) {
   out.put_array(tile.unit);
   out.put_array(tile.h);
   out.put_array(tile.samples);
+  out.put_array(tile.sample_at);
+  out.put_array(tile.into);
 }
 
 struct TileArrays {
@@ -43,14 +45,27 @@ struct TileArrays {
   std::vector<vec3> unit;
   std::vector<float> h;
   std::vector<int> samples;
+  std::vector<vec3> sample_at;
+  std::vector<int> into;
 };
 
 TileArrays get_tile(ByteReader& in) {
-  TileArrays t{in.get<float>(), std::size_t(in.get<std::uint64_t>()), in.get_array<vec3>(), in.get_array<float>(),
-               in.get_array<int>()};
-  // SupportGrid refuses a sample outside the set.
-  if (t.h.size() != t.unit.size() || t.own > t.unit.size()) throw Error("a tile's work does not hold together");
+  TileArrays t{in.get<float>(),        std::size_t(in.get<std::uint64_t>()), in.get_array<vec3>(), in.get_array<float>(),
+               in.get_array<int>(),    in.get_array<vec3>(),                 in.get_array<int>()};
+  // SupportGrid refuses a sample outside the set; set_members trusts its cubes' first points.
+  const std::size_t m = t.unit.size();
+  bool whole = t.h.size() == m && t.own <= m && t.sample_at.size() == t.into.size() &&
+               (t.into.empty() || t.into.size() == m);
+  for (const int i : t.into) whole = whole && i >= 0 && std::size_t(i) < m;
+  if (!whole) throw Error("a tile's work does not hold together");
   return t;
+}
+
+// The grid of the tile's samples, merged ones at their cubes' means with their masses.
+SupportGrid grid_of_tile(const TileArrays& t) {
+  SupportGrid grid(t.sample_at.empty() ? t.unit : t.sample_at, t.h, t.samples, t.kappa);
+  grid.set_members(t.into);
+  return grid;
 }
 
 }  // namespace
@@ -66,7 +81,7 @@ std::vector<std::byte> outliers_request(const UnitTile& tile, float kappa) {
 std::vector<std::byte> work_outliers(std::span<const std::byte> request) {
   ByteReader in(request);
   const TileArrays t = get_tile(in);
-  const SupportGrid grid(t.unit, t.h, t.samples, t.kappa);
+  const SupportGrid grid = grid_of_tile(t);
   const std::span<const int> original = grid.original_index();
   std::vector<int> own;  // the tile's own samples, by sorted index
   for (std::size_t k = 0; k < original.size(); ++k)
@@ -74,16 +89,23 @@ std::vector<std::byte> work_outliers(std::span<const std::byte> request) {
   std::vector<float> out(original.size());
   const OutlierDistanceKernel kernel{grid.view(), out.data()};
   cpu::parallel_for(std::int64_t(own.size()), [&](std::int64_t m) { kernel(own[std::size_t(m)]); });
-  std::vector<float> distance(t.own, std::numeric_limits<float>::quiet_NaN());
-  for (const int k : own) distance[std::size_t(original[std::size_t(k)])] = out[std::size_t(k)];
+  std::vector<float> distance(t.own, std::numeric_limits<float>::quiet_NaN()), mass(distance);
+  const SupportGridView view = grid.view();
+  for (const int k : own) {
+    distance[std::size_t(original[std::size_t(k)])] = out[std::size_t(k)];
+    mass[std::size_t(original[std::size_t(k)])] = view.mass_of(k);
+  }
   ByteWriter result;
   result.put_array<float>(distance);
+  result.put_array<float>(mass);
   return result.take();
 }
 
-std::vector<float> outliers_result(std::span<const std::byte> result) {
+TileOutliers outliers_result(std::span<const std::byte> result) {
   ByteReader in(result);
-  return in.get_array<float>();
+  TileOutliers o{in.get_array<float>(), in.get_array<float>()};
+  if (o.mass.size() != o.distance.size()) throw Error("a tile's outliers do not hold together");
+  return o;
 }
 
 std::vector<std::byte> projection_request(const UnitTile& tile, float kappa, const ProjectionParams& unit_params,
@@ -101,7 +123,7 @@ std::vector<std::byte> work_projection(std::span<const std::byte> request) {
   const TileArrays t = get_tile(in);
   const auto params = in.get<ProjectionParams>();
   const auto backend = in.get<Backend>();
-  const SupportGrid grid(t.unit, t.h, t.samples, t.kappa);
+  const SupportGrid grid = grid_of_tile(t);
   const GridMirror g(backend, grid);
   // The own points in the grid's order, then those set aside: neighbouring threads gather
   // neighbouring samples, as in core (a file's random order costs a fifth).
@@ -152,12 +174,14 @@ TileProjections projection_result(std::span<const std::byte> result) {
 }
 
 std::vector<std::byte> orientation_request(std::span<const vec3> points, std::span<const vec3> normals,
-                                           std::span<const float> radius, std::span<const std::uint64_t> id) {
+                                           std::span<const float> radius, std::span<const std::uint64_t> id,
+                                           std::span<const int> sample) {
   ByteWriter out;
   out.put_array(points);
   out.put_array(normals);
   out.put_array(radius);
   out.put_array(id);
+  out.put_array(sample);
   return out.take();
 }
 
@@ -167,9 +191,42 @@ std::vector<std::byte> work_orientation(std::span<const std::byte> request) {
   auto normals = in.get_array<vec3>();
   const auto radius = in.get_array<float>();
   const auto id = in.get_array<std::uint64_t>();
-  if (normals.size() != points.size() || radius.size() != points.size() || id.size() != points.size())
-    throw Error("a tile's work does not hold together");
-  const OrientedParts parts = orient_normals_in_parts(points, normals, radius, id);
+  const auto sample = in.get_array<int>();
+  const std::size_t m = points.size();
+  bool whole = normals.size() == m && radius.size() == m && id.size() == m && (sample.empty() || sample.size() == m);
+  for (const int j : sample) whole = whole && (j < 0 || (std::size_t(j) < m && sample[std::size_t(j)] < 0));
+  if (!whole) throw Error("a tile's work does not hold together");
+  OrientedParts parts;
+  if (sample.empty()) {
+    parts = orient_normals_in_parts(points, normals, radius, id);
+  } else {  // the tree over the points that stand for themselves; the rest follow their samples'
+    std::vector<int> nodes;
+    for (std::size_t i = 0; i < m; ++i)
+      if (sample[i] < 0) nodes.push_back(int(i));
+    std::vector<vec3> at(nodes.size()), facing(nodes.size());
+    std::vector<float> rho(nodes.size());
+    std::vector<std::uint64_t> node_id(nodes.size());
+    for (std::size_t k = 0; k < nodes.size(); ++k) {
+      const auto i = std::size_t(nodes[k]);
+      at[k] = points[i];
+      facing[k] = normals[i];
+      rho[k] = radius[i];
+      node_id[k] = id[i];
+    }
+    const OrientedParts node_parts = orient_normals_in_parts(at, facing, rho, node_id);
+    std::vector<int> node_of(m, -1);
+    for (std::size_t k = 0; k < nodes.size(); ++k) {
+      normals[std::size_t(nodes[k])] = facing[k];
+      node_of[std::size_t(nodes[k])] = int(k);
+    }
+    parts.of_point.resize(m);
+    for (std::size_t i = 0; i < m; ++i) {
+      const int k = node_of[std::size_t(sample[i] < 0 ? int(i) : sample[i])];
+      parts.of_point[i] = node_parts.of_point[std::size_t(k)];
+      if (sample[i] >= 0 && glm::dot(normals[i], normals[std::size_t(sample[i])]) < 0) normals[i] = -normals[i];
+    }
+    for (const int root : node_parts.root) parts.root.push_back(nodes[std::size_t(root)]);
+  }
   ByteWriter result;
   result.put_array<vec3>(normals);
   result.put_array<int>(parts.of_point);

@@ -26,15 +26,23 @@ struct UnitTile {
   std::span<const float> h;      // each point's width
   std::span<const int> samples;  // the points kept as samples
   std::size_t own = 0;
+  // Where samples were merged (points/merged_samples.hpp), both as long as `unit`, else
+  // empty: the positions the grid is built of (each cube's first point at its cube's mean),
+  // and each point's cube's first point (SupportGrid::set_members: the samples' masses).
+  std::span<const vec3> sample_at;
+  std::span<const int> into;
 };
 
 // The outliers' distance (points/outliers.hpp) of each own sample of the tile.
 std::vector<std::byte> outliers_request(const UnitTile& tile, float kappa);
 std::vector<std::byte> work_outliers(std::span<const std::byte> request);
-// Each own point's distance, NaN where it is no sample.
-std::vector<float> outliers_result(std::span<const std::byte> result);
+struct TileOutliers {
+  std::vector<float> distance;  // each own point's, NaN where it is no sample
+  std::vector<float> mass;      // each own sample's (SupportGridView::mass_of), NaN where no sample
+};
+TileOutliers outliers_result(std::span<const std::byte> result);
 
-// The projection of each own point of the tile onto the MLS surface of its samples.
+// The projection of each own point (at `unit`) of the tile onto the MLS surface of its samples.
 std::vector<std::byte> projection_request(const UnitTile& tile, float kappa, const ProjectionParams& unit_params,
                                           Backend backend);
 std::vector<std::byte> work_projection(std::span<const std::byte> request);
@@ -45,9 +53,13 @@ struct TileProjections {
 TileProjections projection_result(std::span<const std::byte> result);
 
 // The orientation of a tile's projected points and its halo's (points/orient_normals.hpp:
-// orient_normals_in_parts), in the unit frame.
+// orient_normals_in_parts), in the unit frame. Where samples were merged, `sample` holds, for
+// each point, the place in the set of the point its merged sample stands at, or −1 where it
+// stands for itself: the tree grows over those, and each other point takes its sample's side
+// and part, as in core (project_cloud.cpp); empty: every point stands for itself.
 std::vector<std::byte> orientation_request(std::span<const vec3> points, std::span<const vec3> normals,
-                                           std::span<const float> radius, std::span<const std::uint64_t> id);
+                                           std::span<const float> radius, std::span<const std::uint64_t> id,
+                                           std::span<const int> sample = {});
 std::vector<std::byte> work_orientation(std::span<const std::byte> request);
 struct TileOrientation {
   std::vector<vec3> normals;  // oriented
