@@ -127,14 +127,14 @@ TEST_F(TiledProjectTest, TheOutliersPassesSetAsideWhatTheyDoInCore) {
   EXPECT_EQ(c.facing_apart_on, 0u);
 }
 
-// A torus with noise of 3 spacings, whose supports would hold over 1,000 samples: merged
+// A torus with noise of 2 spacings, whose supports would hold over 400 samples: merged
 // (points/merged_samples.hpp) in each tile as in core, every cube whole in the tile that
 // measures or uses its sample, summed in the points' order; strays 5σ out set aside by the
 // threshold that weighs the merged samples' masses, as in core.
 TEST_F(TiledProjectTest, ANoisyTorusMergesItsSamplesInTilesAsInCore) {
   test::SampleOptions o;
   o.count = 20000;
-  o.noise = 0.08f;
+  o.noise = 0.05f;
   const test::Torus torus;
   std::vector<vec3> points = test::sample(torus, o).positions;
   for (int i = 0; i < 30; ++i) {
@@ -149,11 +149,10 @@ TEST_F(TiledProjectTest, ANoisyTorusMergesItsSamplesInTilesAsInCore) {
   Stats stats;
   const CloudProjection in_core = project_cloud(read_point_cloud(file), params, Backend::cpu, stats);
   ASSERT_GT(in_core.widths.merged_count, std::int64_t(points.size() / 2));
-  EXPECT_GT(in_core.outliers.set_aside, 10);  // the strays outward (those inward cross the tube)
+  EXPECT_GE(in_core.outliers.set_aside, 30);
   const Compared c = compare(in_core, file, dir_, params, 2500, 7001);
   EXPECT_GT(c.tiles, 8u);
-  // Points within 3σ of the tube stop at the iteration cap, a fifth of them: rounding moves
-  // some across MLS's stopping test (a twentieth), all within the tolerance on t.
+  // Rounding moves some points across MLS's stopping test, all within the tolerance on t.
   EXPECT_LT(c.farthest, 2 * params.t_tolerance) << "a point's projections in core and in tiles lie apart";
   EXPECT_LT(c.status_differ, points.size() / 10);
   EXPECT_EQ(c.facing_apart, 0u) << "of " << points.size() << " normals face otherwise than in core";

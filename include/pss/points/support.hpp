@@ -62,10 +62,9 @@ inline const char* support_name(Support s) { return s == Support::global ? "glob
 // The most samples a support needs: where one would hold more (the widths noise widens,
 // h_i = kNoiseWidths·σ_i, take in thousands where σ is a few spacings), its samples are merged
 // (points/merged_samples.hpp). Evenly sampled clouds at the spacing's h hold about 60 (ρ = 2h,
-// h = s): never merged; the noisy tori of issue 28's benchmarks (10^6 points at 0.005 R, 10^7
-// at 0.003 R) some 400–700, where the fits cost little more: kept whole, and tile by tile
-// (at 400, 1,275 of the 10^6 torus's points merged and it could no longer be tiled).
-inline constexpr double kSupportSamplesMost = 1000;
+// h = s): never merged. A 200,000-point torus with noise 0.02 R holds some 600: merged, its
+// projections 9× faster and its frames 18×, as close to the true torus (docs/paper-notes.md).
+inline constexpr double kSupportSamplesMost = 400;
 
 // Whether a sample's support would hold over kSupportSamplesMost samples where it lies in
 // noise (σ_i > 0; clean clouds keep every sample, however their sampling runs), from its
