@@ -40,9 +40,9 @@ struct ProjectOptions {
 
 // Bytes a point (tiles/memory_plan.hpp): in core, measured at 148 on a 10^7-point torus
 // (docs/benchmarks.md); beside the tiles, each point's width, whether it is a sample and
-// whether it merges, and its distance and mass in the outliers' passes, paired for their
-// weighted median; a tile's point, its record, unit position, width, merged sample, grid and
-// projection, and in the orientation its record, tree and parts.
+// whether it merges, and in the outliers' passes its distance, neighbours' mass and mass (a
+// copy of one for a median without masses); a tile's point, its record, unit position,
+// width, merged sample, grid and projection, and in the orientation its record, tree and parts.
 constexpr MemoryCosts kProjectCosts{160, 24, 256};
 
 // What pss project says of a run, in core or tile by tile.

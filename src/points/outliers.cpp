@@ -1,6 +1,9 @@
 #include "pss/points/outliers.hpp"
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <limits>
 #include <cmath>
 #include <memory>
 
@@ -13,44 +16,72 @@ namespace pss {
 
 namespace {
 
-std::vector<float> distances_to_neighbours_planes(const SupportGrid& grid, Backend backend, Stats& stats) {
+struct Measured {
+  std::vector<float> distance, held;
+};
+
+Measured distances_to_neighbours_planes(const SupportGrid& grid, Backend backend, Stats& stats) {
   const std::size_t n = grid.sorted_points().size();
   const GridMirror g(backend, grid);
-  Mirror<float> out(backend, n);
+  Mirror<float> out(backend, n), held(backend, n);
   Progress progress("outliers", std::int64_t(n));
-  parallel_for(backend, "outliers", std::int64_t(n), OutlierDistanceKernel{g.view(), out.data()}, stats, &progress);
-  return out.take();
+  parallel_for(backend, "outliers", std::int64_t(n), OutlierDistanceKernel{g.view(), out.data(), held.data()}, stats,
+               &progress);
+  return {out.take(), held.take()};
+}
+
+// The median of the finite values (none negative), each weighing its mass (1 each without
+// masses). With masses, without a copy (issue 28: the tiles hold these for every point): the
+// least v with the masses of the values up to v at least half the total, found by bisecting
+// the floats' bit patterns, which order non-negative floats as their values (31 passes).
+float weighted_median(std::span<const float> value, std::span<const float> mass) {
+  if (mass.empty()) {
+    std::vector<float> finite;
+    for (const float v : value)
+      if (std::isfinite(v)) finite.push_back(v);
+    if (finite.empty()) return 0;
+    std::nth_element(finite.begin(), finite.begin() + std::ptrdiff_t(finite.size() / 2), finite.end());
+    return finite[finite.size() / 2];
+  }
+  double total = 0;
+  for (std::size_t i = 0; i < value.size(); ++i)
+    if (std::isfinite(value[i])) total += mass[i];
+  if (!(total > 0)) return 0;
+  std::uint32_t lo = 0, hi = std::bit_cast<std::uint32_t>(std::numeric_limits<float>::max());
+  while (lo < hi) {
+    const std::uint32_t mid = lo + (hi - lo) / 2;
+    const float v = std::bit_cast<float>(mid);
+    double below = 0;
+    for (std::size_t i = 0; i < value.size(); ++i)
+      if (std::isfinite(value[i]) && value[i] <= v) below += mass[i];
+    if (below >= total / 2)
+      hi = mid;
+    else
+      lo = mid + 1;
+  }
+  return std::bit_cast<float>(lo);
 }
 
 }  // namespace
 
 // The noise's scale, robustly: 1.4826 times the median distance is σ for Gaussian noise.
-float outlier_threshold(std::vector<float> distance, std::span<const float> mass) {
-  if (mass.empty()) {
-    std::erase_if(distance, [](float d) { return !std::isfinite(d); });
-    if (distance.empty()) return kOutlierFloor;
-    std::nth_element(distance.begin(), distance.begin() + distance.size() / 2, distance.end());
-    return std::max(kOutlierFloor, kOutlierSigmas * 1.4826f * distance[distance.size() / 2]);
-  }
-  std::vector<std::pair<float, float>> weighed;  // (distance, mass)
-  double total = 0;
-  for (std::size_t i = 0; i < distance.size(); ++i)
-    if (std::isfinite(distance[i])) {
-      weighed.emplace_back(distance[i], mass[i]);
-      total += mass[i];
-    }
-  std::sort(weighed.begin(), weighed.end());
-  double below = 0;
-  for (const auto& [d, m] : weighed)
-    if ((below += m) >= total / 2) return std::max(kOutlierFloor, kOutlierSigmas * 1.4826f * d);
-  return kOutlierFloor;
+float outlier_threshold(std::span<const float> distance, std::span<const float> mass) {
+  return std::max(kOutlierFloor, kOutlierSigmas * 1.4826f * weighted_median(distance, mass));
+}
+
+float least_held(std::span<const float> held, std::span<const float> mass) {
+  return kOutlierHeldShare * weighted_median(held, mass);
 }
 
 std::vector<char> samples_on_the_surface(const SupportGrid& grid, Backend backend, Stats& stats, OutlierReport& report) {
-  const std::vector<float> distance = distances_to_neighbours_planes(grid, backend, stats);
-  if (!(report.threshold > 0)) report.threshold = outlier_threshold(distance, grid.masses());
-  std::vector<char> keep(distance.size());
-  for (std::size_t i = 0; i < keep.size(); ++i) keep[i] = distance[i] <= report.threshold;
+  const Measured m = distances_to_neighbours_planes(grid, backend, stats);
+  if (!(report.threshold > 0)) {
+    report.threshold = outlier_threshold(m.distance, grid.masses());
+    report.least_held = least_held(m.held, grid.masses());
+  }
+  std::vector<char> keep(m.distance.size());
+  for (std::size_t i = 0; i < keep.size(); ++i)
+    keep[i] = m.distance[i] <= report.threshold && m.held[i] >= report.least_held;
   return keep;
 }
 

@@ -155,6 +155,7 @@ std::vector<char> samples_kept(const TiledCloud& cloud, const UnitFrame& frame, 
   for (int pass = 0; pass < kOutlierPasses; ++pass) {
     std::vector<float> distance(std::size_t(n), std::numeric_limits<float>::quiet_NaN());
     std::vector<float> mass(merge.empty() ? 0 : std::size_t(n), 0.0f);
+    std::vector<float> held(std::size_t(n), std::numeric_limits<float>::quiet_NaN());
     Progress progress("outliers", std::int64_t(n));
     farm.run(
         TileStep::outliers, tiles,
@@ -169,14 +170,18 @@ std::vector<char> samples_kept(const TiledCloud& cloud, const UnitFrame& frame, 
           for (std::size_t i = 0; i < index.size(); ++i) {
             if (std::isnan(d.distance[i])) continue;
             distance[std::size_t(index[i])] = d.distance[i];
+            held[std::size_t(index[i])] = d.held[i];
             if (!mass.empty()) mass[std::size_t(index[i])] = d.mass[i];
           }
           progress.advance(std::int64_t(index.size()));
         });
-    if (pass == 0) report.threshold = outlier_threshold(distance, mass);  // the second keeps it, as in core
+    if (pass == 0) {  // the second keeps them, as in core
+      report.threshold = outlier_threshold(distance, mass);
+      report.least_held = least_held(held, mass);
+    }
     std::int64_t set_aside = 0;  // samples, a merged one once, as in core
     for (std::size_t i = 0; i < std::size_t(n); ++i)
-      if (kept[i] && !std::isnan(distance[i]) && !(distance[i] <= report.threshold)) {
+      if (kept[i] && !std::isnan(distance[i]) && !(distance[i] <= report.threshold && held[i] >= report.least_held)) {
         kept[i] = 0;
         ++set_aside;
       }

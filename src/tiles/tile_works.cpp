@@ -86,25 +86,29 @@ std::vector<std::byte> work_outliers(std::span<const std::byte> request) {
   std::vector<int> own;  // the tile's own samples, by sorted index
   for (std::size_t k = 0; k < original.size(); ++k)
     if (std::size_t(original[k]) < t.own) own.push_back(int(k));
-  std::vector<float> out(original.size());
-  const OutlierDistanceKernel kernel{grid.view(), out.data()};
+  std::vector<float> out(original.size()), held_out(original.size());
+  const OutlierDistanceKernel kernel{grid.view(), out.data(), held_out.data()};
   cpu::parallel_for(std::int64_t(own.size()), [&](std::int64_t m) { kernel(own[std::size_t(m)]); });
-  std::vector<float> distance(t.own, std::numeric_limits<float>::quiet_NaN()), mass(distance);
+  std::vector<float> distance(t.own, std::numeric_limits<float>::quiet_NaN()), mass(distance), held(distance);
   const SupportGridView view = grid.view();
   for (const int k : own) {
-    distance[std::size_t(original[std::size_t(k)])] = out[std::size_t(k)];
-    mass[std::size_t(original[std::size_t(k)])] = view.mass_of(k);
+    const auto i = std::size_t(original[std::size_t(k)]);
+    distance[i] = out[std::size_t(k)];
+    mass[i] = view.mass_of(k);
+    held[i] = held_out[std::size_t(k)];
   }
   ByteWriter result;
   result.put_array<float>(distance);
   result.put_array<float>(mass);
+  result.put_array<float>(held);
   return result.take();
 }
 
 TileOutliers outliers_result(std::span<const std::byte> result) {
   ByteReader in(result);
-  TileOutliers o{in.get_array<float>(), in.get_array<float>()};
-  if (o.mass.size() != o.distance.size()) throw Error("a tile's outliers do not hold together");
+  TileOutliers o{in.get_array<float>(), in.get_array<float>(), in.get_array<float>()};
+  if (o.mass.size() != o.distance.size() || o.held.size() != o.distance.size())
+    throw Error("a tile's outliers do not hold together");
   return o;
 }
 

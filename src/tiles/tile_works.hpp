@@ -39,6 +39,7 @@ std::vector<std::byte> work_outliers(std::span<const std::byte> request);
 struct TileOutliers {
   std::vector<float> distance;  // each own point's, NaN where it is no sample
   std::vector<float> mass;      // each own sample's (SupportGridView::mass_of), NaN where no sample
+  std::vector<float> held;      // each own sample's neighbours' masses (OutlierDistanceKernel), likewise
 };
 TileOutliers outliers_result(std::span<const std::byte> result);
 

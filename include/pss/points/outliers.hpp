@@ -30,19 +30,33 @@ inline constexpr float kOutlierFloor = 0.5f;
 inline constexpr float kOutlierSigmas = 4.0f;
 inline constexpr int kOutlierPasses = 2;  // grid_of_samples
 
+// Where the noise widens the supports, a support on the surface holds hundreds of samples,
+// and strays strewn about it, each other's neighbours, a few: more than 3, and a plane through
+// so few passes near them, so both tests above let them be (a noisy torus with 1 % of its
+// points strewn through its box: 550 strays kept, floating flakes). A sample whose neighbours
+// weigh less than this share of the median sample's is set aside too: on an even, clean cloud
+// (supports of about 60) the share is under 3 and changes nothing (docs/paper-notes.md).
+inline constexpr float kOutlierHeldShare = 1.0f / 32;
+
 // The distance of sorted sample i to its neighbours' plane, over its h_i; infinity with
 // fewer than 3 neighbours: alone, or in a cluster too small to be a surface, it still enters
-// the fits of points between it and others (a floating flake, a bump).
+// the fits of points between it and others (a floating flake, a bump). held[i]: the masses
+// of its neighbours added up (SupportGridView::mass_of).
 struct OutlierDistanceKernel {
   SupportGridView grid;
   float* out;
+  float* held;
   PSS_HOST_DEVICE void operator()(std::int64_t k) const {
     const int i = int(k);
     const vec3 p = grid.points[i];
     WeightedMoments m(p);
+    float mass = 0;
     grid.for_each_covering(p, [&](vec3 q, float d2, int j) {
-      if (j != i) m.add(q, grid.mass_of(j) * gaussian_weight(d2, grid.inv_h2[j]));
+      if (j == i) return;
+      m.add(q, grid.mass_of(j) * gaussian_weight(d2, grid.inv_h2[j]));
+      mass += grid.mass_of(j);
     });
+    held[i] = mass;
     if (m.count < 3 || !(m.weight_sum > 0)) {
       out[i] = kInfinity;
       return;
@@ -54,17 +68,23 @@ struct OutlierDistanceKernel {
 
 struct OutlierReport {
   std::int64_t set_aside = 0;
-  float threshold = 0;  // in units of h_i
+  float threshold = 0;   // in units of h_i
+  float least_held = 0;  // the neighbours' mass a sample needs (kOutlierHeldShare)
 };
 
 // The largest distance a sample on the surface lies at: kOutlierSigmas robust standard
 // deviations of the finite distances, and at least kOutlierFloor. With `mass` (one per
 // distance: merged samples, points/merged_samples.hpp), the median weighs each by its mass,
 // so that the few points of a cube at the noise's edge count as few.
-float outlier_threshold(std::vector<float> distance, std::span<const float> mass = {});
+float outlier_threshold(std::span<const float> distance, std::span<const float> mass = {});
+
+// kOutlierHeldShare of the median of the finite `held` (weighed by `mass` where given, as
+// above): the neighbours' mass below which a sample is set aside.
+float least_held(std::span<const float> held, std::span<const float> mass = {});
 
 // keep[i] for each sorted sample of `grid` (phase "outliers" on `backend`), with
-// report.threshold when it is set, else with the threshold of these distances (set then).
+// report.threshold and report.least_held when they are set, else with those of these
+// distances and neighbours' masses (set then).
 std::vector<char> samples_on_the_surface(const SupportGrid& grid, Backend backend, Stats& stats, OutlierReport& report);
 
 // The range-query grid of `points` with widths h[i] (kappa = ρ/h), the points `merge` marks
