@@ -29,13 +29,15 @@ inline constexpr float kSupportWidening = 0.75f;
 // median; no much denser sample among its k nearest neighbours (each one's own distance to
 // its k-th at least kSparseEvenness·s_i); its kVolumeNeighbour nearest neighbours flat (the
 // smallest eigenvalue of their covariance at most kVolumeVariation of the sum: Pauly et al.'s
-// surface variation, 0 on a plane, about 0.25 for points strewn in space); and
+// surface variation, 0 on a plane, about 0.25 for points strewn in space; 16 neighbours, about
+// those its spacing is measured over: 32 wrap round a sparse thin part, a bunny's ear at 1/8
+// of the density, and read it as a volume); and
 // kSparseNeighbours of its k nearest neighbours alike. Outliers strewn around a surface are
 // sparse and each other's neighbours: widened, they made sheets (1 % of points strewn around
 // the bunny: 41–88 % of its pixels extra; with these rules 0.3–0.4 %, as with one h;
 // docs/paper-notes.md).
 inline constexpr float kSparseEvenness = 0.25f;
-inline constexpr int kVolumeNeighbour = 32;
+inline constexpr int kVolumeNeighbour = 16;
 inline constexpr float kVolumeVariation = 0.1f;
 inline constexpr int kSparseNeighbours = 4;
 
