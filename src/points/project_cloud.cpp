@@ -12,6 +12,7 @@
 #include "pss/backend/mirror.hpp"
 #include "pss/backend/parallel_for.hpp"
 #include "pss/core/error.hpp"
+#include "pss/core/gather.hpp"
 #include "pss/core/memory.hpp"
 #include "pss/points/orient_normals.hpp"
 #include "pss/points/outliers.hpp"
@@ -90,16 +91,10 @@ void orient_through_samples(std::vector<vec3>& positions, std::vector<vec3>& nor
   std::vector<int> nodes;
   for (std::size_t i = 0; i < sample_of.size(); ++i)
     if (sample_of[i] < 0 || std::size_t(sample_of[i]) == i) nodes.push_back(int(i));
-  std::vector<vec3> at(nodes.size()), facing(nodes.size());
-  std::vector<float> rho(nodes.size());
-  std::vector<ProjectionStatus> state(nodes.size());
-  for (std::size_t k = 0; k < nodes.size(); ++k) {
-    const auto i = std::size_t(nodes[k]);
-    at[k] = positions[i];
-    facing[k] = normals[i];
-    rho[k] = support[i];
-    state[k] = status[i];
-  }
+  std::vector<vec3> at = gathered<vec3>(positions, nodes);
+  std::vector<vec3> facing = gathered<vec3>(normals, nodes);
+  std::vector<float> rho = gathered<float>(support, nodes);
+  const std::vector<ProjectionStatus> state = gathered(status, nodes);
   release(support);
   orient_normals_consistently(at, facing, std::move(rho), state);
   for (std::size_t k = 0; k < nodes.size(); ++k) normals[std::size_t(nodes[k])] = facing[k];

@@ -6,6 +6,7 @@
 #include "pss/backend/cpu/parallel_for.hpp"
 #include "pss/backend/mirror.hpp"
 #include "pss/backend/parallel_for.hpp"
+#include "pss/core/gather.hpp"
 #include "pss/core/stats.hpp"
 #include "pss/points/outliers.hpp"
 #include "pss/points/noise.hpp"
@@ -207,16 +208,10 @@ std::vector<std::byte> work_orientation(std::span<const std::byte> request) {
     std::vector<int> nodes;
     for (std::size_t i = 0; i < m; ++i)
       if (sample[i] < 0) nodes.push_back(int(i));
-    std::vector<vec3> at(nodes.size()), facing(nodes.size());
-    std::vector<float> rho(nodes.size());
-    std::vector<std::uint64_t> node_id(nodes.size());
-    for (std::size_t k = 0; k < nodes.size(); ++k) {
-      const auto i = std::size_t(nodes[k]);
-      at[k] = points[i];
-      facing[k] = normals[i];
-      rho[k] = radius[i];
-      node_id[k] = id[i];
-    }
+    const std::vector<vec3> at = gathered<vec3>(points, nodes);
+    std::vector<vec3> facing = gathered<vec3>(normals, nodes);
+    const std::vector<float> rho = gathered<float>(radius, nodes);
+    const std::vector<std::uint64_t> node_id = gathered<std::uint64_t>(id, nodes);
     const OrientedParts node_parts = orient_normals_in_parts(at, facing, rho, node_id);
     std::vector<int> node_of(m, -1);
     for (std::size_t k = 0; k < nodes.size(); ++k) {
