@@ -10,6 +10,7 @@
 #include "pss/points/noise.hpp"
 #include "pss/points/unit_frame.hpp"
 #include "pss/spatial/uniform_grid.hpp"
+#include "halo_guess.hpp"
 
 namespace pss {
 
@@ -26,12 +27,14 @@ SpacingEstimate estimate_spacing(const TiledCloud& cloud, int k, std::size_t max
   std::vector<QuerySpacing> results(queries);
   const std::size_t noise_stride = noise_query_stride(queries);
   Progress progress("spacing", std::int64_t(n));
+  HaloGuess guess;
   for (const int t : cloud.tiles_with_points()) {
     const Aabb box = cloud.tile_box(t);
+    const float width = box.hi.x - box.lo.x;
     // A query's k nearest lie within its k-th distance of it, and the points its noise is
     // fitted to within its reach, so within that of the tile's box: a halo that wide holds
     // them all.
-    for (float halo = 0.125f * (box.hi.x - box.lo.x);; halo *= 2) {
+    for (float halo = guess.first(width);; halo *= 2) {
       const TilePoints tile = cloud.load(t, halo);
       if (tile.positions.size() <= std::size_t(k)) continue;  // no query's k nearest here yet
       std::vector<vec3> unit(tile.positions.size());
@@ -51,7 +54,10 @@ SpacingEstimate estimate_spacing(const TiledCloud& cloud, int k, std::size_t max
         results[query] = s;
         held[std::size_t(m)] = s.reach * scale * (1 + 1e-6) <= double(halo) || tile.positions.size() == n;
       });
-      if (std::all_of(held.begin(), held.end(), [](char h) { return h != 0; })) break;
+      if (std::all_of(held.begin(), held.end(), [](char h) { return h != 0; })) {
+        guess.held(halo, width);
+        break;
+      }
     }
     progress.advance(std::int64_t(cloud.tile_size(t)));
   }

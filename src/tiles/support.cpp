@@ -10,6 +10,7 @@
 #include "pss/core/progress.hpp"
 #include "pss/points/support_steps.hpp"
 #include "pss/points/unit_frame.hpp"
+#include "halo_guess.hpp"
 #include "tile_works.hpp"
 
 namespace pss {
@@ -42,31 +43,36 @@ HaloTile load_unit(const TiledCloud& cloud, int tile, float halo, const UnitFram
   return t;
 }
 
-// Each tile with points worked on by the farm with a halo of an eighth of a tile, and where
-// its result says the halo did not hold every answer its own samples read, here again with
-// the halo doubling until it does. request(tile) is a tile's work; use(its own points'
-// indices, result) takes the result, or says it is incomplete.
+// Each tile with points worked on by the farm with the halo that the tiles before it needed
+// (halo_guess.hpp), and where its result says the halo did not hold every answer its own
+// samples read, here again with the halo doubling until it does. request(tile) is a tile's
+// work; use(its own points' indices, result) takes the result, or says it is incomplete.
 template <class Request, class Use>
 void for_each_tile(const TiledCloud& cloud, const UnitFrame& frame, TileFarm& farm, TileStep step, Progress& progress,
                    Request&& request, Use&& use) {
-  const auto first_halo = [&](int t) {
+  const auto width = [&](int t) {
     const Aabb box = cloud.tile_box(t);
-    return 0.125f * (box.hi.x - box.lo.x);
+    return box.hi.x - box.lo.x;
   };
+  HaloGuess guess;
+  std::vector<float> first_halo(std::size_t(cloud.tiles()), 0.0f);  // each tile's, as it was asked
   farm.run(
       step, cloud.tiles_with_points(),
       [&](int t) {
-        const HaloTile tile = load_unit(cloud, t, first_halo(t), frame);
+        first_halo[std::size_t(t)] = guess.first(width(t));
+        const HaloTile tile = load_unit(cloud, t, first_halo[std::size_t(t)], frame);
         return TileRequest{request(tile), own_points_notes(tile.points)};
       },
       [&](int t, std::span<const std::byte> result, std::span<const std::byte> notes, int) {
         const std::vector<std::uint64_t> own = own_points(notes);
         std::vector<std::byte> wider;
-        for (float halo = first_halo(t); !use(own, result);) {
+        float halo = first_halo[std::size_t(t)];
+        while (!use(own, result)) {
           halo *= 2;
           wider = tile_work(step, request(load_unit(cloud, t, halo, frame)));
           result = wider;
         }
+        guess.held(halo, width(t));
         progress.advance(std::int64_t(cloud.tile_size(t)));
       });
 }
