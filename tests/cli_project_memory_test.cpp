@@ -100,6 +100,32 @@ TEST_F(ProjectMemory, WhatTilesDoNotDoYetIsOneLineNamingTheFile) {
   }
 }
 
+// A file's normals are not taken tile by tile yet (WhatTilesDoNotDoYet...), and the refusal
+// says how to go on: with --normals estimate they are left out, in tiles as in core.
+TEST_F(ProjectMemory, WithNormalsEstimateACloudWithNormalsIsTiledAsInCore) {
+  const std::string file = write("normals.xyz", test::torus_xyz(50000, false, 1.0));
+  const ScratchFolder scratch(dir_ / "scratch");
+  const test::CliResult refused = test::run_pss("project " + file + " -o " + path("o.ply") + " --memory 6M");
+  EXPECT_NE(refused.err.find("--normals estimate"), std::string::npos) << refused.err;
+  const test::CliResult in_core = test::run_pss("project " + file + " -o " + path("core.ply") +
+                                                " --normals estimate --stats " + path("core.json"));
+  ASSERT_EQ(in_core.exit_code, 0) << in_core.err;
+  const test::CliResult tiled =
+      test::run_pss("project " + file + " -o " + path("tiled.ply") + " --normals estimate --memory 6M");
+  ASSERT_EQ(tiled.exit_code, 0) << tiled.err;
+  EXPECT_NE(tiled.out.find("; tile by tile: "), std::string::npos) << tiled.out;
+  EXPECT_TRUE(scratch.empty());
+  const nlohmann::json core_stats = nlohmann::json::parse(read(path("core.json")));
+  const test::PlyColumns core = test::read_ply_columns(path("core.ply")), ply = test::read_ply_columns(path("tiled.ply"));
+  const std::size_t n = core.columns.at("x").size();
+  ASSERT_EQ(ply.columns.at("x").size(), n);
+  const test::ProjectedApart c =
+      test::compare_projected(ply, core, 2 * core_stats["params"]["t_tolerance"].get<double>());
+  EXPECT_EQ(c.apart, 0u) << "points whose projections in core and in tiles lie apart";
+  EXPECT_EQ(c.facing_apart, 0u) << "normals that face otherwise than in core";
+  EXPECT_LE(c.status_differ, n / 200);
+}
+
 // A disk that fills (a file-size limit) while the tiles are written, or no temporary folder:
 // one line, no output and no scratch file left.
 TEST_F(ProjectMemory, AFullDiskOrNoScratchFolderIsOneLineAndLeavesNothing) {

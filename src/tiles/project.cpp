@@ -240,7 +240,12 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
     : cloud_(cloud), window_points_(std::max<std::size_t>(window_points, 1)) {
   validate(params);
   check_tiled_surface(params.surface);
-  if (cloud.has_normals()) throw NotTiled("tile by tile, pss project does not take a file's normals so far");
+  // The file's normals orient MLS's and are fitted by APSS and RIMLS, after their flips are
+  // turned over the whole cloud (turn_flipped_normals.hpp); --normals estimate leaves them out,
+  // as in core.
+  if (cloud.has_normals() && params.normals == NormalSource::file)
+    throw NotTiled("tile by tile, pss project does not take a file's normals so far (--normals estimate leaves them "
+                   "out)");
   const std::uint64_t n = cloud.size();
   frame_ = unit_frame_of_box(glm::dvec3(cloud.bounds().lo), glm::dvec3(cloud.bounds().hi));
   check_neighbourhood(params, frame_.diagonal);

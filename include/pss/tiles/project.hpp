@@ -40,7 +40,8 @@ class TiledProjection {
   // Projects every point of `cloud` onto its MLS surface, each step tile by tile, keeping the
   // results in scratch files in `folder` (each buffered in at most `buffer_bytes`), to be read
   // back in windows of `window_points`. Throws Error as project_cloud does, and NotTiled
-  // (tiles/memory_plan.hpp) for what tiles do not do yet: APSS and RIMLS, the file's normals,
+  // (tiles/memory_plan.hpp) for what tiles do not do yet: APSS and RIMLS, the file's normals
+  // (NormalSource::estimate leaves them out, as in core),
   // and adaptive widths in a cloud sampled in rows (tiles/support.hpp).
   TiledProjection(const TiledCloud& cloud, const ProjectionParams& params, Backend backend,
                   const std::filesystem::path& folder, std::size_t window_points, std::size_t buffer_bytes,
