@@ -11,6 +11,7 @@
 
 #include "pss/backend/cpu/parallel_for.hpp"
 #include "pss/core/connected_components.hpp"
+#include "pss/points/facing_vote.hpp"
 
 namespace pss {
 
@@ -196,17 +197,32 @@ std::size_t turn_flipped_normals(const SupportGrid& grid, std::span<vec3> normal
   const auto count = std::size_t(patches);
   ParityUnionFind flips(count);
   for (const Link& l : links) flips.link(l.a, l.b, l.odd);
-  // Each group of linked patches: count its samples by side, then turn the smaller side.
+  // Each group of linked patches with samples on both sides turns one side: the one that
+  // faces inward as the whole group votes with the other's sign (facing_vote.hpp), or where
+  // the vote has no say (an open surface seen edge-on), the smaller side. A file's majority
+  // is no guide: cube.pwn's normals, each signed positive along its axis, point inward on
+  // the three faces that hold more samples, and the majority turned the whole part inward.
   std::vector<int> group(count), side(count);
   for (int k = 0; k < patches; ++k) group[std::size_t(k)] = flips.find(k, side[std::size_t(k)]);
   std::vector<std::int64_t> odd(count, 0), even(count, 0);
   for (const int p : patch) (side[std::size_t(p)] ? odd : even)[std::size_t(group[std::size_t(p)])] += 1;
+  std::vector<FacingVote> vote(count);  // with the root patch's side kept
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto p = std::size_t(patch[i]);
+    const auto g = std::size_t(group[p]);
+    if (odd[g] > 0 && even[g] > 0)
+      vote[g].add(points[i], side[p] ? -normals[i] : normals[i], inv_h2[i], ProjectionStatus::converged);
+  }
+  std::vector<char> turn_odd(count);  // whether each group turns its odd side (else its even one)
+  for (std::size_t g = 0; g < count; ++g) {
+    const int facing = vote[g].sign();
+    turn_odd[g] = facing != 0 ? facing > 0 : odd[g] <= even[g];  // ties keep the root patch's side
+  }
   std::size_t turned = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const auto p = std::size_t(patch[i]);
     const auto g = std::size_t(group[p]);
-    // Ties keep the side of the group's root patch.
-    if (side[p] == (odd[g] > even[g] ? 0 : 1)) {
+    if (odd[g] > 0 && even[g] > 0 && bool(side[p]) == bool(turn_odd[g])) {
       normals[i] = -normals[i];
       ++turned;
     }

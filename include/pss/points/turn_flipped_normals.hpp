@@ -9,8 +9,9 @@
 //    sheet), and evidence against it when stacked (the two faces of a thin wall, a slot, a
 //    knife edge: the offset along the normals is most of their distance);
 // 3. patches with more seam than wall evidence between them are linked as flipped against
-//    each other, strongest evidence first; each group of linked patches keeps the side with
-//    more samples and turns the other.
+//    each other, strongest evidence first; each group of linked patches keeps the side that
+//    makes it face outward (facing_vote.hpp: the divergence theorem's sign over the group),
+//    or where that has no say, the side with more samples, and turns the other.
 // Creases (normals 90° apart) link nothing, so a CAD part's exact normals are left as they
 // are; an orientation that crosses them (orient_normals.hpp) would have to guess.
 #pragma once
