@@ -118,6 +118,9 @@ TEST_F(HostileSizes, ARunThatProjectsNothingSaysSo) {
   write_ply(path("sphere.ply"), test::sample(test::Sphere{}, o));
   expect_clean_failure("project " + path("sphere.ply") + " -o " + path("out.ply") + " --h 1e-6",
                        "no point was projected", path("out.ply"));
+  // render's image would be background alone: the same, naming the file.
+  expect_clean_failure("render " + path("sphere.ply") + " -o " + path("out.png") + " --h 1e-6",
+                       path("sphere.ply") + ": no surface with h = 1e-06", path("out.png"));
 }
 
 PointCloud scaled(const PointCloud& c, float s) {

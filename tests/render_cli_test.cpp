@@ -104,11 +104,15 @@ TEST_F(RenderCli, FramesRepeatTheSameFrameAndReportTheMedian) {
   EXPECT_FALSE(fs::exists(path("zero.png")));
 }
 
-TEST_F(RenderCli, OnePointCloudRendersTheBackground) {
+// One point, or points none of which has 3 others in reach, define no surface: an image of
+// background alone would be no result (as pss project says of points none of which moved).
+TEST_F(RenderCli, OnePointCloudHasNoSurface) {
   std::ofstream(dir_ / "one.xyz") << "1 2 3\n";
   std::string err;
-  EXPECT_EQ(run(path("one.xyz") + " -o " + path("one.png") + " --size 16x16", err), 0) << err;
-  EXPECT_TRUE(fs::exists(path("one.png")));
+  EXPECT_EQ(run(path("one.xyz") + " -o " + path("one.png") + " --size 16x16", err), 1) << err;
+  EXPECT_NE(err.find(path("one.xyz") + ": no surface with h = "), std::string::npos) << err;
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+  EXPECT_FALSE(fs::exists(path("one.png")));
 }
 
 TEST_F(RenderCli, BadInputsAreOneLineErrorsWithoutOutput) {

@@ -71,6 +71,11 @@ void run_render(const RenderCloudOptions& o) {
   const Camera camera = make_camera(o.render, cloud.bounds(), cloud.origin);
   const TraceSettings settings = trace_settings(o.render, camera);
   const PreparedCloud prepared(cloud, params, backend, stats, o.color ? SurfaceColor::samples : SurfaceColor::albedo);
+  try {
+    check_some_surface(prepared, params);
+  } catch (const Error& e) {
+    throw file_error(o.input, e.what());
+  }
   const RenderedFrame frame =
       render_frames(o.render, stats, [&](Stats& s) { return render_cloud(prepared, camera, settings, backend, s); });
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

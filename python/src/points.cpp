@@ -183,6 +183,7 @@ py::object render(const py::handle& points, const py::dict& o) {
     validate(params);
     const PreparedCloud prepared(cloud, params, backend, stats,
                                  cloud.has_colors() ? SurfaceColor::samples : SurfaceColor::albedo);
+    check_some_surface(prepared, params);
     stats.values()["local_polynomials"] = prepared.locals().size();
     stats.values()["outliers_set_aside"] = prepared.outliers().set_aside;
     stats.values()["points_merged"] = prepared.widths().merged_count;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "pss/backend/mirror.hpp"
@@ -133,6 +134,17 @@ struct PreparedCloud::DeviceCopy {
   Mirror<vec3> colors;
   PointSurfaceView view;
 };
+
+void check_some_surface(const PreparedCloud& cloud, const RayPssParams& params) {
+  if (!cloud.locals().empty()) return;
+  char message[300];
+  std::snprintf(message, sizeof message,
+                "no surface with h = %g, rho = %g (%lld points set aside, %lld samples with fewer than 3 neighbours); "
+                "h is likely too small for the sample spacing (pss info suggests one)",
+                double(params.projection.h), double(params.projection.rho), (long long)cloud.outliers().set_aside,
+                (long long)cloud.left_out());
+  throw Error(message);
+}
 
 PreparedCloud::PreparedCloud(const PointCloud& cloud, const RayPssParams& params, Backend backend, Stats& stats,
                              SurfaceColor color)

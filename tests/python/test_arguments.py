@@ -79,12 +79,22 @@ def test_a_missing_or_malformed_file_gives_the_cli_s_message(tmp_path):
 
 
 def test_an_image_of_background_alone_comes_with_a_warning():
+    _, _, stats = pss.render(SOME, size=(8, 8), full_output=True)
+    away = dict(stats["camera"])  # the surface behind the camera
+    away["forward"] = [-c for c in away["forward"]]
+    away["right"] = [-c for c in away["right"]]
     with pytest.warns(RuntimeWarning, match=r"^no ray hit the surface"):
-        _, hits, _ = pss.render(SOME, h=1e-6, size=(8, 8), full_output=True)
+        _, hits, _ = pss.render(SOME, size=(8, 8), camera=away, full_output=True)
     assert not hits["mask"].any()
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         pss.render(SOME, size=(8, 8))
+
+
+def test_a_cloud_with_no_surface_anywhere_is_an_error_not_an_empty_image():
+    for h in (1e-6, 1e-30):
+        with pytest.raises(pss.Error, match=r"^no surface with h = .*h is likely too small"):
+            pss.render(SOME, h=h, size=(8, 8))
 
 
 def test_a_cloud_projected_nowhere_is_an_error_not_the_input_unmoved():

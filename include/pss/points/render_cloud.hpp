@@ -99,6 +99,11 @@ class PreparedCloud {
 // Throws Error for parameters that are not positive and finite.
 void validate(const RayPssParams& params);
 
+// Throws Error where the prepared cloud has no surface anywhere (no sample has 3 others in
+// reach, every point set aside): an image with no hit is no result, as `pss project`'s
+// check_some_projected says for points none of which was projected.
+void check_some_surface(const PreparedCloud& cloud, const RayPssParams& params);
+
 RenderedFrame render_cloud(const PreparedCloud& cloud, const Camera& camera, const TraceSettings& settings, Backend backend,
                            Stats& stats, FrameHits keep = FrameHits::all);
 
