@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <sstream>
+#include <string>
 #include <nlohmann/json.hpp>
 
 #include "pss/io/ply.hpp"
@@ -312,6 +314,12 @@ TEST_F(MeshCli, AGeoreferencedCloudKeepsItsCoordinates) {
   }
   expect_clean_failure("mesh " + path("far.xyz") + " -o " + path("far.stl"), "STL holds positions as floats",
                        path("far.stl"));
+  // Refused once the file is read, before the work: no other phase's progress comes first.
+  const test::CliResult r = test::run_pss("mesh " + path("far.xyz") + " -o " + path("far.stl") + " --progress always");
+  EXPECT_EQ(r.exit_code, 1);
+  std::istringstream lines(r.err);
+  for (std::string line; std::getline(lines, line);)
+    EXPECT_TRUE(line.rfind("read", 0) == 0 || line.find("STL holds positions") != std::string::npos) << line;
 }
 
 TEST_F(MeshCli, BadInputGetsOneLineAndNoOutput) {

@@ -126,13 +126,17 @@ void write_stl(const fs::path& path, std::ostream& out, const TriangleMesh& mesh
 
 }  // namespace
 
-void write_mesh(const fs::path& path, const TriangleMesh& mesh) {
-  const MeshFormat format = mesh_format_of(path);
+void check_mesh_origin(const fs::path& path, const glm::dvec3& origin) {
   // STL holds world positions in float only: far from zero for its size (the origin is set
   // only then, point_cloud_file.hpp), the mesh would lose its detail or collapse.
-  if (format == MeshFormat::stl && mesh.origin != glm::dvec3(0.0))
+  if (mesh_format_of(path) == MeshFormat::stl && origin != glm::dvec3(0.0))
     throw file_error(path, "cannot write: STL holds positions as floats, which would round away this mesh's detail "
                            "far from the origin (a georeferenced cloud); write .ply, .obj or .off");
+}
+
+void write_mesh(const fs::path& path, const TriangleMesh& mesh) {
+  const MeshFormat format = mesh_format_of(path);
+  check_mesh_origin(path, mesh.origin);
   if (mesh.normals.size() != mesh.positions.size())
     throw file_error(path, "cannot write: " + std::to_string(mesh.positions.size()) + " vertices but " +
                                std::to_string(mesh.normals.size()) + " normals");

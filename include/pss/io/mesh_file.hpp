@@ -14,4 +14,8 @@ namespace pss {
 
 void write_mesh(const std::filesystem::path& path, const TriangleMesh& mesh);
 
+// The refusal write_mesh gives a mesh about `origin` in `path`'s format, before the work: a
+// georeferenced cloud's mesh cannot go to STL (file_error naming `path`).
+void check_mesh_origin(const std::filesystem::path& path, const glm::dvec3& origin);
+
 }  // namespace pss
