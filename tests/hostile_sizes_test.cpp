@@ -123,6 +123,27 @@ TEST_F(HostileSizes, ARunThatProjectsNothingSaysSo) {
                        path("sphere.ply") + ": no surface with h = 1e-06", path("out.png"));
 }
 
+// Four points: the h estimated from them spans the whole cloud. The refusal names the file,
+// in project and render as in mesh.
+TEST_F(HostileSizes, ACloudTooSmallForItsNeighbourhoodIsNamed) {
+  const std::string four = write("four.xyz", "0 0 0\n1 0 0\n0 1 0\n1 1 0.1\n");
+  expect_clean_failure("project " + four + " -o " + path("out.ply"), four + ": the neighbourhood radius",
+                       path("out.ply"));
+  expect_clean_failure("render " + four + " -o " + path("out.png"), four + ": the neighbourhood radius",
+                       path("out.png"));
+}
+
+// A thousand points on a line project nowhere: the error says why, not that h is too small.
+TEST_F(HostileSizes, PointsOnALineProjectNowhereAndAreSaidToLieOnALine) {
+  std::string line;
+  for (int i = 0; i < 1000; ++i) line += std::to_string(0.01 * i) + " " + std::to_string(0.02 * i) + " 0\n";
+  const std::string file = write("line.xyz", line);
+  expect_clean_failure("project " + file + " -o " + path("out.ply"), file + ": no point was projected", path("out.ply"));
+  const test::CliResult r = test::run_pss("project " + file + " -o " + path("out.ply"));
+  EXPECT_NE(r.err.find("lie on a line"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("too small"), std::string::npos) << r.err;
+}
+
 PointCloud scaled(const PointCloud& c, float s) {
   PointCloud out = c;
   for (vec3& p : out.positions) p *= s;

@@ -508,6 +508,19 @@ TEST_F(PointCloudFileTest, UnknownExtension) {
                     ".las)");
 }
 
+// A volume or a folder given where a point cloud is read says what it is.
+TEST_F(PointCloudFileTest, AVolumeOrAFolderIsNamedAsSuch) {
+  for (const std::string name : {"ct.raw", "ct.nrrd", "ct.NII.gz"}) {
+    const fs::path path = write(name, "not points\n");
+    expect_file_error([&] { pss::read_point_cloud(path); }, path,
+                      "is a volume, not a point cloud (pss info, volume, extract and mesh read volumes; a raw one "
+                      "with --dims XxYxZ)");
+  }
+  const fs::path folder = file("scans");
+  fs::create_directory(folder);
+  expect_file_error([&] { pss::read_point_cloud(folder); }, folder, "is a folder, not a point cloud file");
+}
+
 // ---------------------------------------------------------------------------------------
 using PngTest = TempDirTest;
 

@@ -71,8 +71,14 @@ void check_projected(const ProjectOptions& o, const StatusCounts& counts, const 
 ProjectRun project_in_core(const ProjectOptions& o, Backend backend, Stats& stats, ProjectionParams& params) {
   PointCloud cloud = read_cloud(o.input, stats);
   params = projection_params(o.surface, cloud, o.input, plane_of(o), stats);
-  // The input's arrays become the output's (issue 28).
-  const CloudProjection result = project_cloud(std::move(cloud), params, backend, stats);
+  // The input's arrays become the output's (issue 28). What the cloud cannot give (a
+  // neighbourhood wider than it) names it.
+  CloudProjection result;
+  try {
+    result = project_cloud(std::move(cloud), params, backend, stats);
+  } catch (const Error& e) {
+    throw file_error(o.input, e.what());
+  }
   check_projected(o, result.counts, params);
   {
     ScopedPhase phase(stats, "write");

@@ -2,6 +2,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cfloat>
+#include <optional>
 
 #include "commands.hpp"
 #include "numbers.hpp"
@@ -70,12 +71,14 @@ void run_render(const RenderCloudOptions& o) {
 
   const Camera camera = make_camera(o.render, cloud.bounds(), cloud.origin);
   const TraceSettings settings = trace_settings(o.render, camera);
-  const PreparedCloud prepared(cloud, params, backend, stats, o.color ? SurfaceColor::samples : SurfaceColor::albedo);
-  try {
-    check_some_surface(prepared, params);
+  std::optional<PreparedCloud> prepared_cloud;
+  try {  // what the cloud cannot give (a neighbourhood wider than it, no surface) names it
+    prepared_cloud.emplace(cloud, params, backend, stats, o.color ? SurfaceColor::samples : SurfaceColor::albedo);
+    check_some_surface(*prepared_cloud, params);
   } catch (const Error& e) {
     throw file_error(o.input, e.what());
   }
+  const PreparedCloud& prepared = *prepared_cloud;
   const RenderedFrame frame =
       render_frames(o.render, stats, [&](Stats& s) { return render_cloud(prepared, camera, settings, backend, s); });
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

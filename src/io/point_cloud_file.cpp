@@ -13,6 +13,7 @@
 #include "pss/io/ply.hpp"
 #include "pss/io/stl.hpp"
 #include "pss/io/xyz.hpp"
+#include "pss/io/volume_file.hpp"
 #include "text.hpp"
 
 namespace pss {
@@ -28,6 +29,10 @@ PointCloud read_point_cloud(const std::filesystem::path& path) {
   if (ext == ".pcd") return read_pcd(path);
   if (ext == ".las") return read_las(path);
   if (ext == ".laz") throw file_error(path, "compressed LAS (LAZ) is not supported; decompress it to .las first (laszip, PDAL)");
+  if (std::filesystem::is_directory(path)) throw file_error(path, "is a folder, not a point cloud file");
+  if (ext == ".raw" || has_volume_header(path))
+    throw file_error(path, "is a volume, not a point cloud (pss info, volume, extract and mesh read volumes; a raw "
+                           "one with --dims XxYxZ)");
   throw file_error(path, "unknown point cloud format " + quote(path.extension().string()) +
                              " (expected .ply, .xyz, .txt, .pts, .pwn, .obj, .off, .stl, .pcd or .las)");
 }

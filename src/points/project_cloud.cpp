@@ -56,12 +56,17 @@ void check_some_projected(const StatusCounts& c, const ProjectionParams& params)
   if (c.converged + c.not_converged + c.too_few_neighbours + c.degenerate_normal == 0 ||
       c.converged + c.not_converged > 0)
     return;
-  char message[300];
+  // Neighbourhoods on a line (a cloud of one line, or of rows farther apart than h) fit no
+  // plane; too few neighbours is an h below the spacing.
+  const char* why = c.degenerate_normal > c.too_few_neighbours
+                        ? "the points within reach of each lie on a line, which fits no plane (a larger h may reach "
+                          "across to other lines)"
+                        : "h is likely too small for the sample spacing (pss info suggests one)";
+  char message[400];
   std::snprintf(message, sizeof message,
-                "no point was projected with h = %g, rho = %g (too few neighbours %lld, degenerate normal %lld); "
-                "h is likely too small for the sample spacing (pss info suggests one)",
+                "no point was projected with h = %g, rho = %g (too few neighbours %lld, degenerate normal %lld); %s",
                 double(params.h), double(params.rho), (long long)c.too_few_neighbours,
-                (long long)c.degenerate_normal);
+                (long long)c.degenerate_normal, why);
   throw Error(message);
 }
 
