@@ -159,6 +159,17 @@ TEST_F(CliProject, InfoPrintsTheBoundsWithTheFilesDigits) {
       << r.out;
 }
 
+// A bound that rounds to a whole number reads as one (-100, not -1e+02), and a cloud of four
+// points names its 3rd nearest neighbour (not "3th").
+TEST_F(CliProject, InfoPrintsWholeBoundsAndOrdinalsAsWritten) {
+  write("c.xyz", "-99.9999999 0 0\n1 2 3\n0 1 0\n1 1 0.5\n");
+  const test::CliResult r = test::run_pss("info " + path("c.xyz"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("bounds          [-100, 1] x "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("the 3rd nearest neighbour"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("3rd neighbour   min "), std::string::npos) << r.out;
+}
+
 TEST_F(CliProject, MissingFile) {
   expect_clean_failure("project " + path("nope.ply") + " -o " + path("out.ply"), path("nope.ply"), path("out.ply"));
   expect_clean_failure("info " + path("nope.ply"), path("nope.ply"), path("out.ply"));

@@ -33,10 +33,22 @@ namespace {
 // -0.09468989819), and a georeferenced cloud's all of them, which %g's six would cut.
 std::string world_coordinate(double origin, float local) {
   char text[32];
-  for (int digits = 1;; ++digits) {
+  // At least the integer digits, so that -99.99999 reads -100, not -1e+02.
+  const double magnitude = std::abs(origin + double(local));
+  for (int digits = magnitude >= 1 ? std::min(17, int(std::floor(std::log10(magnitude))) + 1) : 1;; ++digits) {
     std::snprintf(text, sizeof text, "%.*g", digits, origin + double(local));
     if (digits == 17 || float(std::strtod(text, nullptr) - origin) == local) return text;
   }
+}
+
+// 1st, 2nd, 3rd, 4th, ..., 11th, 12th, 13th, ..., 21st.
+std::string ordinal(int k) {
+  const char* suffix = (k % 100 >= 11 && k % 100 <= 13) ? "th"
+                       : k % 10 == 1                    ? "st"
+                       : k % 10 == 2                    ? "nd"
+                       : k % 10 == 3                    ? "rd"
+                                                        : "th";
+  return std::to_string(k) + suffix;
 }
 
 // Whether the file's normals agree with each other, as render and project would find (all
@@ -92,17 +104,18 @@ void print_summary(const std::string& path, const CloudSummary& c) {
   const SpacingEstimate& s = c.spacing;
   std::printf("spacing         %g mean nearest-neighbour distance\n", s.mean_nearest);
   if (s.suggested_h > s.median_kth)
-    std::printf("suggested h     %g (%g times the noise, over the median distance to the %dth nearest neighbour, %g; "
+    std::printf("suggested h     %g (%g times the noise, over the median distance to the %s nearest neighbour, %g; "
                 "rho = 2h = %g)\n",
-                s.suggested_h, kNoiseWidths, s.k, s.median_kth, 2 * s.suggested_h);
+                s.suggested_h, kNoiseWidths, ordinal(s.k).c_str(), s.median_kth, 2 * s.suggested_h);
   else
-    std::printf("suggested h     %g (median distance to the %dth nearest neighbour; rho = 2h = %g)\n", s.suggested_h,
-                s.k, 2 * s.suggested_h);
+    std::printf("suggested h     %g (median distance to the %s nearest neighbour; rho = 2h = %g)\n", s.suggested_h,
+                ordinal(s.k).c_str(), 2 * s.suggested_h);
   // The scatter about the surface (points/noise.hpp): h stays over kNoiseWidths times it.
   std::printf("noise           %g (sigma of the samples about a quadric fitted to their neighbours; median)\n",
               s.noise);
   // Where the spacing varies, one h cannot serve the whole cloud: the spread says by how much.
-  std::printf("%dth neighbour  min %g, median %g, max %g (max/min %.3g)\n", s.k, s.min_kth, s.median_kth, s.max_kth,
+  std::printf("%-15s min %g, median %g, max %g (max/min %.3g)\n", (ordinal(s.k) + " neighbour").c_str(), s.min_kth,
+              s.median_kth, s.max_kth,
               s.max_kth / s.min_kth);
   // What render, project and view use without --h (points/support.hpp).
   if (!c.widths_refused.empty())
