@@ -168,6 +168,15 @@ TEST_F(CliProject, InfoPrintsWholeBoundsAndOrdinalsAsWritten) {
   EXPECT_NE(r.out.find("bounds          [-100, 1] x "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("the 3rd nearest neighbour"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("3rd neighbour   min "), std::string::npos) << r.out;
+  // Its suggested h is refused by project, render and mesh: info says so.
+  EXPECT_NE(r.out.find("too few points  rho = 2h spans the whole cloud"), std::string::npos) << r.out;
+  std::string grid;  // 400 points: h about a spacing, far inside the cloud
+  for (int i = 0; i < 20; ++i)
+    for (int j = 0; j < 20; ++j) grid += std::to_string(0.05 * i) + " " + std::to_string(0.05 * j) + " 0\n";
+  write("grid.xyz", grid);
+  const test::CliResult ok = test::run_pss("info " + path("grid.xyz"));
+  ASSERT_EQ(ok.exit_code, 0) << ok.err;
+  EXPECT_EQ(ok.out.find("too few points"), std::string::npos) << ok.out;
 }
 
 TEST_F(CliProject, MissingFile) {

@@ -110,6 +110,10 @@ void print_summary(const std::string& path, const CloudSummary& c) {
   else
     std::printf("suggested h     %g (median distance to the %s nearest neighbour; rho = 2h = %g)\n", s.suggested_h,
                 ordinal(s.k).c_str(), 2 * s.suggested_h);
+  // project, render and mesh refuse a neighbourhood wider than the cloud (check_neighbourhood).
+  if (2 * s.suggested_h > double(glm::length(size)))
+    std::printf("too few points  rho = 2h spans the whole cloud (diagonal %g): project, render and mesh refuse it "
+                "without a smaller --h\n", double(glm::length(size)));
   // The scatter about the surface (points/noise.hpp): h stays over kNoiseWidths times it.
   std::printf("noise           %g (sigma of the samples about a quadric fitted to their neighbours; median)\n",
               s.noise);
