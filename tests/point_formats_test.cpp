@@ -497,6 +497,7 @@ TEST_F(FormatTest, LasFarFromTheOriginKeepsItsMillimetres) {
                                  {500124, 4000788, 46}};
   for (int i = 0; i < 3; ++i)
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(cloud.world(i)[k], expected[i][k], 1e-6) << i << k;
+  EXPECT_FALSE(cloud.has_colors()) << "RGB fields all 0 are no colours (they would render black)";
 }
 
 TEST_F(FormatTest, Las14Format7ExtraBytesAnd16BitColours) {

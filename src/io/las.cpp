@@ -101,8 +101,9 @@ LasLayout read_las_header(const std::filesystem::path& path, io::FileWindow& dat
 }
 
 // The points of a LAS file, a record at a time. Colours: the brightest channel of the whole
-// file says whether they are 8-bit values in 16-bit fields or 16-bit ones, so a file with
-// colours is read twice, the first time for them alone.
+// file says whether they are 8-bit values in 16-bit fields or 16-bit ones, or none at all
+// where every channel is 0 (an aerial scan's format with RGB fields that nothing filled: its
+// colours would render black), so a file with colours is read twice, the first time for them alone.
 class LasStream final : public PointStream {
  public:
   explicit LasStream(const std::filesystem::path& path) : path_(path), data_(path), las_(read_las_header(path, data_)) {
@@ -135,7 +136,7 @@ class LasStream final : public PointStream {
         throw file_error(path_, "point " + std::to_string(i) + " lies beyond float's range");
       part.scalars[0].values.push_back(get<std::uint16_t>(r, 12));
       part.scalars[1].values.push_back(las_.format <= 5 ? get<std::uint8_t>(r, 15) & 0x1F : get<std::uint8_t>(r, 16));
-      if (las_.record.rgb != 0) {
+      if (las_.record.rgb != 0 && brightest_ > 0) {  // RGB fields all zero: a scanner that recorded none
         Rgb8 color;
         for (int c = 0; c < 3; ++c) {
           const auto channel = get<std::uint16_t>(r, las_.record.rgb + 2 * std::uint64_t(c));
