@@ -129,8 +129,8 @@ void print_summary(const std::string& path, const CloudSummary& c) {
                 "sampled in rows, or where the noise is; --support global uses h everywhere)\n",
                 double(c.widths.least), double(c.widths.largest), double(c.widths.median));
   if (c.widths_refused.empty() && c.widths.merged_count > 0)  // points/merged_samples.hpp
-    std::printf("merged samples  %lld points merged, a sample a cube of about h_i/2 to h_i weighing as many, where a "
-                "support would hold over %g in noise\n",
+    std::printf("merged samples  %lld points, where the noise widens a support past %g samples: each cube about "
+                "h_i/2 to h_i wide is one sample that weighs as many as it holds\n",
                 (long long)c.widths.merged_count, kSupportSamplesMost);
 }
 
