@@ -7,6 +7,7 @@
 #include <string>
 
 #include "pss/backend/backend.hpp"
+#include "pss/core/error.hpp"
 #include "pss/core/stats.hpp"
 #include "pss/io/tiled_cloud.hpp"
 #include "pss/points/cloud.hpp"
@@ -32,6 +33,17 @@ Backend start_compute(const ComputeOptions& options);
 
 // "1 thread" or "N threads": the CPU threads that the summary lines name.
 std::string threads_text();
+// make()'s result, its errors naming `file`: what the data cannot give is the file's fault,
+// the flags having been checked already.
+template <class Make>
+auto naming_input(const std::string& file, Make&& make) {
+  try {
+    return make();
+  } catch (const Error& e) {
+    throw file_error(file, e.what());
+  }
+}
+
 // The cloud of `file`, its reading timed (phase "read").
 PointCloud read_cloud(const std::string& file, Stats& stats);
 // What every command's --stats records of a run: the command, its input and output, backend

@@ -96,11 +96,7 @@ void add_progress_option(CLI::App& command) {
 }
 
 SpacingEstimate estimate_spacing_of(const PointCloud& cloud, const std::string& file) {
-  try {
-    return estimate_spacing(cloud.positions);
-  } catch (const Error& e) {
-    throw file_error(file, e.what());
-  }
+  return naming_input(file, [&] { return estimate_spacing(cloud.positions); });
 }
 
 void add_support_option(CLI::App& command, std::string& choice) {

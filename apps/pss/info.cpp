@@ -99,7 +99,8 @@ void print_summary(const std::string& path, const CloudSummary& c) {
     std::printf("%s[%s, %s]", k ? " x " : "", world_coordinate(c.origin[k], c.box.lo[k]).c_str(),
                 world_coordinate(c.origin[k], c.box.hi[k]).c_str());
   std::printf("\n");
-  std::printf("size            %g x %g x %g (diagonal %g)\n", size.x, size.y, size.z, glm::length(size));
+  const double diagonal = glm::length(size);
+  std::printf("size            %g x %g x %g (diagonal %g)\n", size.x, size.y, size.z, diagonal);
   if (c.points < 2) return;
   const SpacingEstimate& s = c.spacing;
   std::printf("spacing         %g mean nearest-neighbour distance\n", s.mean_nearest);
@@ -111,16 +112,15 @@ void print_summary(const std::string& path, const CloudSummary& c) {
     std::printf("suggested h     %g (median distance to the %s nearest neighbour; rho = 2h = %g)\n", s.suggested_h,
                 ordinal(s.k).c_str(), 2 * s.suggested_h);
   // project, render and mesh refuse a neighbourhood wider than the cloud (check_neighbourhood).
-  if (2 * s.suggested_h > double(glm::length(size)))
+  if (2 * s.suggested_h > diagonal)
     std::printf("too few points  rho = 2h spans the whole cloud (diagonal %g): project, render and mesh refuse it "
-                "without a smaller --h\n", double(glm::length(size)));
+                "without a smaller --h\n", diagonal);
   // The scatter about the surface (points/noise.hpp): h stays over kNoiseWidths times it.
   std::printf("noise           %g (sigma of the samples about a quadric fitted to their neighbours; median)\n",
               s.noise);
   // Where the spacing varies, one h cannot serve the whole cloud: the spread says by how much.
   std::printf("%-15s min %g, median %g, max %g (max/min %.3g)\n", (ordinal(s.k) + " neighbour").c_str(), s.min_kth,
-              s.median_kth, s.max_kth,
-              s.max_kth / s.min_kth);
+              s.median_kth, s.max_kth, s.max_kth / s.min_kth);
   // What render, project and view use without --h (points/support.hpp).
   if (!c.widths_refused.empty())
     std::printf("adaptive h_i    not given: %s\n", c.widths_refused.c_str());

@@ -69,16 +69,6 @@ void check_mesh_options(const MeshOptions& o) {
   }
 }
 
-// The mesh's work with its errors naming the input, as the data's.
-template <class Make>
-auto naming_input(const std::string& input, Make&& make) {
-  try {
-    return make();
-  } catch (const Error& e) {
-    throw file_error(input, e.what());
-  }
-}
-
 // Writes the mesh, adds the run's total time, and prints what the mesh is (of `size`: the
 // points or voxels it was made from).
 MeshTopology write_and_summarise(const MeshOptions& o, const TriangleMesh& mesh, const std::string& size,

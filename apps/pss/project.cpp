@@ -61,11 +61,7 @@ struct ProjectRun {
 PlaneFitMethod plane_of(const ProjectOptions& o) { return o.method == "wls" ? PlaneFitMethod::wls : PlaneFitMethod::mls; }
 
 void check_projected(const ProjectOptions& o, const StatusCounts& counts, const ProjectionParams& params) {
-  try {
-    check_some_projected(counts, params);
-  } catch (const Error& e) {
-    throw file_error(o.input, e.what());
-  }
+  naming_input(o.input, [&] { check_some_projected(counts, params); });
 }
 
 ProjectRun project_in_core(const ProjectOptions& o, Backend backend, Stats& stats, ProjectionParams& params) {
@@ -73,12 +69,8 @@ ProjectRun project_in_core(const ProjectOptions& o, Backend backend, Stats& stat
   params = projection_params(o.surface, cloud, o.input, plane_of(o), stats);
   // The input's arrays become the output's (issue 28). What the cloud cannot give (a
   // neighbourhood wider than it) names it.
-  CloudProjection result;
-  try {
-    result = project_cloud(std::move(cloud), params, backend, stats);
-  } catch (const Error& e) {
-    throw file_error(o.input, e.what());
-  }
+  const CloudProjection result =
+      naming_input(o.input, [&] { return project_cloud(std::move(cloud), params, backend, stats); });
   check_projected(o, result.counts, params);
   {
     ScopedPhase phase(stats, "write");
@@ -116,13 +108,7 @@ ProjectRun project_in_tiles(const ProjectOptions& o, const MemoryPlan& plan, Bac
   const TiledCloud& tiles = *read;
   params = projection_params(
       o.surface,
-      [&] {
-        try {
-          return float(estimate_spacing(tiles).suggested_h);
-        } catch (const Error& e) {
-          throw file_error(o.input, e.what());
-        }
-      },
+      [&] { return naming_input(o.input, [&] { return float(estimate_spacing(tiles).suggested_h); }); },
       plane_of(o), stats);
   // A window's points take about 128 bytes: its results, the file's part and the writer's.
   const std::size_t window = std::size_t(std::clamp<std::uint64_t>(plan.budget / 8 / 128, 4096, 1u << 24));

@@ -2,7 +2,6 @@
 #include <chrono>
 #include <cstdio>
 #include <cfloat>
-#include <optional>
 
 #include "commands.hpp"
 #include "numbers.hpp"
@@ -50,11 +49,7 @@ void run_render(const RenderCloudOptions& o) {
   float h = o.h;
   if (h == 0) {
     ScopedPhase phase(stats, "estimate h");
-    try {
-      h = default_h(cloud.positions);
-    } catch (const Error& e) {
-      throw file_error(o.input, e.what());
-    }
+    h = naming_input(o.input, [&] { return default_h(cloud.positions); });
   }
   RayPssParams params = RayPssParams::from_h(h);
   if (o.rho != 0) params.projection.rho = o.rho;
@@ -71,14 +66,11 @@ void run_render(const RenderCloudOptions& o) {
 
   const Camera camera = make_camera(o.render, cloud.bounds(), cloud.origin);
   const TraceSettings settings = trace_settings(o.render, camera);
-  std::optional<PreparedCloud> prepared_cloud;
-  try {  // what the cloud cannot give (a neighbourhood wider than it, no surface) names it
-    prepared_cloud.emplace(cloud, params, backend, stats, o.color ? SurfaceColor::samples : SurfaceColor::albedo);
-    check_some_surface(*prepared_cloud, params);
-  } catch (const Error& e) {
-    throw file_error(o.input, e.what());
-  }
-  const PreparedCloud& prepared = *prepared_cloud;
+  // What the cloud cannot give (a neighbourhood wider than it, no surface) names it.
+  const PreparedCloud prepared = naming_input(o.input, [&] {
+    return PreparedCloud(cloud, params, backend, stats, o.color ? SurfaceColor::samples : SurfaceColor::albedo);
+  });
+  naming_input(o.input, [&] { check_some_surface(prepared, params); });
   const RenderedFrame frame =
       render_frames(o.render, stats, [&](Stats& s) { return render_cloud(prepared, camera, settings, backend, s); });
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
