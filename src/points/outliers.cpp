@@ -81,7 +81,7 @@ std::vector<char> samples_on_the_surface(const SupportGrid& grid, Backend backen
   }
   std::vector<char> keep(m.distance.size());
   for (std::size_t i = 0; i < keep.size(); ++i)
-    keep[i] = m.distance[i] <= report.threshold && m.held[i] >= report.least_held;
+    keep[i] = on_the_surface(m.distance[i], m.held[i], report);
   return keep;
 }
 

@@ -213,7 +213,9 @@ std::size_t turn_flipped_normals(const SupportGrid& grid, std::span<vec3> normal
     if (odd[g] > 0 && even[g] > 0)
       vote[g].add(points[i], side[p] ? -normals[i] : normals[i], inv_h2[i], ProjectionStatus::converged);
   }
-  std::vector<char> turn_odd(count);  // whether each group turns its odd side (else its even one)
+  // Whether each group turns its odd side, else its even one: a group all on one side has no
+  // vote and turns the side it has no samples on.
+  std::vector<char> turn_odd(count);
   for (std::size_t g = 0; g < count; ++g) {
     const int facing = vote[g].sign();
     turn_odd[g] = facing != 0 ? facing > 0 : odd[g] <= even[g];  // ties keep the root patch's side
@@ -221,8 +223,7 @@ std::size_t turn_flipped_normals(const SupportGrid& grid, std::span<vec3> normal
   std::size_t turned = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const auto p = std::size_t(patch[i]);
-    const auto g = std::size_t(group[p]);
-    if (odd[g] > 0 && even[g] > 0 && bool(side[p]) == bool(turn_odd[g])) {
+    if (bool(side[p]) == bool(turn_odd[std::size_t(group[p])])) {
       normals[i] = -normals[i];
       ++turned;
     }

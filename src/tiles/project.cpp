@@ -181,7 +181,7 @@ std::vector<char> samples_kept(const TiledCloud& cloud, const UnitFrame& frame, 
     }
     std::int64_t set_aside = 0;  // samples, a merged one once, as in core
     for (std::size_t i = 0; i < std::size_t(n); ++i)
-      if (kept[i] && !std::isnan(distance[i]) && !(distance[i] <= report.threshold && held[i] >= report.least_held)) {
+      if (kept[i] && !std::isnan(distance[i]) && !on_the_surface(distance[i], held[i], report)) {
         kept[i] = 0;
         ++set_aside;
       }

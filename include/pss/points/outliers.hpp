@@ -72,6 +72,12 @@ struct OutlierReport {
   float least_held = 0;  // the neighbours' mass a sample needs (kOutlierHeldShare)
 };
 
+// Whether a sample with this distance and neighbours' mass (OutlierDistanceKernel) is kept:
+// near its neighbours' plane and held by enough of them. In core and tile by tile alike.
+inline bool on_the_surface(float distance, float held, const OutlierReport& report) {
+  return distance <= report.threshold && held >= report.least_held;
+}
+
 // The largest distance a sample on the surface lies at: kOutlierSigmas robust standard
 // deviations of the finite distances, and at least kOutlierFloor. With `mass` (one per
 // distance: merged samples, points/merged_samples.hpp), the median weighs each by its mass,
