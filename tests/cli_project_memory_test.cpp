@@ -86,16 +86,42 @@ TEST_F(ProjectMemory, TileByTileTheSamePointsInTheSameOrderWithTheirColoursAndSc
 
 TEST_F(ProjectMemory, WhatTilesDoNotDoYetIsOneLineNamingTheFile) {
   const std::string normals = write("normals.xyz", test::torus_xyz(50000, false, 1.0));
-  const std::string plain = write("torus.xyz", test::torus_xyz(50000, false, 0));
   const ScratchFolder scratch(dir_ / "scratch");
-  for (const std::string& args : {"project " + normals + " -o " + path("o.ply") + " --memory 6M",
-                                  "project " + plain + " -o " + path("o.ply") + " --memory 6M --surface apss"}) {
-    SCOPED_TRACE(args);
-    const test::CliResult r = test::run_pss(args);
-    EXPECT_EQ(r.exit_code, 1);
-    EXPECT_EQ(test::line_count(r.err), 1) << r.err;
-    EXPECT_NE(r.err.find("tile by tile"), std::string::npos) << r.err;
-    EXPECT_FALSE(std::filesystem::exists(path("o.ply")));
+  const test::CliResult r = test::run_pss("project " + normals + " -o " + path("o.ply") + " --memory 6M");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(test::line_count(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("pss: error: " + normals), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("tile by tile"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(path("o.ply")));
+  EXPECT_TRUE(scratch.empty());
+}
+
+// APSS and RIMLS fit the samples' normals, estimated and oriented tile by tile first: the
+// points and normals of in core, and the summary and --stats say the normals were estimated.
+TEST_F(ProjectMemory, ApssAndRimlsTileByTileFitTheSamplesNormalsAsInCore) {
+  const std::string file = write("torus.xyz", test::torus_xyz(50000, false, 0));
+  const ScratchFolder scratch(dir_ / "scratch");
+  for (const std::string surface : {"apss", "rimls"}) {
+    SCOPED_TRACE(surface);
+    const std::string flags = " --surface " + surface + " --stats ";
+    const test::CliResult in_core = test::run_pss("project " + file + " -o " + path("core.ply") + flags + path("core.json"));
+    ASSERT_EQ(in_core.exit_code, 0) << in_core.err;
+    const test::CliResult tiled = test::run_pss("project " + file + " -o " + path("tiled.ply") + " --memory 6M" + flags +
+                                                path("tiled.json") + " --progress always");
+    ASSERT_EQ(tiled.exit_code, 0) << tiled.err;
+    EXPECT_NE(tiled.out.find("; tile by tile: "), std::string::npos) << tiled.out;
+    EXPECT_NE(tiled.out.find(surface + " surface (estimated normals)"), std::string::npos) << tiled.out;
+    for (const char* phase : {"sample normals: done", "orient sample normals: done", "projecting: done"})
+      EXPECT_NE(tiled.err.find(phase), std::string::npos) << tiled.err;
+    EXPECT_EQ(tiled.err.find("orient normals: done"), std::string::npos) << "the projections' normals follow the samples'";
+    const nlohmann::json core_stats = nlohmann::json::parse(read(path("core.json")));
+    EXPECT_EQ(nlohmann::json::parse(read(path("tiled.json")))["params"]["normals"], "estimated");
+    const test::ProjectedApart c = test::compare_projected(test::read_ply_columns(path("tiled.ply")),
+                                                           test::read_ply_columns(path("core.ply")),
+                                                           2 * core_stats["params"]["t_tolerance"].get<double>());
+    EXPECT_EQ(c.apart, 0u) << "points whose projections in core and in tiles lie apart";
+    EXPECT_EQ(c.facing_apart, 0u) << "normals that face otherwise than in core";
+    EXPECT_LE(c.status_differ, 50000u / 200);
     EXPECT_TRUE(scratch.empty());
   }
 }

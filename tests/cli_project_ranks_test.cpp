@@ -82,14 +82,12 @@ TEST_F(ProjectRanks, ACloudThatFitsInCoreIsSharedInTilesWithTheInCorePoints) {
   EXPECT_LE(apart.status_differ, in_core.columns.at("x").size() / 200);
 }
 
+// A file's normals are not taken tile by tile yet.
 TEST_F(ProjectRanks, WhatTilesDoNotDoRunsInCoreOnRankZero) {
   SKIP_WITHOUT_MPI();
-  const std::string file = write("torus.xyz", test::torus_xyz(20000, false, 0));
-  ASSERT_EQ(test::run_pss("project " + file + " -o " + path("one.ply") + " --surface apss --stats " + path("one.json"))
-                .exit_code,
-            0);
-  const test::CliResult r =
-      run_ranks(2, "project " + file + " -o " + path("ranks.ply") + " --surface apss --stats " + path("s.json"));
+  const std::string file = write("torus.xyz", test::torus_xyz(20000, false, 1.0));
+  ASSERT_EQ(test::run_pss("project " + file + " -o " + path("one.ply") + " --stats " + path("one.json")).exit_code, 0);
+  const test::CliResult r = run_ranks(2, "project " + file + " -o " + path("ranks.ply") + " --stats " + path("s.json"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("; in core; 2 ranks)"), std::string::npos) << r.out;
   EXPECT_EQ(read(path("ranks.ply")), read(path("one.ply")));
@@ -97,6 +95,24 @@ TEST_F(ProjectRanks, WhatTilesDoNotDoRunsInCoreOnRankZero) {
   EXPECT_EQ(v["points_per_rank"], nlohmann::json::array({20000, 0}));
   EXPECT_EQ(v["threads"], nlohmann::json::parse(read(path("one.json")))["threads"])
       << "rank 0 alone takes all the machine's cores";
+}
+
+// APSS and RIMLS under mpirun: the samples' normals' steps shared by the ranks too.
+TEST_F(ProjectRanks, RimlsInTilesOverRanksIsOneProcesssBytes) {
+  SKIP_WITHOUT_MPI();
+  const std::string file = write("torus.xyz", test::torus_xyz(50000, false, 0));
+  const ScratchFolder scratch(dir_ / "scratch");
+  const test::CliResult one = test::run_pss("project " + file + " -o " + path("one.ply") + " --surface rimls --memory 6M");
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  ASSERT_NE(one.out.find("; tile by tile: "), std::string::npos) << one.out;
+  const test::CliResult r =
+      run_ranks(3, "project " + file + " -o " + path("ranks.ply") + " --surface rimls --memory 6M --stats " + path("s.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("; tile by tile: "), std::string::npos) << r.out;
+  EXPECT_TRUE(read(path("ranks.ply")) == read(path("one.ply"))) << "the ranks' output differs from one process's";
+  const auto per_rank = nlohmann::json::parse(read(path("s.json")))["points_per_rank"].get<std::vector<std::uint64_t>>();
+  for (const std::uint64_t points : per_rank) EXPECT_GT(points, 0u);
+  EXPECT_TRUE(scratch.empty());
 }
 
 TEST_F(ProjectRanks, AFailureOnRankZeroIsOneLineAndLetsTheOtherRanksGo) {

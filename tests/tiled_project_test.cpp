@@ -39,6 +39,7 @@ Compared compare(const CloudProjection& in_core, const std::string& file, const 
   Stats stats;
   const TiledCloud tiles(file, dir, per_tile, 1 << 16);
   const TiledProjection tiled(tiles, params, Backend::cpu, dir, window, 1 << 16, stats);
+  EXPECT_EQ(tiled.normals_used(), in_core.normals);
   EXPECT_EQ(tiled.outliers().set_aside, in_core.outliers.set_aside);
   EXPECT_EQ(tiled.widths().merged_count, in_core.widths.merged_count);
   // A stray whose few neighbours lie nearly on a line may read degenerate on one side of the
@@ -69,7 +70,7 @@ Compared compare(const CloudProjection& in_core, const std::string& file, const 
 
 // A noisy torus and a sphere apart from it, with strays between: the torus crosses many tiles,
 // each orienting its piece from its own highest point, and the sphere is a part of its own.
-TEST_F(TiledProjectTest, ATorusAndASphereApartProjectInTilesAsInCore) {
+std::vector<vec3> torus_and_sphere_apart() {
   test::SampleOptions o;
   o.count = 20000;
   o.noise = 0.004f;
@@ -79,6 +80,11 @@ TEST_F(TiledProjectTest, ATorusAndASphereApartProjectInTilesAsInCore) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> across(-1.5f, 1.5f);
   for (int i = 0; i < 60; ++i) points.push_back(vec3(across(rng), across(rng), across(rng) * 0.5f));
+  return points;
+}
+
+TEST_F(TiledProjectTest, ATorusAndASphereApartProjectInTilesAsInCore) {
+  const std::vector<vec3> points = torus_and_sphere_apart();
   const std::string file = write("torus.xyz", test::xyz_text(points));
   PointCloud cloud = read_point_cloud(file);
   const float h = test::suggested_h(cloud);
@@ -92,6 +98,29 @@ TEST_F(TiledProjectTest, ATorusAndASphereApartProjectInTilesAsInCore) {
     EXPECT_GT(c.tiles, 8u);
     // Sums in another order round otherwise; where that moves MLS's last step across its
     // stopping test, a point stops one step earlier or later: within the tolerance on t.
+    EXPECT_LT(c.farthest, 2 * params.t_tolerance) << "a point's projections in core and in tiles lie apart";
+    EXPECT_LT(c.beyond_rounding, points.size() / 200);
+    EXPECT_LE(c.status_differ, points.size() / 2000);
+    EXPECT_EQ(c.facing_apart, 0u) << "of " << points.size() << " normals face otherwise than in core";
+  }
+}
+
+// APSS and RIMLS fit the samples' normals: each estimated in its tile at the sample's place,
+// oriented over the tiles as MLS's projections' normals are (the torus's pieces agreeing
+// across the seams), then fitted with the halo's samples' normals; as in core.
+TEST_F(TiledProjectTest, ApssAndRimlsFitTheSamplesNormalsInTilesAsInCore) {
+  const std::vector<vec3> points = torus_and_sphere_apart();
+  const std::string file = write("torus.xyz", test::xyz_text(points));
+  for (const SurfaceOperator surface : {SurfaceOperator::apss, SurfaceOperator::rimls}) {
+    SCOPED_TRACE(int(surface));
+    ProjectionParams params = ProjectionParams::from_h(test::suggested_h(read_point_cloud(file)));
+    params.support = Support::adaptive;
+    params.surface = surface;
+    Stats stats;
+    const CloudProjection in_core = project_cloud(read_point_cloud(file), params, Backend::cpu, stats);
+    ASSERT_EQ(in_core.normals, NormalsUsed::estimated);
+    const Compared c = compare(in_core, file, dir_, params, 600, 7001);
+    EXPECT_GT(c.tiles, 8u);
     EXPECT_LT(c.farthest, 2 * params.t_tolerance) << "a point's projections in core and in tiles lie apart";
     EXPECT_LT(c.beyond_rounding, points.size() / 200);
     EXPECT_LE(c.status_differ, points.size() / 2000);
@@ -130,7 +159,7 @@ TEST_F(TiledProjectTest, TheOutliersPassesSetAsideWhatTheyDoInCore) {
 // A torus with noise of 2 spacings, whose supports would hold over 400 samples: merged
 // (points/merged_samples.hpp) in each tile as in core, every cube whole in the tile that
 // measures or uses its sample, summed in the points' order; strays 5σ out set aside by the
-// threshold that weighs the merged samples' masses, as in core.
+// threshold that weighs the merged samples' masses, as in core; with MLS and with RIMLS.
 TEST_F(TiledProjectTest, ANoisyTorusMergesItsSamplesInTilesAsInCore) {
   test::SampleOptions o;
   o.count = 20000;
@@ -144,18 +173,23 @@ TEST_F(TiledProjectTest, ANoisyTorusMergesItsSamplesInTilesAsInCore) {
     points.push_back(on + 5 * o.noise * torus.normal(on));
   }
   const std::string file = write("noisy.xyz", test::xyz_text(points));
-  ProjectionParams params = ProjectionParams::from_h(test::suggested_h(read_point_cloud(file)));
-  params.support = Support::adaptive;
-  Stats stats;
-  const CloudProjection in_core = project_cloud(read_point_cloud(file), params, Backend::cpu, stats);
-  ASSERT_GT(in_core.widths.merged_count, std::int64_t(points.size() / 2));
-  EXPECT_GE(in_core.outliers.set_aside, 30);
-  const Compared c = compare(in_core, file, dir_, params, 2500, 7001);
-  EXPECT_GT(c.tiles, 8u);
-  // Rounding moves some points across MLS's stopping test, all within the tolerance on t.
-  EXPECT_LT(c.farthest, 2 * params.t_tolerance) << "a point's projections in core and in tiles lie apart";
-  EXPECT_LT(c.status_differ, points.size() / 10);
-  EXPECT_EQ(c.facing_apart, 0u) << "of " << points.size() << " normals face otherwise than in core";
+  // RIMLS's samples' normals are fitted at the merged samples' places, the cubes' means.
+  for (const SurfaceOperator surface : {SurfaceOperator::mls, SurfaceOperator::rimls}) {
+    SCOPED_TRACE(int(surface));
+    ProjectionParams params = ProjectionParams::from_h(test::suggested_h(read_point_cloud(file)));
+    params.support = Support::adaptive;
+    params.surface = surface;
+    Stats stats;
+    const CloudProjection in_core = project_cloud(read_point_cloud(file), params, Backend::cpu, stats);
+    ASSERT_GT(in_core.widths.merged_count, std::int64_t(points.size() / 2));
+    EXPECT_GE(in_core.outliers.set_aside, 30);
+    const Compared c = compare(in_core, file, dir_, params, 2500, 7001);
+    EXPECT_GT(c.tiles, 8u);
+    // Rounding moves some points across MLS's stopping test, all within the tolerance on t.
+    EXPECT_LT(c.farthest, 2 * params.t_tolerance) << "a point's projections in core and in tiles lie apart";
+    EXPECT_LT(c.status_differ, points.size() / 10);
+    EXPECT_EQ(c.facing_apart, 0u) << "of " << points.size() << " normals face otherwise than in core";
+  }
 }
 
 // Pieces 0-1-2 one part, 3-4 another: the strongest votes join them, a weaker vote against

@@ -97,9 +97,6 @@ void read_points(PointStream& stream, PointPart& part, std::size_t count, const 
 // written a window at a time beside the file's colours and scalars, read again.
 ProjectRun project_in_tiles(const ProjectOptions& o, const MemoryPlan& plan, Backend backend, Stats& stats,
                             ProjectionParams& params) {
-  ProjectionParams surface;  // what tiles fit, known before the file is read
-  apply_surface_options(o.surface.surface, surface);
-  check_tiled_surface(surface.surface);
   std::optional<TiledCloud> read;
   {
     ScopedPhase phase(stats, "read", false);  // its Progress shows it
@@ -150,7 +147,7 @@ ProjectRun project_in_tiles(const ProjectOptions& o, const MemoryPlan& plan, Bac
     if (stream->read(part, 1) > 0) throw file_error(o.input, "changed while it was read: it has more points than before");
     writer.commit();
   }
-  return {tiles.size(), tiles.origin(), projected.counts(), projected.widths(), NormalsUsed::none, 0,
+  return {tiles.size(), tiles.origin(), projected.counts(), projected.widths(), projected.normals_used(), 0,
           projected.outliers().set_aside, "tile by tile: " + tiles_text(tiles), projected.points_per_rank()};
 }
 

@@ -37,6 +37,14 @@ FileNormals file_normals(const SupportGrid& grid, std::span<const vec3> input_no
   return file;
 }
 
+ProjectionParams sample_plane_params(const ProjectionParams& params) {
+  ProjectionParams plane = params;
+  plane.surface = SurfaceOperator::mls;
+  plane.plane = PlaneFitMethod::wls;
+  plane.borders = BorderMode::extend;  // a sample's plane, wherever it lies
+  return plane;
+}
+
 std::vector<vec3> sample_normals(const SupportGrid& grid, const FileNormals& file, const ProjectionParams& params,
                                  Backend backend, Stats& stats, NormalsUsed& used) {
   if (!file.sorted.empty()) {
@@ -47,10 +55,7 @@ std::vector<vec3> sample_normals(const SupportGrid& grid, const FileNormals& fil
   std::vector<vec3> normals;
   std::vector<ProjectionStatus> status;  // whether each plane was fitted: which may seed the orientation
   const std::size_t n = grid.sorted_points().size();
-  ProjectionParams plane = params;
-  plane.surface = SurfaceOperator::mls;
-  plane.plane = PlaneFitMethod::wls;
-  plane.borders = BorderMode::extend;  // a sample's plane, wherever it lies
+  const ProjectionParams plane = sample_plane_params(params);
   {
     const GridMirror g(backend, grid);
     Mirror<ProjectedPoint> out(backend, n);

@@ -18,6 +18,8 @@ std::vector<std::byte> tile_work(TileStep step, std::span<const std::byte> reque
       return work_spacing(request);
     case TileStep::widths:
       return work_widths(request);
+    case TileStep::sample_normals:
+      return work_sample_normals(request);
   }
   throw Error("a tile's work names no step");
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "pss/core/error.hpp"
 #include "pss/core/memory.hpp"
@@ -11,42 +12,14 @@
 #include "pss/points/outliers.hpp"
 #include "pss/tiles/orient.hpp"
 #include "pss/tiles/support.hpp"
+#include "orient_in_tiles.hpp"
 #include "tile_bytes.hpp"
+#include "tile_records.hpp"
 #include "tile_works.hpp"
 
 namespace pss {
 
 namespace {
-
-// Records written whole to scratch files: every byte set, padding included.
-struct Projected {  // a point projected, in its tile's bucket
-  std::uint64_t index;
-  std::uint64_t sample;  // the point its sample stands at (itself, unmerged), or kNoSample
-  vec3 point, normal;  // unit frame
-  float radius;        // ρ_i, unit frame: the orientation links the samples of each N(p_i)
-  ProjectionStatus status;
-  std::uint8_t unused[3] = {};
-  // Whether the point stands for itself in the orientation: a sample's own point, or a point
-  // of no sample (set aside), as in core (project_cloud.cpp).
-  bool stands_for_itself() const;
-};
-static_assert(sizeof(Projected) == 48);
-
-constexpr std::uint64_t kNoSample = std::uint64_t(-1);
-
-bool Projected::stands_for_itself() const { return sample == index || sample == kNoSample; }
-
-struct Oriented {  // a point oriented, in its window's bucket: its own tile's, or a halo's vote
-  std::uint64_t index;
-  vec3 point, normal;  // unit frame
-  std::uint32_t piece;
-  ProjectionStatus status;
-  bool own;
-  std::uint8_t unused[2] = {};
-};
-static_assert(sizeof(Oriented) == 40);
-
-constexpr std::uint32_t kNoPiece = std::uint32_t(-1);
 
 // A tile and its halo in the unit frame, with each point's width and whether it is a sample.
 struct UnitSet {
@@ -56,6 +29,7 @@ struct UnitSet {
   std::vector<int> samples;  // indices into the set of the samples kept
   std::vector<vec3> sample_at;  // where samples were merged: UnitTile's
   std::vector<int> into;
+  std::vector<vec3> normals;  // the samples' oriented ones, for APSS and RIMLS: UnitTile's
 };
 
 // The set's merged samples, as in core (merged_samples.hpp): each cube's points summed in the
@@ -92,7 +66,7 @@ void merge_in_set(UnitSet& s, std::span<const char> merge) {
 // sample is kept (merged points other than a cube's first are no samples of their own).
 UnitSet load_unit(const TiledCloud& cloud, int tile, double halo, const UnitFrame& frame,
                   const std::vector<float>& h, const std::vector<char>& kept, std::span<const char> merge) {
-  UnitSet s{cloud.load(tile, float(halo)), {}, {}, {}, {}, {}};
+  UnitSet s{cloud.load(tile, float(halo)), {}, {}, {}, {}, {}, {}};
   const std::size_t m = s.points.positions.size();
   s.unit.resize(m);
   s.h.resize(m);
@@ -116,20 +90,8 @@ std::vector<std::uint64_t> own_samples(const UnitSet& s, const std::vector<char>
   return sample;
 }
 
-// The world halo that holds every sample within `unit_reach` of the tile's box: a little more
-// for the rounding of the unit frame's floats (about 2^-25 of the box, whatever the reach).
-double world_halo(double unit_reach, const UnitFrame& frame) {
-  return (unit_reach + 0x1p-20) * frame.scale * (1 + 1e-5);
-}
-
-// The distance between two boxes (0 where they touch or overlap).
-double box_distance(const Aabb& a, const Aabb& b) {
-  return glm::length(glm::max(glm::max(glm::dvec3(a.lo) - glm::dvec3(b.hi), glm::dvec3(b.lo) - glm::dvec3(a.hi)),
-                              glm::dvec3(0.0)));
-}
-
 UnitTile unit_tile(const UnitSet& set) {
-  return {set.unit, set.h, set.samples, set.points.own, set.sample_at, set.into};
+  return {set.unit, set.h, set.samples, set.points.own, set.sample_at, set.into, set.normals};
 }
 
 // The unit halo that holds every sample within `reach` of a tile and, where samples merge,
@@ -191,45 +153,96 @@ std::vector<char> samples_kept(const TiledCloud& cloud, const UnitFrame& frame, 
   return kept;
 }
 
-// Where samples were merged, each record's sample's place among the records, or −1 where it
-// stands for itself (tile_works.hpp: orientation_request); a point whose sample's point the
-// set lacks stands for itself. Empty where none were merged.
-std::vector<int> samples_in_set(const std::vector<Projected>& records, bool merged) {
-  if (!merged) return {};
-  std::vector<std::pair<std::uint64_t, int>> place(records.size());
-  for (std::size_t i = 0; i < records.size(); ++i) place[i] = {records[i].index, int(i)};
-  std::sort(place.begin(), place.end());
-  std::vector<int> sample(records.size(), -1);
-  for (std::size_t i = 0; i < records.size(); ++i) {
-    const Projected& r = records[i];
-    if (r.stands_for_itself()) continue;
-    const auto at = std::lower_bound(place.begin(), place.end(), std::pair<std::uint64_t, int>(r.sample, -1));
-    if (at != place.end() && at->first == r.sample && records[std::size_t(at->second)].stands_for_itself())
-      sample[i] = at->second;
+
+// APSS's and RIMLS's projections are one piece, never turned (their normals follow the
+// samples' oriented ones).
+constexpr std::uint32_t kUnturned = 0;
+
+// What the projections' and the samples' normals' steps load of each tile.
+struct UnitSets {
+  const TiledCloud& cloud;
+  const UnitFrame& frame;
+  const std::vector<float>& h;
+  const std::vector<char>& kept;
+  std::span<const char> merge;
+  double reach;  // unit: the widest ρ_i
+  double halo;   // unit: merge_halo's
+  UnitSet load(int tile) const { return load_unit(cloud, tile, world_halo(halo, frame), frame, h, kept, merge); }
+};
+
+// APSS's and RIMLS's samples' normals (points/sample_normals.hpp) tile by tile, as in core:
+// each own sample's WLS plane at its place (a merged one at its cube's mean), then oriented
+// over the tiles as the projections' normals are, linked within the samples' ρ_i.
+OrientedInTiles sample_normals_in_tiles(const UnitSets& sets, float kappa, const ProjectionParams& unit_params,
+                                        Backend backend, std::size_t window_points, const std::filesystem::path& folder,
+                                        std::size_t buffer_bytes, TileFarm& farm) {
+  const TiledCloud& cloud = sets.cloud;
+  BucketFile fitted(folder, cloud.tiles(), sizeof(Projected), buffer_bytes);
+  std::vector<double> moved(std::size_t(cloud.tiles()), 0.0);  // a merged sample's place from its point
+  {
+    Progress progress("sample normals", std::int64_t(cloud.size()));
+    farm.run(
+        TileStep::sample_normals, cloud.tiles_with_points(),
+        [&](int t) {
+          const UnitSet set = sets.load(t);
+          ByteWriter notes;  // the own points' indices, unit positions and places as samples
+          notes.put_array(std::span(set.points.index).first(set.points.own));
+          notes.put_array(std::span<const vec3>(set.unit).first(set.points.own));
+          notes.put_array(std::span<const vec3>(set.sample_at.empty() ? set.unit : set.sample_at).first(set.points.own));
+          return TileRequest{sample_normals_request(unit_tile(set), kappa, unit_params, backend), notes.take()};
+        },
+        [&](int t, std::span<const std::byte> result, std::span<const std::byte> notes, int) {
+          const TileSampleNormals done = sample_normals_result(result);
+          ByteReader read(notes);
+          const std::vector<std::uint64_t> index = read.get_array<std::uint64_t>();
+          const std::vector<vec3> unit = read.get_array<vec3>();
+          const std::vector<vec3> at = read.get_array<vec3>();
+          if (unit.size() != index.size() || at.size() != index.size())
+            throw Error("a tile's sample normals do not hold together");
+          for (std::size_t k = 0; k < done.sample.size(); ++k) {
+            const auto i = std::size_t(done.sample[k]);
+            if (i >= index.size()) throw Error("a tile's sample normals do not hold together");
+            const Projected r{index[i], index[i], at[i], done.normal[k], kappa * sets.h[std::size_t(index[i])],
+                              done.status[k]};
+            fitted.append(t, &r);
+            moved[std::size_t(t)] = std::max(moved[std::size_t(t)], double(glm::length(at[i] - unit[i])));
+          }
+          progress.advance(std::int64_t(index.size()));
+        });
   }
-  return sample;
+  fitted.flush();
+  const OrientationInputs in{cloud, sets.frame, fitted, moved, sets.halo, false};
+  return orient_in_tiles(in, window_points, true, folder, buffer_bytes, farm, "orient sample normals");
 }
 
-// The pieces' votes: each halo point's normal against its own tile's, window by window.
-void vote(const BucketFile& ordered, std::uint64_t n, std::size_t window_points, PieceSigns& signs) {
-  for (int w = 0; w < ordered.buckets(); ++w) {
-    const std::uint64_t first = std::uint64_t(w) * window_points;
-    const std::size_t size = std::size_t(std::min<std::uint64_t>(window_points, n - first));
-    std::vector<vec3> normal(size);
-    std::vector<std::uint32_t> piece(size);
-    auto each = [&](bool own, auto&& f) {
-      ordered.for_each_record<Oriented>(w, [&](const Oriented& r) {
-        if (r.own == own) f(r);
-      });
-    };
-    each(true, [&](const Oriented& r) {
-      normal[r.index - first] = r.normal;
-      piece[r.index - first] = r.piece;
+// The oriented normals of the set's samples (UnitSet::normals), from the tiles that hold
+// them: the tile's and those within the halo it was loaded with. Every sample within reach of
+// the tile has one (its cube whole in the set: merge_halo); a merged sample beyond it may be
+// a cube's part, whose first point in the set is no sample of the cloud: it reaches no point
+// of the tile, and its normal is left zero.
+std::vector<vec3> normals_of_set(const OrientedInTiles& samples, const UnitSets& sets, int tile, const UnitSet& set) {
+  std::vector<std::pair<std::uint64_t, int>> wanted;  // each sample's index in the cloud, place in the set
+  for (const int i : set.samples) wanted.push_back({set.points.index[std::size_t(i)], i});
+  std::sort(wanted.begin(), wanted.end());
+  std::vector<vec3> normals(set.unit.size(), vec3(0.0f));
+  std::vector<char> found(set.unit.size(), 0);
+  auto take = [&](int u) {
+    samples.by_tile->for_each_record<Oriented>(u, [&](const Oriented& r) {
+      const auto at = std::lower_bound(wanted.begin(), wanted.end(), std::pair<std::uint64_t, int>(r.index, -1));
+      if (at == wanted.end() || at->first != r.index) return;
+      normals[std::size_t(at->second)] = samples.turned(r) ? -r.normal : r.normal;
+      found[std::size_t(at->second)] = 1;
     });
-    each(false, [&](const Oriented& r) {
-      signs.vote(r.piece, piece[r.index - first], glm::dot(r.normal, normal[r.index - first]) >= 0);
-    });
-  }
+  };
+  take(tile);
+  for (const int u : sets.cloud.tiles_near(tile, float(world_halo(sets.halo, sets.frame)))) take(u);
+  const Aabb box = sets.cloud.tile_box(tile);
+  const std::vector<vec3>& at = set.sample_at.empty() ? set.unit : set.sample_at;
+  for (const int i : set.samples)
+    if (!found[std::size_t(i)] &&
+        distance_to_box(sets.frame.from_unit(at[std::size_t(i)]), box) <= world_halo(sets.reach, sets.frame))
+      throw Error("a tile's samples' normals do not hold together");
+  return normals;
 }
 
 }  // namespace
@@ -239,7 +252,6 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
                                  std::size_t buffer_bytes, Stats& stats, TileFarm& farm)
     : cloud_(cloud), window_points_(std::max<std::size_t>(window_points, 1)) {
   validate(params);
-  check_tiled_surface(params.surface);
   // The file's normals orient MLS's and are fitted by APSS and RIMLS, after their flips are
   // turned over the whole cloud (turn_flipped_normals.hpp); --normals estimate leaves them out,
   // as in core.
@@ -272,9 +284,27 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
     kept = samples_kept(cloud, frame_, h, merge, kappa, halo, farm, outliers_);
   }
 
+  // APSS and RIMLS fit the samples' normals, estimated and oriented first, as in core; their
+  // projections' normals follow those, so they need no orientation of their own.
+  const UnitSets sets{cloud, frame_, h, kept, merge, reach, halo};  // N(r) of each point
+  const bool fits_normals = params.surface != SurfaceOperator::mls;
+  OrientedInTiles samples;
+  if (fits_normals) {
+    ScopedPhase phase(stats, "sample normals", false);  // its Progress shows it
+    samples = sample_normals_in_tiles(sets, kappa, unit_params, backend, window_points_, folder, buffer_bytes, farm);
+    samples.ordered.reset();  // its votes are counted
+    normals_ = NormalsUsed::estimated;
+  }
+
   // The projections, each tile's from its samples and its halo's (tile_works.hpp). How far
-  // each tile's points moved says how far its projections lie outside its box.
-  BucketFile projected(folder, cloud.tiles(), sizeof(Projected), buffer_bytes);
+  // each tile's points moved says how far its projections lie outside its box. MLS's wait by
+  // tile for their orientation; APSS's and RIMLS's go to their windows.
+  const std::size_t windows = std::size_t((n + window_points_ - 1) / window_points_);
+  std::optional<BucketFile> projected;
+  if (fits_normals)
+    ordered_ = std::make_unique<BucketFile>(folder, int(std::max<std::size_t>(windows, 1)), sizeof(Oriented), buffer_bytes);
+  else
+    projected.emplace(folder, cloud.tiles(), sizeof(Projected), buffer_bytes);
   std::vector<double> moved(std::size_t(cloud.tiles()), 0.0);  // the farthest, unit frame
   points_per_rank_.assign(std::size_t(farm.ranks()), 0);
   {
@@ -283,9 +313,10 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
     farm.run(
         TileStep::projection, cloud.tiles_with_points(),
         [&](int t) {
-          const UnitSet set = load_unit(cloud, t, world_halo(halo, frame_), frame_, h, kept, merge);  // N(r) of each point
+          UnitSet set = sets.load(t);
+          if (fits_normals) set.normals = normals_of_set(samples, sets, t, set);
           ByteWriter notes;  // the own points' indices, unit positions and samples
-          notes.put_array(std::span(set.points.index).first(set.points.own));
+          notes.put_array(std::span<const std::uint64_t>(set.points.index).first(set.points.own));
           notes.put_array(std::span<const vec3>(set.unit).first(set.points.own));
           notes.put_array(std::span<const std::uint64_t>(own_samples(set, kept)));
           return TileRequest{projection_request(unit_tile(set), kappa, unit_params, backend), notes.take()};
@@ -304,109 +335,35 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
             if (i >= count) throw Error("a tile's projections do not hold together");
             const ProjectedPoint& p = done.projected[k];
             moved[std::size_t(t)] = std::max(moved[std::size_t(t)], double(glm::length(p.point - unit[i])));
-            const Projected r{index[i], sample[i], p.point, p.normal, kappa * h[std::size_t(index[i])], p.status};
-            projected.append(t, &r);
-            counts_.add(r.status);
+            if (fits_normals) {
+              const Oriented o{index[i], p.point, p.normal, kUnturned, p.status, true};
+              ordered_->append(int(index[i] / window_points_), &o);
+            } else {
+              const Projected r{index[i], sample[i], p.point, p.normal, kappa * h[std::size_t(index[i])], p.status};
+              projected->append(t, &r);
+            }
+            counts_.add(p.status);
           }
           points_per_rank_[std::size_t(rank)] += count;
           progress.advance(std::int64_t(count));
         });
   }
-  projected.flush();
   release(h);
   release(kept);
   release(merge);
-
-  // The orientation (orient_normals.hpp), tile by tile: each tile's points with those of its
-  // halo, every point linked to those within their ρ_j; each piece of it a sign to agree on.
-  const std::size_t windows = std::size_t((n + window_points_ - 1) / window_points_);
-  ordered_ = std::make_unique<BucketFile>(folder, int(std::max<std::size_t>(windows, 1)), sizeof(Oriented), buffer_bytes);
-  PieceSigns signs;
-  ScopedPhase orientation(stats, "orient normals", false);  // its Progress shows it
-  {
-    Progress progress("orient normals", std::int64_t(n));
-    const double farthest = *std::max_element(moved.begin(), moved.end());
-    struct Set {  // a tile's projected points and its halo's: its notes
-      std::vector<Projected> records;
-      std::size_t own = 0;
-    };
-    farm.run(
-        TileStep::orientation, cloud.tiles_with_points(),
-        [&](int t) {
-          // Each own point lies within moved[t] of the box and links to points within the
-          // widest ρ_j of it; a point of tile u lies within moved[u] of u's box.
-          const double reach_t = reach + moved[std::size_t(t)];
-          const double halo = world_halo(reach_t, frame_);
-          const Aabb box = cloud.tile_box(t);
-          Set set;
-          projected.for_each_record<Projected>(t, [&](const Projected& r) { set.records.push_back(r); });
-          set.own = set.records.size();
-          for (const int u : cloud.tiles_near(t, float(world_halo(reach_t + farthest, frame_)))) {
-            if (box_distance(cloud.tile_box(u), box) > world_halo(reach_t + moved[std::size_t(u)], frame_)) continue;
-            projected.for_each_record<Projected>(u, [&](const Projected& r) {
-              if (distance_to_box(frame_.from_unit(r.point), box) <= halo) set.records.push_back(r);
-            });
-          }
-          std::sort(set.records.begin() + std::ptrdiff_t(set.own), set.records.end(),
-                    [](const Projected& a, const Projected& b) { return a.index < b.index; });
-          const std::size_t m = set.records.size();
-          std::vector<vec3> points(m), normals(m);
-          std::vector<float> radius(m);
-          std::vector<std::uint64_t> id(m);
-          for (std::size_t i = 0; i < m; ++i) {
-            points[i] = set.records[i].point;
-            normals[i] = set.records[i].normal;
-            radius[i] = set.records[i].radius;
-            id[i] = set.records[i].index;
-          }
-          ByteWriter notes;
-          notes.put(std::uint64_t(set.own));
-          notes.put_array(std::span<const Projected>(set.records));
-          return TileRequest{orientation_request(points, normals, radius, id, samples_in_set(set.records, widths_.merged_count > 0)),
-                             notes.take()};
-        },
-        [&](int, std::span<const std::byte> result, std::span<const std::byte> notes, int) {
-          ByteReader read(notes);
-          Set set;
-          set.own = std::size_t(read.get<std::uint64_t>());
-          set.records = read.get_array<Projected>();
-          if (set.own > set.records.size()) throw Error("a tile's orientation does not hold together");
-          const TileOrientation oriented = orientation_result(result, set.records.size());
-          const OrientedParts& parts = oriented.parts;
-          // A halo's point alone in its part can only agree with its own tile's piece: no piece.
-          std::vector<int> size(parts.root.size(), 0);
-          for (const int part : parts.of_point) ++size[std::size_t(part)];
-          std::vector<FacingVote> vote(parts.root.size());
-          for (std::size_t i = 0; i < set.own; ++i) {
-            const Projected& r = set.records[i];
-            if (r.stands_for_itself())  // in core the tree's points vote
-              vote[std::size_t(parts.of_point[i])].add(r.point, oriented.normals[i], 1.0f / (r.radius * r.radius), r.status);
-          }
-          std::vector<std::uint32_t> piece(parts.root.size(), kNoPiece);
-          for (std::size_t p = 0; p < piece.size(); ++p) {
-            const Projected& root = set.records[std::size_t(parts.root[p])];
-            if (size[p] > 1 || std::size_t(parts.root[p]) < set.own)
-              piece[p] = signs.add_piece(root.point.z, root.index, vote[p]);
-          }
-          for (std::size_t i = 0; i < set.records.size(); ++i) {
-            const std::uint32_t p = piece[std::size_t(parts.of_point[i])];
-            if (p == kNoPiece) continue;
-            const Projected& r = set.records[i];
-            const Oriented o{r.index, r.point, oriented.normals[i], p, r.status, i < set.own};
-            ordered_->append(int(r.index / window_points_), &o);
-          }
-          progress.advance(std::int64_t(set.own));
-        });
+  if (fits_normals) {
+    ordered_->flush();
+    flip_.assign(kUnturned + 1, 0);
+    return;
   }
-  ordered_->flush();
+  projected->flush();
 
-  vote(*ordered_, n, window_points_, signs);
-  flip_ = signs.turns();
-}
-
-void check_tiled_surface(SurfaceOperator surface) {
-  if (surface != SurfaceOperator::mls)
-    throw NotTiled("tile by tile, pss project fits the paper's MLS surface only (not APSS or RIMLS) so far");
+  // The orientation (orient_normals.hpp), tile by tile (orient_in_tiles.hpp).
+  ScopedPhase orientation(stats, "orient normals", false);  // its Progress shows it
+  const OrientationInputs in{cloud, frame_, *projected, moved, reach, widths_.merged_count > 0};
+  OrientedInTiles oriented = orient_in_tiles(in, window_points_, false, folder, buffer_bytes, farm, "orient normals");
+  ordered_ = std::move(oriented.ordered);
+  flip_ = std::move(oriented.flip);
 }
 
 void TiledProjection::read_in_order(const std::function<void(ProjectedWindow&)>& f) const {

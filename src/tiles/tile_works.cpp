@@ -9,6 +9,7 @@
 #include "pss/core/gather.hpp"
 #include "pss/core/stats.hpp"
 #include "pss/points/outliers.hpp"
+#include "pss/points/sample_normals.hpp"
 #include "pss/points/noise.hpp"
 #include "pss/points/spacing.hpp"
 #include "pss/spatial/grid_mirror.hpp"
@@ -38,6 +39,7 @@ void put_tile(ByteWriter& out, const UnitTile& tile, float kappa) {
   out.put_array(tile.samples);
   out.put_array(tile.sample_at);
   out.put_array(tile.into);
+  out.put_array(tile.normals);
 }
 
 struct TileArrays {
@@ -48,25 +50,41 @@ struct TileArrays {
   std::vector<int> samples;
   std::vector<vec3> sample_at;
   std::vector<int> into;
+  std::vector<vec3> normals;
 };
 
 TileArrays get_tile(ByteReader& in) {
   TileArrays t{in.get<float>(),        std::size_t(in.get<std::uint64_t>()), in.get_array<vec3>(), in.get_array<float>(),
-               in.get_array<int>(),    in.get_array<vec3>(),                 in.get_array<int>()};
+               in.get_array<int>(),    in.get_array<vec3>(),                 in.get_array<int>(),
+               in.get_array<vec3>()};
   // SupportGrid refuses a sample outside the set; set_members trusts its cubes' first points.
   const std::size_t m = t.unit.size();
   bool whole = t.h.size() == m && t.own <= m && t.sample_at.size() == t.into.size() &&
-               (t.into.empty() || t.into.size() == m);
+               (t.into.empty() || t.into.size() == m) && (t.normals.empty() || t.normals.size() == m);
   for (const int i : t.into) whole = whole && i >= 0 && std::size_t(i) < m;
   if (!whole) throw Error("a tile's work does not hold together");
   return t;
 }
 
-// The grid of the tile's samples, merged ones at their cubes' means with their masses.
+// The grid of the tile's samples, merged ones at their cubes' means with their masses, with
+// their normals where the surface fits them.
 SupportGrid grid_of_tile(const TileArrays& t) {
   SupportGrid grid(t.sample_at.empty() ? t.unit : t.sample_at, t.h, t.samples, t.kappa);
   grid.set_members(t.into);
+  if (!t.normals.empty()) grid.set_normals(gathered<vec3>(t.normals, grid.original_index()));
   return grid;
+}
+
+// The projection of `points` onto the grid's surface, on `backend`.
+std::vector<ProjectedPoint> project_on(const SupportGrid& grid, std::span<const vec3> points,
+                                       const ProjectionParams& params, Backend backend) {
+  const GridMirror g(backend, grid);
+  const Mirror<vec3> at(backend, points);
+  Mirror<ProjectedPoint> out(backend, points.size());
+  Stats stats;  // the caller times and shows the step whole
+  parallel_for(backend, "projection", std::int64_t(points.size()),
+               ProjectPointsKernel{g.view(), at.data(), nullptr, out.data(), params}, stats, nullptr, false);
+  return out.take();
 }
 
 }  // namespace
@@ -129,7 +147,6 @@ std::vector<std::byte> work_projection(std::span<const std::byte> request) {
   const auto params = in.get<ProjectionParams>();
   const auto backend = in.get<Backend>();
   const SupportGrid grid = grid_of_tile(t);
-  const GridMirror g(backend, grid);
   // The own points in the grid's order, then those set aside: neighbouring threads gather
   // neighbouring samples, as in core (a file's random order costs a fifth).
   std::vector<int> order;
@@ -142,14 +159,7 @@ std::vector<std::byte> work_projection(std::span<const std::byte> request) {
     }
   for (std::size_t i = 0; i < t.own; ++i)
     if (!placed[i]) order.push_back(int(i));
-  std::vector<vec3> own_points(t.own);
-  for (std::size_t k = 0; k < t.own; ++k) own_points[k] = t.unit[std::size_t(order[k])];
-  const Mirror<vec3> points(backend, own_points);
-  Mirror<ProjectedPoint> out(backend, t.own);
-  Stats stats;  // the caller times and shows the step whole
-  parallel_for(backend, "projection", std::int64_t(t.own),
-               ProjectPointsKernel{g.view(), points.data(), nullptr, out.data(), params}, stats, nullptr, false);
-  const std::vector<ProjectedPoint> done = out.take();
+  const std::vector<ProjectedPoint> done = project_on(grid, gathered<vec3>(t.unit, order), params, backend);
   std::vector<vec3> point(done.size()), normal(done.size());
   std::vector<ProjectionStatus> status(done.size());
   for (std::size_t k = 0; k < done.size(); ++k) {
@@ -176,6 +186,48 @@ TileProjections projection_result(std::span<const std::byte> result) {
   p.projected.resize(p.order.size());
   for (std::size_t k = 0; k < p.order.size(); ++k) p.projected[k] = {point[k], normal[k], status[k]};
   return p;
+}
+
+std::vector<std::byte> sample_normals_request(const UnitTile& tile, float kappa, const ProjectionParams& unit_params,
+                                              Backend backend) {
+  return projection_request(tile, kappa, sample_plane_params(unit_params), backend);
+}
+
+// At the samples' places in the grid (a merged one at its cube's mean), in its order.
+std::vector<std::byte> work_sample_normals(std::span<const std::byte> request) {
+  ByteReader in(request);
+  const TileArrays t = get_tile(in);
+  const auto params = in.get<ProjectionParams>();
+  const auto backend = in.get<Backend>();
+  const SupportGrid grid = grid_of_tile(t);
+  std::vector<int> sorted, sample;  // the own samples: their places in the grid and in the set
+  const std::span<const int> original = grid.original_index();
+  for (std::size_t k = 0; k < original.size(); ++k)
+    if (std::size_t(original[k]) < t.own) {
+      sorted.push_back(int(k));
+      sample.push_back(original[k]);
+    }
+  const std::vector<ProjectedPoint> done =
+      project_on(grid, gathered<vec3>(grid.sorted_points(), sorted), params, backend);
+  std::vector<vec3> normal(done.size());
+  std::vector<ProjectionStatus> status(done.size());
+  for (std::size_t k = 0; k < done.size(); ++k) {
+    normal[k] = done[k].normal;
+    status[k] = done[k].status;
+  }
+  ByteWriter result;
+  result.put_array<int>(sample);
+  result.put_array<vec3>(normal);
+  result.put_array<ProjectionStatus>(status);
+  return result.take();
+}
+
+TileSampleNormals sample_normals_result(std::span<const std::byte> result) {
+  ByteReader in(result);
+  TileSampleNormals s{in.get_array<int>(), in.get_array<vec3>(), in.get_array<ProjectionStatus>()};
+  if (s.normal.size() != s.sample.size() || s.status.size() != s.sample.size())
+    throw Error("a tile's sample normals do not hold together");
+  return s;
 }
 
 std::vector<std::byte> orientation_request(std::span<const vec3> points, std::span<const vec3> normals,

@@ -31,6 +31,9 @@ struct UnitTile {
   // and each point's cube's first point (SupportGrid::set_members: the samples' masses).
   std::span<const vec3> sample_at;
   std::span<const int> into;
+  // The samples' oriented normals that APSS and RIMLS fit (points/sample_normals.hpp), as
+  // long as `unit` (a point that is no sample: any), or empty for MLS.
+  std::span<const vec3> normals;
 };
 
 // The outliers' distance (points/outliers.hpp) of each own sample of the tile.
@@ -52,6 +55,18 @@ struct TileProjections {
   std::vector<ProjectedPoint> projected;  // in that order
 };
 TileProjections projection_result(std::span<const std::byte> result);
+
+// The unoriented normal of each own sample of the tile, as in core (points/sample_normals.hpp):
+// its WLS plane's at the sample's place.
+std::vector<std::byte> sample_normals_request(const UnitTile& tile, float kappa, const ProjectionParams& unit_params,
+                                              Backend backend);
+std::vector<std::byte> work_sample_normals(std::span<const std::byte> request);
+struct TileSampleNormals {
+  std::vector<int> sample;  // each own sample's place in the set
+  std::vector<vec3> normal;
+  std::vector<ProjectionStatus> status;  // whether its plane was fitted
+};
+TileSampleNormals sample_normals_result(std::span<const std::byte> result);
 
 // The orientation of a tile's projected points and its halo's (points/orient_normals.hpp:
 // orient_normals_in_parts), in the unit frame. Where samples were merged, `sample` holds, for

@@ -28,6 +28,10 @@ struct FileNormals {
 FileNormals file_normals(const SupportGrid& grid, std::span<const vec3> input_normals, const ProjectionParams& params,
                          Stats& stats);
 
+// The projection that estimates a sample's normal: its WLS plane's (Eq. 1) at the sample,
+// wherever the sample lies (no border).
+ProjectionParams sample_plane_params(const ProjectionParams& params);
+
 // One normal per sample of `grid`, in its sorted order: the file's when it has them, else
 // estimated on `backend` (phase "sample normals") and oriented.
 std::vector<vec3> sample_normals(const SupportGrid& grid, const FileNormals& file, const ProjectionParams& params,

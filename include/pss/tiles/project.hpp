@@ -1,9 +1,10 @@
 // `pss project` tile by tile (issue 28): a cloud on disk (TiledCloud) projected onto its PSS
 // within a memory budget, with project_cloud's result (points/project_cloud.hpp) to the
 // rounding of sums taken in another order. Each step runs over the tiles, each tile with a
-// halo as wide as the step reads: the widths (tiles/support.hpp), the outliers' passes, the
-// projections, and the orientation of their normals, whose tiles agree on their signs where
-// their halos overlap (tiles/orient.hpp). Every step's tiles may be spread over processes
+// halo as wide as the step reads: the widths (tiles/support.hpp), the outliers' passes, for
+// APSS and RIMLS the samples' normals and their orientation, the projections, and for MLS the
+// orientation of their normals; the tiles agree on the normals' signs where their halos
+// overlap (tiles/orient.hpp). Every step's tiles may be spread over processes
 // (tiles/farm.hpp). The results wait in scratch files and come back in
 // the cloud's order, a window at a time.
 #pragma once
@@ -19,6 +20,7 @@
 #include "pss/io/bucket_file.hpp"
 #include "pss/io/tiled_cloud.hpp"
 #include "pss/points/project_cloud.hpp"
+#include "pss/points/sample_normals.hpp"
 #include "pss/points/unit_frame.hpp"
 #include "pss/tiles/farm.hpp"
 
@@ -32,17 +34,14 @@ struct ProjectedWindow {
   std::vector<ProjectionStatus> status;
 };
 
-// Throws NotTiled for a surface tiles do not fit yet (APSS, RIMLS).
-void check_tiled_surface(SurfaceOperator surface);
-
 class TiledProjection {
  public:
-  // Projects every point of `cloud` onto its MLS surface, each step tile by tile, keeping the
-  // results in scratch files in `folder` (each buffered in at most `buffer_bytes`), to be read
-  // back in windows of `window_points`. Throws Error as project_cloud does, and NotTiled
-  // (tiles/memory_plan.hpp) for what tiles do not do yet: APSS and RIMLS, the file's normals
-  // (NormalSource::estimate leaves them out, as in core),
-  // and adaptive widths in a cloud sampled in rows (tiles/support.hpp).
+  // Projects every point of `cloud` onto its PSS (MLS, APSS or RIMLS), each step tile by tile,
+  // keeping the results in scratch files in `folder` (each buffered in at most
+  // `buffer_bytes`), to be read back in windows of `window_points`. Throws Error as
+  // project_cloud does, and NotTiled (tiles/memory_plan.hpp) for what tiles do not do yet: the
+  // file's normals (NormalSource::estimate leaves them out, as in core), and adaptive widths
+  // in a cloud sampled in rows (tiles/support.hpp).
   TiledProjection(const TiledCloud& cloud, const ProjectionParams& params, Backend backend,
                   const std::filesystem::path& folder, std::size_t window_points, std::size_t buffer_bytes,
                   Stats& stats, TileFarm& farm = local_farm());
@@ -50,6 +49,7 @@ class TiledProjection {
   StatusCounts counts() const { return counts_; }
   SupportWidths widths() const { return widths_; }  // least, median, largest (h is not kept)
   OutlierReport outliers() const { return outliers_; }
+  NormalsUsed normals_used() const { return normals_; }  // the samples' that APSS and RIMLS fit
   // The points each rank of the farm projected.
   const std::vector<std::uint64_t>& points_per_rank() const { return points_per_rank_; }
 
@@ -65,6 +65,7 @@ class TiledProjection {
   StatusCounts counts_;
   SupportWidths widths_;
   OutlierReport outliers_;
+  NormalsUsed normals_ = NormalsUsed::none;
   std::vector<std::uint64_t> points_per_rank_;
 };
 
