@@ -23,22 +23,38 @@ inline constexpr float kRimlsSigmaN = 0.75f;
 inline constexpr float kRimlsSigmaR = 1.0f;
 inline constexpr int kRimlsFits = 3;
 
+// The normals' agreement (cosine) from which a sample's plane is corrected for the surface's
+// curvature in full, and below which not at all (fit_robust_implicit): about 30° and 45°.
+inline constexpr float kRimlsCurvedFrom = 0.87f;
+inline constexpr float kRimlsCreaseBelow = 0.7f;
+
 struct RobustImplicit {
   float f = 0;
   vec3 gradient{0.0f};
+  float correction = 0;  // for the curvature: f + correction is the surface's distance
   bool valid = false;
 };
 
 // f and ∇f at x by Öztireli et al.'s Listing 1:
-//   ∇f = (Σ wᵢnᵢ + Σ ∇wᵢ·((x − pᵢ)·nᵢ − f)) / Σ wᵢ,  ∇θ3 = −2(x − pᵢ)/hᵢ²·θ3.
+//   ∇f = (Σ wᵢnᵢ + Σ ∇wᵢ·((x − pᵢ)·nᵢ − f)) / Σ wᵢ,  ∇θ3 = −2(x − pᵢ)/hᵢ²·θ3,
+// with f corrected for the curvature. Their f averages the samples' tangent planes, each of
+// which a curved surface leaves by about ‖x − pᵢ‖²/2R: f = 0 lies off a surface of radius R
+// by about ⟨‖x − pᵢ‖²⟩/2R (0.7 % R on a sphere of 4,000 samples at the default h). Averaged
+// with the plane through pᵢ normal to n = ∇f/‖∇f‖ at x, each sample's term is
+// (x − pᵢ)·(nᵢ + n)/2, on a sphere (|x|² − |pᵢ|²)/2R, zero at |x| = R: no bias. That average is
+// taken where the normals agree as a smooth surface's do within a support (nᵢ·n above
+// kRimlsCurvedFrom), and not across a crease (below kRimlsCreaseBelow), whose other face's
+// planes would pull f off the face (docs/paper-notes.md). n is the previous fit's: the last
+// fit's correction is f's.
 template <class Samples>
 PSS_HOST_DEVICE RobustImplicit fit_robust_implicit(const Samples& samples, vec3 x) {
   RobustImplicit fit;
   const float inv_sn2 = 1 / (kRimlsSigmaN * kRimlsSigmaN);
   const float inv_sr2 = 1 / (kRimlsSigmaR * kRimlsSigmaR);
   for (int k = 0; k < kRimlsFits; ++k) {
-    float sw = 0, sf = 0;
+    float sw = 0, sf = 0, sc = 0;
     vec3 sgw(0.0f), sgf(0.0f), sn(0.0f);
+    const vec3 facing = k > 0 ? glm::normalize(fit.gradient) : vec3(0.0f);
     samples.for_each_sample([&](vec3 p, int i) {
       const vec3 d = x - p;
       const vec3 n = samples.grid->normals[i];
@@ -57,6 +73,11 @@ PSS_HOST_DEVICE RobustImplicit fit_robust_implicit(const Samples& samples, vec3 
       sgw += gw;
       sgf += gw * fi;
       sn += w * n;
+      if (k > 0) {
+        const float agree = glm::clamp((glm::dot(n, facing) - kRimlsCreaseBelow) / (kRimlsCurvedFrom - kRimlsCreaseBelow),
+                                       0.0f, 1.0f);
+        sc += w * agree * agree * (3 - 2 * agree) * glm::dot(d, facing - n);
+      }
     });
     if (!(sw > 0)) return fit;  // every sample refused (or none): keep the last fit
     const float f = sf / sw;
@@ -65,7 +86,10 @@ PSS_HOST_DEVICE RobustImplicit fit_robust_implicit(const Samples& samples, vec3 
     fit.f = f;
     fit.gradient = gradient;
     fit.valid = true;
-    if (k > 0 && change < 1e-3f) break;
+    if (k > 0 && change < 1e-3f) {  // converged: n is the previous fit's to within 2°
+      fit.correction = 0.5f * sc / sw;
+      break;
+    }
   }
   return fit;
 }
@@ -81,10 +105,11 @@ PSS_HOST_DEVICE Projection project_rimls(const Samples& samples, vec3 r, const P
     const float g = glm::length(fit.gradient);
     if (!fit.valid || !(g > 0)) return -1.0f;
     out.normal = fit.gradient / g;
-    x -= fit.f * out.normal;
+    const float f = fit.f + fit.correction;
+    x -= f * out.normal;
     out.frame = Frame::from_normal(x, out.normal);
     out.polynomial = Polynomial{};
-    return abs(fit.f);
+    return abs(f);
   });
 }
 
