@@ -68,6 +68,15 @@ Compared compare(const CloudProjection& in_core, const std::string& file, const 
   return c;
 }
 
+// The file's cloud projected in core onto `surface` with adaptive widths, and the parameters.
+std::pair<ProjectionParams, CloudProjection> projected_in_core(const std::string& file, SurfaceOperator surface) {
+  ProjectionParams params = ProjectionParams::from_h(test::suggested_h(read_point_cloud(file)));
+  params.support = Support::adaptive;
+  params.surface = surface;
+  Stats stats;
+  return {params, project_cloud(read_point_cloud(file), params, Backend::cpu, stats)};
+}
+
 // A noisy torus and a sphere apart from it, with strays between: the torus crosses many tiles,
 // each orienting its piece from its own highest point, and the sphere is a part of its own.
 std::vector<vec3> torus_and_sphere_apart() {
@@ -113,11 +122,7 @@ TEST_F(TiledProjectTest, ApssAndRimlsFitTheSamplesNormalsInTilesAsInCore) {
   const std::string file = write("torus.xyz", test::xyz_text(points));
   for (const SurfaceOperator surface : {SurfaceOperator::apss, SurfaceOperator::rimls}) {
     SCOPED_TRACE(int(surface));
-    ProjectionParams params = ProjectionParams::from_h(test::suggested_h(read_point_cloud(file)));
-    params.support = Support::adaptive;
-    params.surface = surface;
-    Stats stats;
-    const CloudProjection in_core = project_cloud(read_point_cloud(file), params, Backend::cpu, stats);
+    const auto [params, in_core] = projected_in_core(file, surface);
     ASSERT_EQ(in_core.normals, NormalsUsed::estimated);
     const Compared c = compare(in_core, file, dir_, params, 600, 7001);
     EXPECT_GT(c.tiles, 8u);
@@ -176,11 +181,7 @@ TEST_F(TiledProjectTest, ANoisyTorusMergesItsSamplesInTilesAsInCore) {
   // RIMLS's samples' normals are fitted at the merged samples' places, the cubes' means.
   for (const SurfaceOperator surface : {SurfaceOperator::mls, SurfaceOperator::rimls}) {
     SCOPED_TRACE(int(surface));
-    ProjectionParams params = ProjectionParams::from_h(test::suggested_h(read_point_cloud(file)));
-    params.support = Support::adaptive;
-    params.surface = surface;
-    Stats stats;
-    const CloudProjection in_core = project_cloud(read_point_cloud(file), params, Backend::cpu, stats);
+    const auto [params, in_core] = projected_in_core(file, surface);
     ASSERT_GT(in_core.widths.merged_count, std::int64_t(points.size() / 2));
     EXPECT_GE(in_core.outliers.set_aside, 30);
     const Compared c = compare(in_core, file, dir_, params, 2500, 7001);
