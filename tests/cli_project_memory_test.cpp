@@ -98,15 +98,19 @@ TEST_F(ProjectMemory, WhatTilesDoNotDoYetIsOneLineNamingTheFile) {
 
 // APSS and RIMLS fit the samples' normals, estimated and oriented tile by tile first: the
 // points and normals of in core, and the summary and --stats say the normals were estimated.
+// Their tiles carry the normals too: a budget that tiles MLS is too small for them.
 TEST_F(ProjectMemory, ApssAndRimlsTileByTileFitTheSamplesNormalsAsInCore) {
   const std::string file = write("torus.xyz", test::torus_xyz(50000, false, 0));
   const ScratchFolder scratch(dir_ / "scratch");
+  const test::CliResult small = test::run_pss("project " + file + " -o " + path("small.ply") + " --memory 6M --surface rimls");
+  EXPECT_EQ(small.exit_code, 1);
+  EXPECT_NE(small.err.find("--memory 6 MiB is too small"), std::string::npos) << small.err;
   for (const std::string surface : {"apss", "rimls"}) {
     SCOPED_TRACE(surface);
     const std::string flags = " --surface " + surface + " --stats ";
     const test::CliResult in_core = test::run_pss("project " + file + " -o " + path("core.ply") + flags + path("core.json"));
     ASSERT_EQ(in_core.exit_code, 0) << in_core.err;
-    const test::CliResult tiled = test::run_pss("project " + file + " -o " + path("tiled.ply") + " --memory 6M" + flags +
+    const test::CliResult tiled = test::run_pss("project " + file + " -o " + path("tiled.ply") + " --memory 7400K" + flags +
                                                 path("tiled.json") + " --progress always");
     ASSERT_EQ(tiled.exit_code, 0) << tiled.err;
     EXPECT_NE(tiled.out.find("; tile by tile: "), std::string::npos) << tiled.out;

@@ -102,11 +102,11 @@ TEST_F(ProjectRanks, RimlsInTilesOverRanksIsOneProcesssBytes) {
   SKIP_WITHOUT_MPI();
   const std::string file = write("torus.xyz", test::torus_xyz(50000, false, 0));
   const ScratchFolder scratch(dir_ / "scratch");
-  const test::CliResult one = test::run_pss("project " + file + " -o " + path("one.ply") + " --surface rimls --memory 6M");
+  const test::CliResult one = test::run_pss("project " + file + " -o " + path("one.ply") + " --surface rimls --memory 7400K");
   ASSERT_EQ(one.exit_code, 0) << one.err;
   ASSERT_NE(one.out.find("; tile by tile: "), std::string::npos) << one.out;
   const test::CliResult r =
-      run_ranks(3, "project " + file + " -o " + path("ranks.ply") + " --surface rimls --memory 6M --stats " + path("s.json"));
+      run_ranks(3, "project " + file + " -o " + path("ranks.ply") + " --surface rimls --memory 7400K --stats " + path("s.json"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("; tile by tile: "), std::string::npos) << r.out;
   EXPECT_TRUE(read(path("ranks.ply")) == read(path("one.ply"))) << "the ranks' output differs from one process's";

@@ -80,7 +80,9 @@ OrientedInTiles orient_in_tiles(const OrientationInputs& in, std::size_t window_
   out.ordered = std::make_unique<BucketFile>(folder, int(std::max<std::size_t>(windows, 1)), sizeof(Oriented), buffer);
   if (by_tile) out.by_tile = std::make_unique<BucketFile>(folder, cloud.tiles(), sizeof(Oriented), buffer);
   PieceSigns signs;
-  Progress progress(label, std::int64_t(n));
+  std::uint64_t records = 0;  // each own record once: a point each, or a sample each
+  for (int t = 0; t < cloud.tiles(); ++t) records += in.records.records(t);
+  Progress progress(label, std::int64_t(records));
   const double farthest = in.moved.empty() ? 0.0 : *std::max_element(in.moved.begin(), in.moved.end());
   farm.run(
       TileStep::orientation, cloud.tiles_with_points(),

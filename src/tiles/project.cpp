@@ -10,7 +10,6 @@
 #include "pss/core/progress.hpp"
 #include "pss/points/merged_samples.hpp"
 #include "pss/points/outliers.hpp"
-#include "pss/tiles/orient.hpp"
 #include "pss/tiles/support.hpp"
 #include "orient_in_tiles.hpp"
 #include "tile_bytes.hpp"
@@ -153,7 +152,6 @@ std::vector<char> samples_kept(const TiledCloud& cloud, const UnitFrame& frame, 
   return kept;
 }
 
-
 // APSS's and RIMLS's projections are one piece, never turned (their normals follow the
 // samples' oriented ones).
 constexpr std::uint32_t kUnturned = 0;
@@ -211,7 +209,7 @@ OrientedInTiles sample_normals_in_tiles(const UnitSets& sets, float kappa, const
         });
   }
   fitted.flush();
-  const OrientationInputs in{cloud, sets.frame, fitted, moved, sets.halo, false};
+  const OrientationInputs in{cloud, sets.frame, fitted, moved, sets.reach, false};
   return orient_in_tiles(in, window_points, true, folder, buffer_bytes, farm, "orient sample normals");
 }
 

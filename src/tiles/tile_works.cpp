@@ -146,6 +146,8 @@ std::vector<std::byte> work_projection(std::span<const std::byte> request) {
   const TileArrays t = get_tile(in);
   const auto params = in.get<ProjectionParams>();
   const auto backend = in.get<Backend>();
+  if (params.surface != SurfaceOperator::mls && t.normals.empty())
+    throw Error("a tile's work does not hold together: APSS and RIMLS need the samples' normals");
   const SupportGrid grid = grid_of_tile(t);
   // The own points in the grid's order, then those set aside: neighbouring threads gather
   // neighbouring samples, as in core (a file's random order costs a fifth).

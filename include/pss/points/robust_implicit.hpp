@@ -44,8 +44,10 @@ struct RobustImplicit {
 // (x − pᵢ)·(nᵢ + n)/2, on a sphere (|x|² − |pᵢ|²)/2R, zero at |x| = R: no bias. That average is
 // taken where the normals agree as a smooth surface's do within a support (nᵢ·n above
 // kRimlsCurvedFrom), and not across a crease (below kRimlsCreaseBelow), whose other face's
-// planes would pull f off the face (docs/paper-notes.md). n is the previous fit's: the last
-// fit's correction is f's.
+// planes would pull f off the face (docs/paper-notes.md). Each fit's sum takes n from the
+// fit before it, so the correction is taken once the fits converge (∇f moved less than √1e-3,
+// about 2° where ‖∇f‖ ≈ 1, as it is near the surface); a fit that does not converge within
+// kRimlsFits keeps the paper's f.
 template <class Samples>
 PSS_HOST_DEVICE RobustImplicit fit_robust_implicit(const Samples& samples, vec3 x) {
   RobustImplicit fit;
@@ -54,7 +56,9 @@ PSS_HOST_DEVICE RobustImplicit fit_robust_implicit(const Samples& samples, vec3 
   for (int k = 0; k < kRimlsFits; ++k) {
     float sw = 0, sf = 0, sc = 0;
     vec3 sgw(0.0f), sgf(0.0f), sn(0.0f);
-    const vec3 facing = k > 0 ? glm::normalize(fit.gradient) : vec3(0.0f);
+    // The previous fit's normal; none (no correction) before the first or where ∇f vanished.
+    const float g2 = length2(fit.gradient);
+    const vec3 facing = k > 0 && g2 > 0 ? fit.gradient / sqrt(g2) : vec3(0.0f);
     samples.for_each_sample([&](vec3 p, int i) {
       const vec3 d = x - p;
       const vec3 n = samples.grid->normals[i];
