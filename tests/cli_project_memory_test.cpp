@@ -49,12 +49,12 @@ TEST_F(ProjectMemory, TileByTileTheSamePointsInTheSameOrderWithTheirColoursAndSc
   const test::CliResult in_core = test::run_pss("project " + file + " -o " + path("core.ply") + " --stats " + path("core.json"));
   ASSERT_EQ(in_core.exit_code, 0) << in_core.err;
   const ScratchFolder scratch(dir_ / "scratch");
-  const test::CliResult tiled = test::run_pss("project " + file + " -o " + path("tiled.ply") + " --memory 6M --stats " +
+  const test::CliResult tiled = test::run_pss("project " + file + " -o " + path("tiled.ply") + " --memory 7400K --stats " +
                                               path("tiled.json") + " --progress always");
   ASSERT_EQ(tiled.exit_code, 0) << tiled.err;
   EXPECT_TRUE(scratch.empty()) << "the tiles' scratch files are left behind";
-  for (const char* phase : {"reading into tiles: done", "support widths: done", "outliers: done", "projecting: done",
-                            "orient normals: done", "writing: done"})
+  for (const char* phase : {"reading into tiles: done", "support widths: done", "outliers: done", "sample normals: done",
+                            "orient sample normals: done", "projecting: done", "writing: done"})
     EXPECT_NE(tiled.err.find(phase), std::string::npos) << tiled.err;
   EXPECT_NE(tiled.out.find("; tile by tile: "), std::string::npos) << tiled.out;
   EXPECT_NE(in_core.out.find("; in core)"), std::string::npos) << in_core.out;
@@ -62,7 +62,7 @@ TEST_F(ProjectMemory, TileByTileTheSamePointsInTheSameOrderWithTheirColoursAndSc
   const nlohmann::json tiled_stats = nlohmann::json::parse(read(path("tiled.json")));
   EXPECT_FALSE(core_stats["memory"]["tiled"].get<bool>());
   EXPECT_TRUE(tiled_stats["memory"]["tiled"].get<bool>());
-  EXPECT_EQ(tiled_stats["memory"]["budget"].get<std::uint64_t>(), 6u << 20);
+  EXPECT_EQ(tiled_stats["memory"]["budget"].get<std::uint64_t>(), 7400u << 10);
   EXPECT_EQ(tiled_stats["outliers_set_aside"], core_stats["outliers_set_aside"]);
   EXPECT_EQ(tiled_stats["params"]["h"], core_stats["params"]["h"]);
 
@@ -78,7 +78,7 @@ TEST_F(ProjectMemory, TileByTileTheSamePointsInTheSameOrderWithTheirColoursAndSc
   EXPECT_LE(c.status_differ, n / 200);
 
   // XYZ out, from the same tiles' work.
-  ASSERT_EQ(test::run_pss("project " + file + " -o " + path("tiled.xyz") + " --memory 6M").exit_code, 0);
+  ASSERT_EQ(test::run_pss("project " + file + " -o " + path("tiled.xyz") + " --memory 7400K").exit_code, 0);
   ASSERT_EQ(test::run_pss("project " + file + " -o " + path("core.xyz")).exit_code, 0);
   EXPECT_EQ(test::line_count(read(path("tiled.xyz"))), int(n));
   EXPECT_TRUE(scratch.empty());
@@ -87,7 +87,7 @@ TEST_F(ProjectMemory, TileByTileTheSamePointsInTheSameOrderWithTheirColoursAndSc
 TEST_F(ProjectMemory, WhatTilesDoNotDoYetIsOneLineNamingTheFile) {
   const std::string normals = write("normals.xyz", test::torus_xyz(50000, false, 1.0));
   const ScratchFolder scratch(dir_ / "scratch");
-  const test::CliResult r = test::run_pss("project " + normals + " -o " + path("o.ply") + " --memory 6M");
+  const test::CliResult r = test::run_pss("project " + normals + " -o " + path("o.ply") + " --memory 7400K");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(test::line_count(r.err), 1) << r.err;
   EXPECT_NE(r.err.find("pss: error: " + normals), std::string::npos) << r.err;
@@ -135,13 +135,13 @@ TEST_F(ProjectMemory, ApssAndRimlsTileByTileFitTheSamplesNormalsAsInCore) {
 TEST_F(ProjectMemory, WithNormalsEstimateACloudWithNormalsIsTiledAsInCore) {
   const std::string file = write("normals.xyz", test::torus_xyz(50000, false, 1.0));
   const ScratchFolder scratch(dir_ / "scratch");
-  const test::CliResult refused = test::run_pss("project " + file + " -o " + path("o.ply") + " --memory 6M");
+  const test::CliResult refused = test::run_pss("project " + file + " -o " + path("o.ply") + " --memory 7400K");
   EXPECT_NE(refused.err.find("--normals estimate"), std::string::npos) << refused.err;
   const test::CliResult in_core = test::run_pss("project " + file + " -o " + path("core.ply") +
                                                 " --normals estimate --stats " + path("core.json"));
   ASSERT_EQ(in_core.exit_code, 0) << in_core.err;
   const test::CliResult tiled =
-      test::run_pss("project " + file + " -o " + path("tiled.ply") + " --normals estimate --memory 6M");
+      test::run_pss("project " + file + " -o " + path("tiled.ply") + " --normals estimate --memory 7400K");
   ASSERT_EQ(tiled.exit_code, 0) << tiled.err;
   EXPECT_NE(tiled.out.find("; tile by tile: "), std::string::npos) << tiled.out;
   EXPECT_TRUE(scratch.empty());
@@ -163,7 +163,7 @@ TEST_F(ProjectMemory, AFullDiskOrNoScratchFolderIsOneLineAndLeavesNothing) {
   const ScratchFolder scratch(dir_ / "scratch");
   const std::string err = path("err.txt");
   const int status = std::system(("ulimit -f 256; " + std::string(PSS_CLI) + " project " + file + " -o " +
-                                  path("o.ply") + " --memory 6M 2>" + err).c_str());
+                                  path("o.ply") + " --memory 7400K 2>" + err).c_str());
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 1);
   EXPECT_EQ(test::line_count(read(err)), 1) << read(err);
   EXPECT_NE(read(err).find("File too large"), std::string::npos) << read(err);
@@ -171,7 +171,7 @@ TEST_F(ProjectMemory, AFullDiskOrNoScratchFolderIsOneLineAndLeavesNothing) {
   EXPECT_TRUE(scratch.empty()) << "the scratch files are left behind";
   // The tiles go to $TMPDIR: one that is no folder is named.
   const int none = std::system(("TMPDIR=" + (dir_ / "none").string() + " " + std::string(PSS_CLI) + " project " +
-                                file + " -o " + path("o.ply") + " --memory 6M 2>" + err).c_str());
+                                file + " -o " + path("o.ply") + " --memory 7400K 2>" + err).c_str());
   EXPECT_TRUE(WIFEXITED(none) && WEXITSTATUS(none) == 1);
   EXPECT_EQ(test::line_count(read(err)), 1) << read(err);
   EXPECT_NE(read(err).find("the temporary folder '" + (dir_ / "none").string() + "'"), std::string::npos) << read(err);

@@ -37,14 +37,14 @@ TEST_F(ProjectRanks, TwoAndThreeRanksWriteOneProcesssBytesAndCountEachRanksPoint
   const std::string file = write("torus.xyz", test::torus_xyz(50000, false, 0));
   const ScratchFolder scratch(dir_ / "scratch");
   const test::CliResult one =
-      test::run_pss("project " + file + " -o " + path("one.ply") + " --memory 6M --stats " + path("one.json"));
+      test::run_pss("project " + file + " -o " + path("one.ply") + " --memory 7400K --stats " + path("one.json"));
   ASSERT_EQ(one.exit_code, 0) << one.err;
   const int threads = nlohmann::json::parse(read(path("one.json")))["threads"].get<int>();
   ASSERT_NE(one.out.find("; tile by tile: "), std::string::npos) << one.out;
   for (const int ranks : {2, 3}) {
     SCOPED_TRACE(ranks);
     const std::string out = path(std::to_string(ranks) + ".ply"), stats = path(std::to_string(ranks) + ".json");
-    const test::CliResult r = run_ranks(ranks, "project " + file + " -o " + out + " --memory 6M --stats " + stats);
+    const test::CliResult r = run_ranks(ranks, "project " + file + " -o " + out + " --memory 7400K --stats " + stats);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("; " + std::to_string(ranks) + " ranks)"), std::string::npos) << r.out;
     EXPECT_EQ(read(out), read(path("one.ply"))) << "the ranks' output differs from one process's";
@@ -136,7 +136,7 @@ TEST_F(ProjectRanks, ARankThatDiesEndsTheRunWithNoOutputAndNoScratch) {
   // Rank 1 is the pss process whose environment says OMPI_COMM_WORLD_RANK=1.
   const std::string script =
       "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 timeout 120 " + std::string(PSS_MPIEXEC) +
-      " --oversubscribe -np 2 " + pss + " -o " + path("o.ply") + " --memory 6M --progress always 2>" + err +
+      " --oversubscribe -np 2 " + pss + " -o " + path("o.ply") + " --memory 7400K --progress always 2>" + err +
       " & run=$!\n"
       "for i in $(seq 600); do grep -q projecting " + err + " && break; sleep 0.05; done\n"
       "for p in $(pgrep -f '" + pss + "'); do\n"

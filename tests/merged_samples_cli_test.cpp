@@ -94,7 +94,7 @@ TEST_F(MergedSamplesCli, TileByTileACloudMergesAsInCore) {
                                              path("c.json"));
   ASSERT_EQ(core.exit_code, 0) << core.err;
   const test::CliResult tiled = test::run_pss("project " + path("noisy.ply") + " -o " + path("t.ply") +
-                                              " --memory 7M --stats " + path("t.json"));
+                                              " --memory 8M --stats " + path("t.json"));
   ASSERT_EQ(tiled.exit_code, 0) << tiled.err;
   EXPECT_NE(tiled.out.find("tile by tile"), std::string::npos) << tiled.out;
   EXPECT_NE(tiled.out.find("points merged into samples"), std::string::npos) << tiled.out;

@@ -268,10 +268,10 @@ TEST_F(MeshCli, AnAerialScansMeshFacesUp) {
   EXPECT_LT(down, 0.15 * total) << down / total;
   const nlohmann::json s = stats("u.json");
   EXPECT_EQ(s["turned_outward"], false);
-  // Stray returns made 184 specks of a few triangles, each held by fewer than 3 samples:
-  // removed, they leave 12 parts of 196.
+  // Stray returns make specks of a few triangles, each held by fewer than 3 samples (184 under
+  // MLS, 31 under RIMLS, the default): removed, they leave 12 parts.
   const int removed = s["band"]["unsupported_parts"].get<int>();
-  EXPECT_GT(removed, 100);
+  EXPECT_GT(removed, 20);
   EXPECT_LT(s["mesh"]["components"].get<int>(), 30);
   EXPECT_NE(r.out.find(std::to_string(removed) + " parts held by fewer than 3 samples removed"), std::string::npos)
       << r.out;

@@ -57,7 +57,7 @@ TEST_F(SurfaceCli, ProjectFitsTheChosenSurfaceWithTheChosenNormals) {
     EXPECT_EQ(r.exit_code, 0) << r.err;
     return r.out;
   };
-  EXPECT_NE(project(exact, "", "mls").find("mls surface, h ="), std::string::npos);
+  EXPECT_NE(project(exact, " --surface mls", "mls").find("mls surface, h ="), std::string::npos);
   EXPECT_EQ(read_json(path("mls.json"))["params"]["surface"], "mls");
   EXPECT_EQ(read_json(path("mls.json"))["params"]["normals"], "none");
   EXPECT_NE(project(exact, " --surface apss", "apss").find("apss surface (the file's normals)"), std::string::npos);
@@ -142,8 +142,8 @@ TEST_F(SurfaceCli, RenderRecordsAndShowsTheChosenSurface) {
     EXPECT_EQ(r.exit_code, 0) << r.err;
     return read_json(path(name + ".json"));
   };
-  EXPECT_EQ(render("", "mls")["params"]["surface"], "mls");
-  const nlohmann::json rimls = render(" --surface rimls", "rimls");
+  EXPECT_EQ(render(" --surface mls", "mls")["params"]["surface"], "mls");
+  const nlohmann::json rimls = render("", "rimls");  // the default
   EXPECT_EQ(rimls["params"]["surface"], "rimls");
   EXPECT_EQ(rimls["params"]["normals"], "estimated");
   EXPECT_EQ(render(" --surface apss", "apss")["params"]["surface"], "apss");

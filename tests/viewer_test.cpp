@@ -152,8 +152,8 @@ TEST_F(Viewer, SupportIsTheRenderedOne) {
   EXPECT_NE(read(path("a.png")), read(path("g.png")));
 }
 
-// The panel's surface: MLS by default, as pss render's; APSS and RIMLS when set, as
-// --surface's (the cloud prepared again with its normals, then switched back without).
+// The panel's surface: RIMLS by default, as pss render's; MLS and APSS when set, as
+// --surface's (the cloud prepared again without normals and with them, then switched back).
 TEST_F(Viewer, SurfaceIsTheRenderedOne) {
   test::SampleOptions o;
   o.count = 6000;
@@ -163,8 +163,8 @@ TEST_F(Viewer, SurfaceIsTheRenderedOne) {
     for (const vec3& p : test::sample(test::Sphere{}, o).positions) xyz << p.x << ' ' << p.y << ' ' << p.z << '\n';
   }
   const test::CliResult r = view(path("sphere.xyz") + " --size 96x96",
-                                 "view 30 20\nscreenshot m\nset surface rimls\nscreenshot r\nset surface apss\n"
-                                 "screenshot a\nset surface mls\nscreenshot m2\n");
+                                 "view 30 20\nscreenshot r\nset surface mls\nscreenshot m\nset surface apss\n"
+                                 "screenshot a\nset surface rimls\nscreenshot r2\n");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string render = "render " + path("sphere.xyz") + " --size 96x96 --view 30,20 -o ";
   for (const char* surface : {"mls", "rimls", "apss"})
@@ -172,7 +172,7 @@ TEST_F(Viewer, SurfaceIsTheRenderedOne) {
   EXPECT_EQ(read(path("m.png")), read(path("r_mls.png")));
   EXPECT_EQ(read(path("r.png")), read(path("r_rimls.png")));
   EXPECT_EQ(read(path("a.png")), read(path("r_apss.png")));
-  EXPECT_EQ(read(path("m2.png")), read(path("r_mls.png")));
+  EXPECT_EQ(read(path("r2.png")), read(path("r_rimls.png")));
   EXPECT_NE(read(path("m.png")), read(path("r.png")));
   EXPECT_NE(read(path("m.png")), read(path("a.png")));
 }

@@ -80,7 +80,7 @@ std::string support_text(Support support, const SupportWidths& widths);
 // --surface mls|apss|rimls, --normals file|estimate and --outliers set-aside|keep
 // (points/projection.hpp): which surface the samples define, and which points are samples.
 struct SurfaceOptions {
-  std::string surface = "mls";
+  std::string surface = "rimls";
   std::string normals = "file";
   std::string outliers = "set-aside";
 };

@@ -106,7 +106,7 @@ def estimate_h(points):
     return _pss.estimate_h(points)
 
 
-def project(points, h=None, *, normals=None, surface="mls", outliers="set-aside", method="mls", rho=None, support=None,
+def project(points, h=None, *, normals=None, surface="rimls", outliers="set-aside", method="mls", rho=None, support=None,
             iterations=4, backend="auto"):
     """Move every point onto the point set surface, as `pss project`.
 
@@ -117,8 +117,8 @@ def project(points, h=None, *, normals=None, surface="mls", outliers="set-aside"
     global when h is given; method: 'mls' (the paper's Eq. 2) or 'wls' (Eq. 1);
     iterations: the most MLS alternations; normals: (N, 3) hints of the side each point's
     normal faces (without them the normals are oriented consistently over the cloud).
-    surface: 'mls' (the paper's), 'apss' (algebraic spheres fitted to the points and their
-    normals) or 'rimls' (robust implicit MLS: keeps sharp creases), as the CLI's
+    surface: 'rimls' (robust implicit MLS: keeps sharp creases; the default), 'mls' (the
+    paper's) or 'apss' (algebraic spheres fitted to the points and their normals), as the CLI's
     --surface; apss and rimls fit the given normals, or estimate them when none are given
     (the CLI's --normals estimate); with them, iterations counts the fits moved to the point.
     outliers: 'set-aside' (points off their neighbours' plane by more than the cloud's noise
@@ -135,7 +135,7 @@ def project(points, h=None, *, normals=None, surface="mls", outliers="set-aside"
                                  "support": support, "iterations": iterations, "backend": backend})
 
 
-def mesh(points, h=None, *, normals=None, surface="mls", outliers="set-aside", rho=None, support=None, cell=None,
+def mesh(points, h=None, *, normals=None, surface="rimls", outliers="set-aside", rho=None, support=None, cell=None,
          borders="auto", iterations=4, crease_angle=30, backend="auto"):
     """A triangle mesh of the point set surface, as `pss mesh`: marching tetrahedra over the
     cubes near the points, every vertex on the surface with its normal.
@@ -158,7 +158,7 @@ def mesh(points, h=None, *, normals=None, surface="mls", outliers="set-aside", r
                               "crease_angle": crease_angle, "backend": backend})
 
 
-def render(points, h=None, *, normals=None, colors=None, surface="mls", outliers="set-aside", rho=None, support=None,
+def render(points, h=None, *, normals=None, colors=None, surface="rimls", outliers="set-aside", rho=None, support=None,
            b=None, epsilon=None, ball_spacing=None,
            iterations=2, secondary="full", borders="extend",
            size=None, view=None, fov=None, look_at=None, up=None, distance=None,

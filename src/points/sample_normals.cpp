@@ -66,7 +66,7 @@ std::vector<vec3> sample_normals(const SupportGrid& grid, const FileNormals& fil
     normals.resize(n);
     status.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
-      normals[i] = fitted[i].normal;
+      normals[i] = fitted_normal(fitted[i]);
       status[i] = fitted[i].status;
     }
   }

@@ -214,7 +214,7 @@ std::vector<std::byte> work_sample_normals(std::span<const std::byte> request) {
   std::vector<vec3> normal(done.size());
   std::vector<ProjectionStatus> status(done.size());
   for (std::size_t k = 0; k < done.size(); ++k) {
-    normal[k] = done[k].normal;
+    normal[k] = fitted_normal(done[k]);
     status[k] = done[k].status;
   }
   ByteWriter result;

@@ -144,7 +144,9 @@ def test_surface_fits_the_given_normals_or_estimates_them():
     assert stats["params"]["surface"] == "rimls" and stats["params"]["normals"] == "file"
     _, _, stats = pss.render(points, surface="apss", size=(32, 32), full_output=True)
     assert stats["params"]["surface"] == "apss" and stats["params"]["normals"] == "estimated"
-    _, _, stats = pss.render(points, size=(32, 32), full_output=True)
+    _, _, stats = pss.render(points, size=(32, 32), full_output=True)  # RIMLS, the default, as the CLI's
+    assert stats["params"]["surface"] == "rimls" and stats["params"]["normals"] == "estimated"
+    _, _, stats = pss.render(points, surface="mls", size=(32, 32), full_output=True)
     assert stats["params"]["surface"] == "mls" and stats["params"]["normals"] == "none"
 
 
@@ -194,8 +196,9 @@ def render_like_cli(tmp_path, *flags):
 
 
 def test_render_gives_the_cli_s_image_hits_and_counts(bunny, tmp_path):
+    # The CLI clips a mesh's vertices at their borders (--borders auto); the module extends.
     cli_image, cli_hits, _ = render_like_cli(tmp_path, "--size", "96x64", "--view", "30,20", "--shadows",
-                                             "--reflections", "--iterations", "3")
+                                             "--reflections", "--iterations", "3", "--borders", "extend")
     image, hits, stats = pss.render(bunny, size=(96, 64), view=(30, 20), shadows=True, reflections=True,
                                     iterations=3, full_output=True)
     assert image.shape == (64, 96, 3) and image.dtype == np.uint8

@@ -33,7 +33,7 @@ struct ViewSettings {
   float h = 0;
   float rho = 0;  // the projection's range-query radius (0: 2h)
   bool adaptive_support = true;  // each sample's width from its spacing (points/support.hpp)
-  SurfaceOperator surface = SurfaceOperator::mls;  // --surface (points/projection.hpp)
+  SurfaceOperator surface = SurfaceOperator::rimls;  // --surface (points/projection.hpp)
   NormalSource normals = NormalSource::file;       // --normals
   OutlierPolicy outliers = OutlierPolicy::set_aside;  // --outliers
   float epsilon = 0;

@@ -8,6 +8,7 @@
 
 #include "pss/backend/backend.hpp"
 #include "pss/core/stats.hpp"
+#include "pss/points/project_points.hpp"
 #include "pss/points/projection.hpp"
 #include "pss/spatial/support_grid.hpp"
 
@@ -31,6 +32,14 @@ FileNormals file_normals(const SupportGrid& grid, std::span<const vec3> input_no
 // The projection that estimates a sample's normal: its WLS plane's (Eq. 1) at the sample,
 // wherever the sample lies (no border).
 ProjectionParams sample_plane_params(const ProjectionParams& params);
+
+// A sample's estimated normal from its plane's fit: none (zero) where no plane was fitted (too
+// few neighbours, or all on a line), which APSS and RIMLS then cannot fit: a cloud on a line
+// projects nowhere under them, as under MLS, and says so.
+inline vec3 fitted_normal(const ProjectedPoint& plane) {
+  const bool fitted = plane.status == ProjectionStatus::converged || plane.status == ProjectionStatus::not_converged;
+  return fitted ? plane.normal : vec3(0.0f);
+}
 
 // One normal per sample of `grid`, in its sorted order: the file's when it has them, else
 // estimated on `backend` (phase "sample normals") and oriented.
