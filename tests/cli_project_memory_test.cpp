@@ -6,9 +6,13 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <memory>
 #include <sstream>
 #include <string>
 
@@ -178,5 +182,34 @@ TEST_F(ProjectMemory, AFullDiskOrNoScratchFolderIsOneLineAndLeavesNothing) {
   EXPECT_FALSE(std::filesystem::exists(path("o.ply")));
 }
 
+
+// A budget too small names the least that serves: for a small cloud the in-core need, below
+// what tiles of the fewest points cost (their halos and buffer; a new user's trial found
+// "needs at least 6 MiB" for a cloud that ran in core in 2.5 MiB). That budget runs in core
+// and a KiB less is refused, naming it again.
+TEST_F(ProjectMemory, TooSmallABudgetNamesTheLeastThatServesInCoreForASmallCloud) {
+  const std::string file = write("torus.xyz", test::torus_xyz(8000, false, 0));  // 160 B a point in core: 1.2 MiB
+  const ScratchFolder scratch(dir_ / "scratch");
+  const test::CliResult small = test::run_pss("project " + file + " -o " + path("o.ply") + " --surface mls --memory 1M");
+  EXPECT_EQ(small.exit_code, 1);
+  EXPECT_EQ(test::line_count(small.err), 1) << small.err;
+  unsigned long long least = 0;
+  const std::size_t named = small.err.find("(--memory ");
+  ASSERT_NE(named, std::string::npos) << small.err;
+  ASSERT_EQ(std::sscanf(small.err.c_str() + named, "(--memory %lluK)", &least), 1) << small.err;
+  const unsigned long long points = std::count(std::istreambuf_iterator<char>(*std::make_unique<std::ifstream>(file)),
+                                               std::istreambuf_iterator<char>(), '\n');
+  EXPECT_EQ(least, (points * 160 + 1023) / 1024) << small.err;
+  const test::CliResult enough =
+      test::run_pss("project " + file + " -o " + path("o.ply") + " --surface mls --memory " + std::to_string(least) + "K");
+  ASSERT_EQ(enough.exit_code, 0) << enough.err;
+  EXPECT_NE(enough.out.find("in core)"), std::string::npos) << enough.out;
+  const test::CliResult less = test::run_pss("project " + file + " -o " + path("p.ply") + " --surface mls --memory " +
+                                             std::to_string(least - 1) + "K");
+  EXPECT_NE(less.exit_code, 0);
+  EXPECT_NE(less.err.find("(--memory " + std::to_string(least) + "K)"), std::string::npos) << less.err;
+  EXPECT_FALSE(std::filesystem::exists(path("p.ply")));
+  EXPECT_TRUE(scratch.empty());
+}
 }  // namespace
 }  // namespace pss

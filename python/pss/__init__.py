@@ -196,10 +196,10 @@ render.__doc__ += _FRAME_DOC
 
 
 def read_points(path):
-    """The point cloud of a file (.ply, .xyz/.txt/.pts, .obj, .stl, .pcd, .las), as the CLI
-    reads it: (points, normals, colors) with (N, 3) float32 points (float64 world coordinates
-    for a cloud far from zero, see above), (N, 3) float32 normals or None, (N, 3) uint8
-    colours or None."""
+    """The point cloud of a file (.ply, .xyz/.txt/.pts/.pwn, .obj, .off, .stl, .pcd, .las), as
+    the CLI reads it: (points, normals, colors) with (N, 3) float32 points (float64 world
+    coordinates for a cloud far from zero, see above), (N, 3) float32 normals or None, (N, 3)
+    uint8 colours or None."""
     return _pss.read_points(_os.fsdecode(path))
 
 

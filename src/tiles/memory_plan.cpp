@@ -83,7 +83,10 @@ MemoryPlan plan_memory(const std::filesystem::path& file, std::uint64_t budget, 
   // A tile's halo may hold as many points again on each side: four times its own.
   const std::uint64_t tile_bytes = 4 * costs.tile;
   if (held + kLeastTilePoints * tile_bytes > budget) {
-    const std::uint64_t least = least_budget(plan.points * costs.held + kLeastTilePoints * tile_bytes);
+    // The least budget that serves: tiles of the fewest points, or in core where that is less
+    // (a small cloud, whose tiles' halos and buffer cost more than the cloud itself).
+    const std::uint64_t least = std::min(plan.points * costs.in_core,
+                                         least_budget(plan.points * costs.held + kLeastTilePoints * tile_bytes));
     const std::uint64_t kib = std::max<std::uint64_t>((least + 1023) / 1024, 1024);  // --memory takes 1M at least
     throw Error("--memory " + byte_size(double(budget)) + " is too small for " + file.string() + "'s " +
                 std::to_string(plan.points) + " points: it needs at least " + byte_size(double(kib * 1024)) +

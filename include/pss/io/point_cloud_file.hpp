@@ -9,9 +9,9 @@
 
 namespace pss {
 
-// By extension, in any case: .ply → read_ply; .xyz, .txt, .pts → read_xyz; .obj → read_obj;
-// .stl → read_stl; .pcd → read_pcd; .las → read_las. Anything else (.laz included: LAZ is
-// not supported) is a file_error naming the formats we know.
+// By extension, in any case: .ply → read_ply; .xyz, .txt, .pts, .pwn → read_xyz; .obj →
+// read_obj; .off → read_off; .stl → read_stl; .pcd → read_pcd; .las → read_las. Anything
+// else (.laz included: LAZ is not supported) is a file_error naming the formats we know.
 PointCloud read_point_cloud(const std::filesystem::path& path);
 
 // .ply → write_ply with the extra properties; .xyz → write_xyz, which has no room for them
