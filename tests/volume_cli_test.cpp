@@ -98,5 +98,37 @@ TEST_F(VolumeCliTest, RawFlagsWithAHeadedFileAreRefusedAsSuch) {
   }
 }
 
+
+// A point cloud is no raw volume: raw flags given with one are refused as such (a new user's
+// trial: `pss mesh cloud.ply --dims 32x32x32` read the PLY's bytes as voxels and asked for
+// --iso), and the commands that read clouds take nothing from them.
+TEST_F(VolumeCliTest, RawFlagsWithAPointCloudAreRefusedAsSuch) {
+  const std::string bunny = std::string(PSS_SOURCE_DIR) + "/data/bun_zipper.ply";
+  const std::string out = (dir_ / "o").string();
+  for (const std::string& command :
+       {"volume " + bunny + " --iso 100 --dims 32x32x32 -o " + out + ".png",
+        "extract " + bunny + " --iso 100 --dims 32x32x32 -o " + out + ".ply",
+        "mesh " + bunny + " --dims 32x32x32 -o " + out + ".ply", "info " + bunny + " --type uint16"}) {
+    const test::CliResult r = test::run_pss(command);
+    EXPECT_NE(r.exit_code, 0) << command;
+    EXPECT_EQ(test::line_count(r.err), 1) << command << "\n" << r.err;
+    EXPECT_NE(r.err.find(bunny + ": a point cloud, not a volume"), std::string::npos) << command << "\n" << r.err;
+    EXPECT_FALSE(fs::exists(out + ".png") || fs::exists(out + ".ply")) << command;
+  }
+}
+
+// --stats with an empty name is refused, not taken as no --stats (the same trial: the mesh
+// was written and no statistics, without a word).
+TEST_F(VolumeCliTest, AnEmptyStatsNameIsRefused) {
+  const std::string bunny = std::string(PSS_SOURCE_DIR) + "/data/bun_zipper.ply";
+  const std::string out = (dir_ / "o.ply").string();
+  for (const std::string& command : {"mesh " + bunny + " -o " + out + " --stats ''",
+                                     "project " + bunny + " -o " + out + " --stats ''"}) {
+    const test::CliResult r = test::run_pss(command);
+    EXPECT_NE(r.exit_code, 0) << command;
+    EXPECT_NE(r.err.find("--stats: an empty name is no file"), std::string::npos) << command << "\n" << r.err;
+    EXPECT_FALSE(fs::exists(out)) << command;
+  }
+}
 }  // namespace
 }  // namespace pss

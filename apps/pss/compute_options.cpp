@@ -18,7 +18,8 @@ void add_compute_options(CLI::App& command, ComputeOptions& options) {
       ->capture_default_str();
   command.add_option("--threads", options.threads, "CPU threads (default: all cores)")
       ->check(finite_range(1, kMaxCpuThreads));
-  command.add_option("--stats", options.stats_path, "write timings per phase and run parameters as JSON");
+  command.add_option("--stats", options.stats_path, "write timings per phase and run parameters as JSON")
+      ->check([](const std::string& path) { return path.empty() ? std::string("an empty name is no file") : std::string(); });
   add_progress_option(command);
 }
 

@@ -2,6 +2,7 @@
 
 #include "numbers.hpp"
 #include "pss/core/error.hpp"
+#include "pss/io/point_cloud_file.hpp"
 
 namespace pss::app {
 
@@ -20,6 +21,8 @@ void add_raw_volume_options(CLI::App& command, RawVolumeOptions& o) {
 
 std::optional<RawVolumeFormat> raw_volume_format(const RawVolumeOptions& o, const std::string& input) {
   if (o.dims.empty() && o.type.empty() && o.spacing.empty() && o.endian.empty() && o.skip.empty()) return std::nullopt;
+  if (is_point_cloud_file(input))
+    throw Error(input + ": a point cloud, not a volume; --dims/--type/--spacing/--endian/--skip describe a raw volume");
   if (has_volume_header(input))
     throw Error(input + ": the file's header describes the volume; drop --dims/--type/--spacing/--endian/--skip");
   if (o.dims.empty()) throw Error("a raw volume needs --dims XxYxZ");

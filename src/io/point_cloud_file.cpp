@@ -18,16 +18,32 @@
 
 namespace pss {
 
+namespace {
+
+using CloudReader = PointCloud (*)(const std::filesystem::path&);
+
+// The reader of a point cloud format, by lowercase extension; null for none.
+CloudReader cloud_reader(const std::string& ext) {
+  if (ext == ".ply") return read_ply;
+  // .pwn: CGAL's points with normals, x y z nx ny nz.
+  if (ext == ".xyz" || ext == ".txt" || ext == ".pts" || ext == ".pwn") return read_xyz;
+  if (ext == ".obj") return read_obj;
+  if (ext == ".off") return read_off;
+  if (ext == ".stl") return read_stl;
+  if (ext == ".pcd") return read_pcd;
+  if (ext == ".las") return read_las;
+  return nullptr;
+}
+
+}  // namespace
+
+bool is_point_cloud_file(const std::filesystem::path& path) {
+  return cloud_reader(io::lowercase_extension(path)) != nullptr;
+}
+
 PointCloud read_point_cloud(const std::filesystem::path& path) {
   const std::string ext = io::lowercase_extension(path);
-  if (ext == ".ply") return read_ply(path);
-  // .pwn: CGAL's points with normals, x y z nx ny nz.
-  if (ext == ".xyz" || ext == ".txt" || ext == ".pts" || ext == ".pwn") return read_xyz(path);
-  if (ext == ".obj") return read_obj(path);
-  if (ext == ".off") return read_off(path);
-  if (ext == ".stl") return read_stl(path);
-  if (ext == ".pcd") return read_pcd(path);
-  if (ext == ".las") return read_las(path);
+  if (const CloudReader read = cloud_reader(ext)) return read(path);
   if (ext == ".laz") throw file_error(path, "compressed LAS (LAZ) is not supported; decompress it to .las first (laszip, PDAL)");
   if (std::filesystem::is_directory(path)) throw file_error(path, "is a folder, not a point cloud file");
   if (ext == ".raw" || has_volume_header(path))

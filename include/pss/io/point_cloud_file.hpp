@@ -14,6 +14,9 @@ namespace pss {
 // else (.laz included: LAZ is not supported) is a file_error naming the formats we know.
 PointCloud read_point_cloud(const std::filesystem::path& path);
 
+// Whether read_point_cloud reads `path` by its extension.
+bool is_point_cloud_file(const std::filesystem::path& path);
+
 // .ply → write_ply with the extra properties; .xyz → write_xyz, which has no room for them
 // (case-insensitive); anything else is a file_error (points_format_of).
 void write_point_cloud(const std::filesystem::path& path, const PointCloud& cloud,
