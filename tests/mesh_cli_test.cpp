@@ -3,7 +3,10 @@
 // it should; bad input gets one line and no output.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -328,7 +331,14 @@ TEST_F(MeshCli, BadInputGetsOneLineAndNoOutput) {
   expect_clean_failure("mesh " + input + " -o " + path("m.ply") + " --cell 0", "--cell", path("m.ply"));
   expect_clean_failure("mesh " + input + " -o " + path("m.ply") + " --cell nan", "--cell", path("m.ply"));
   expect_clean_failure("mesh " + input + " -o " + path("m.ply") + " --borders none", "--borders", path("m.ply"));
-  expect_clean_failure("mesh " + input + " -o " + path("m.ply") + " --cell 1e-9", "the cell size", path("m.ply"));
+  expect_clean_failure("mesh " + input + " -o " + path("m.ply") + " --cell 1e-9", "the cell size 1e-09 is too small",
+                       path("m.ply"));
+  // A cell or a surface that h or rho make impossible names them (a new user's trial: the
+  // messages blamed the cell alone, and h where rho was the culprit).
+  expect_clean_failure("mesh " + input + " -o " + path("m.ply") + " --h 1e-12", "the cell size (h/2, from h) 5e-13",
+                       path("m.ply"));
+  expect_clean_failure("mesh " + input + " -o " + path("m.ply") + " --rho 1e-12", ", rho = 1e-12: either",
+                       path("m.ply"));
   // Fine enough for the box's lattice, too fine for the surface's band: refused before work.
   expect_clean_failure("mesh " + input + " -o " + path("m.ply") + " --cell 2e-5", "is too small for this cloud",
                        path("m.ply"));
@@ -346,5 +356,20 @@ TEST_F(MeshCli, BadInputGetsOneLineAndNoOutput) {
                        path("s.json"));
 }
 
+
+// A file-size limit reached while the mesh is written: the reason named, though the stream's
+// errno is long gone when the output is committed (a new user's trial read "Input/output
+// error"), and neither the mesh nor its temporary left.
+TEST_F(MeshCli, AFileSizeLimitReachedIsNamedAndLeavesNothing) {
+  const std::string input = sphere(2000);
+  const std::string err = path("err.txt");
+  const int status = std::system(("ulimit -f 64; " + std::string(PSS_CLI) + " mesh " + input + " -o " + path("m.ply") +
+                                  " 2>" + err).c_str());
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 1) << status;
+  EXPECT_EQ(test::line_count(read(err)), 1) << read(err);
+  EXPECT_NE(read(err).find("m.ply: cannot write: File too large"), std::string::npos) << read(err);
+  for (const auto& entry : std::filesystem::directory_iterator(dir_))
+    EXPECT_EQ(entry.path().filename().string().find("m.ply"), std::string::npos) << entry.path();
+}
 }  // namespace
 }  // namespace pss

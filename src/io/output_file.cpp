@@ -1,6 +1,7 @@
 #include "pss/io/output_file.hpp"
 
 #include <fcntl.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -21,6 +22,19 @@ using io::system_message;
 
 Error write_error(const fs::path& destination, const std::string& why) {
   return file_error(destination, "cannot write: " + why);
+}
+
+// Why a write to `file` failed, after the fact: the process's file-size limit reached, or
+// its file system full; else an I/O error.
+std::string lost_write_reason(const fs::path& file) {
+  std::error_code ec;
+  const std::uintmax_t size = fs::file_size(file, ec);
+  struct rlimit limit {};
+  if (!ec && ::getrlimit(RLIMIT_FSIZE, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY && size >= limit.rlim_cur)
+    return std::strerror(EFBIG);
+  const fs::space_info space = fs::space(file.parent_path().empty() ? fs::path(".") : file.parent_path(), ec);
+  if (!ec && space.available == 0) return std::strerror(ENOSPC);
+  return std::strerror(EIO);
 }
 
 // Unique per process (pid) and per object (counter), so concurrent writers of the same
@@ -181,6 +195,9 @@ OutputFile::~OutputFile() {
 }
 
 void OutputFile::commit() {
+  // A write that failed before left the stream bad, and errno may be gone since: the usual
+  // causes are read off the file system instead.
+  if (!out_) throw write_error(destination_, lost_write_reason(temporary_));
   errno = 0;
   out_.flush();
   if (!out_) throw write_error(destination_, system_message());

@@ -9,6 +9,7 @@
 #include "implicit_surface.hpp"
 #include "unsupported_parts.hpp"
 #include "pss/core/error.hpp"
+#include "pss/core/text.hpp"
 #include "pss/mesh/cloud_implicit.hpp"
 #include "pss/points/project_cloud.hpp"
 #include "pss/spatial/grid_mirror.hpp"
@@ -83,8 +84,9 @@ CloudMesh mesh_cloud(const PointCloud& cloud, const MeshParams& params, Backend 
   const double reach = projection.borders == BorderMode::extend
                            ? double(out.widths.largest) * double(projection.rho / projection.h) + double(out.cell)
                            : 0.0;
-  const Lattice lattice =
-      lattice_over(box.lo, box.hi, std::max(2.0 * double(out.cell), reach), double(out.cell), "the cell size");
+  // A default cell comes from h, which the message then names.
+  const Lattice lattice = lattice_over(box.lo, box.hi, std::max(2.0 * double(out.cell), reach), double(out.cell),
+                                       params.cell > 0 ? "the cell size" : "the cell size (h/2, from h)");
   check_band(expected_band_cubes(out.widths.h, out.cell), out.cell, "cloud");
   SupportGrid grid = grid_of_samples(cloud.positions, out.widths.h, out.widths.merged, projection.rho / projection.h,
                                      projection.outliers, backend, stats, out.outliers);
@@ -117,8 +119,10 @@ CloudMesh mesh_cloud(const PointCloud& cloud, const MeshParams& params, Backend 
     out.turned_outward = true;
   }
   if (out.mesh.triangles.empty())
-    throw Error("the surface gave no triangle: h = " + std::to_string(projection.h) +
-                " is likely too small for the sample spacing (pss info suggests one), or the cell too large");
+    throw Error("the surface gave no triangle with h = " + format_number(projection.h) + ", rho = " +
+                format_number(projection.rho) +
+                ": either is likely too small for the sample spacing (pss info suggests h; rho is 2h by default), or "
+                "the cell too large");
   return out;
 }
 
