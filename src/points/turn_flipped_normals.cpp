@@ -11,6 +11,7 @@
 
 #include "pss/backend/cpu/parallel_for.hpp"
 #include "pss/core/connected_components.hpp"
+#include "pss/fit/weights.hpp"
 #include "pss/points/facing_vote.hpp"
 
 namespace pss {
@@ -84,6 +85,42 @@ struct Link {
   std::int64_t strength;
   int a, b, odd;
 };
+
+// Patches too small for the evidence between patches (fewer than kFewestPerPatch samples)
+// face, after the turn, as the surfaces they lie on: the normals of the larger patches'
+// samples in whose tangent planes they lie, weighted as the fits weigh them. Such is a
+// sample on a crease whose normal lies between its faces' (a CAD file's): it agrees with no
+// neighbour within 45°, and its pairs with them are neither side by side nor plainly one
+// behind the other's face, so they weigh nothing or mislead (cube.pwn: six left inward on
+// its slots' edges cut five holes in its mesh). A thin part's other face does not pass
+// through the sample, and so has no say.
+std::size_t turn_stragglers(const SupportGridView& view, std::span<const vec3> points, std::span<const float> inv_h2,
+                            std::span<vec3> normals, std::span<const int> patch, std::size_t patches) {
+  std::vector<std::size_t> size(patches, 0);
+  for (const int p : patch) ++size[std::size_t(p)];
+  const auto settled = [&](int p) { return size[std::size_t(p)] >= kFewestPerPatch; };
+  std::vector<double> say(patches, 0.0);  // per straggling patch: + keep, − turn
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (settled(patch[i])) continue;
+    vec3 around(0.0f);
+    view.for_each_near(points[i], [&](vec3 q, int j) {
+      const vec3 e = q - points[i];
+      const float d2 = glm::dot(e, e);
+      if (!view.covers(int(i), d2) || d2 == 0 || !settled(patch[std::size_t(j)])) return;
+      const vec3 n_j = normals[std::size_t(j)];
+      const float z = glm::dot(e, n_j);
+      if (z * z < kSideBySide * kSideBySide * d2) around += gaussian_weight(d2, inv_h2[i]) * n_j;
+    });
+    say[std::size_t(patch[i])] += double(glm::dot(around, normals[i]));
+  }
+  std::size_t turned = 0;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (say[std::size_t(patch[i])] < 0) {
+      normals[i] = -normals[i];
+      ++turned;
+    }
+  return turned;
+}
 
 }  // namespace
 
@@ -190,11 +227,11 @@ std::size_t turn_flipped_normals(const SupportGrid& grid, std::span<vec3> normal
     if (e.flip >= 2 && e.flip > 2 * e.keep) links.push_back({e.flip - e.keep, a, b, 1});
     if (e.keep >= 2 && e.keep > 2 * e.flip) links.push_back({e.keep - e.flip, a, b, 0});
   }
-  if (links.empty()) return 0;
+  const auto count = std::size_t(patches);
+  if (links.empty()) return turn_stragglers(view, points, inv_h2, normals, patch, count);
   std::sort(links.begin(), links.end(), [](const Link& x, const Link& y) {
     return x.strength != y.strength ? x.strength > y.strength : (x.a != y.a ? x.a < y.a : x.b < y.b);
   });
-  const auto count = std::size_t(patches);
   ParityUnionFind flips(count);
   for (const Link& l : links) flips.link(l.a, l.b, l.odd);
   // Each group of linked patches with samples on both sides turns one side: the one that
@@ -228,7 +265,7 @@ std::size_t turn_flipped_normals(const SupportGrid& grid, std::span<vec3> normal
       ++turned;
     }
   }
-  return turned;
+  return turned + turn_stragglers(view, points, inv_h2, normals, patch, count);
 }
 
 }  // namespace pss
