@@ -87,12 +87,26 @@ TEST_F(CameraFile, WhatIsNotACameraIsRefusedNamingTheFile) {
       R"({"eye": [0, 0, 5], "forward": [0, 0, 0], "up": [0, 1, 0], "tan_half_fov": 0.3})",
       R"({"eye": [0, 0, 5], "forward": [0, 0, -1], "up": [0, 0, 2], "tan_half_fov": 0.3})",
       R"({"eye": [0, 0, 5], "up": [0, 1, 0], "tan_half_fov": 0.3})",
+      // "right" mirrored, or along up: not forward × up (it was ignored without a word)
+      "{" + good + R"(, "right": [-1, 0, 0], "tan_half_fov": 0.3})",
+      "{" + good + R"(, "right": [0, 1, 0], "tan_half_fov": 0.3})",
+      "{",
   };
   for (const std::string& text : cases) {
     const std::string file = write("bad camera.json", text);
     const std::string message = test::error_of([&] { read_camera_file(file, 4, 4, glm::dvec3(0.0)); });
     EXPECT_NE(message.find("bad camera.json"), std::string::npos) << text << " → " << message;
   }
+  EXPECT_NE(test::error_of([&] { read_camera_file(write("m.json", "{" + good + R"(, "right": [-1, 0, 0], "tan_half_fov": 0.3})"),
+                                                   4, 4, glm::dvec3(0.0)); })
+                .find("\"right\" must be forward x up"),
+            std::string::npos);
+  EXPECT_NE(test::error_of([&] { read_camera_file(write("s.json", "{"), 4, 4, glm::dvec3(0.0)); }).find("is not JSON (expected a camera): a syntax error at byte 2"),
+            std::string::npos);
+  // A "right" of any length along forward × up is that, as a hand-written file may give it.
+  const Camera scaled = read_camera_file(write("r.json", "{" + good + R"(, "right": [3, 0, 0], "tan_half_fov": 0.3})"), 4, 4,
+                                         glm::dvec3(0.0));
+  EXPECT_NEAR(glm::length(scaled.right - vec3(1, 0, 0)), 0.0f, 1e-6f);
   EXPECT_NE(test::error_of([&] { read_camera_file(path("missing.json"), 4, 4, glm::dvec3(0.0)); }).find("missing.json"),
             std::string::npos);
   std::ofstream(path("huge.json")) << std::string(2 << 20, ' ');

@@ -166,5 +166,20 @@ TEST_F(CliOutputFormats, HelpNamesTheExtensions) {
   EXPECT_NE(test::run_pss("extract --help").out.find(".xyz"), std::string::npos);
 }
 
+
+// --help gives the ranges the flags take (a new user's trial: --k said 0.5 < k < 1 and took
+// 0.1; --fov, --zoom, --size did not say theirs) and which way extract's normals face.
+TEST_F(CliOutputFormats, HelpGivesTheFlagsRangesAndTheNormalsSide) {
+  const std::string render = test::run_pss("render --help").out;
+  EXPECT_NE(render.find("--fov FLOAT:NUMBER in [1 - 170]"), std::string::npos) << render;
+  EXPECT_NE(render.find("--zoom FLOAT:NUMBER in [0.001 - 1000]"), std::string::npos) << render;
+  EXPECT_NE(render.find("each side from 1 to 16384"), std::string::npos) << render;
+  const std::string volume = test::run_pss("volume --help").out;
+  EXPECT_NE(volume.find("--k FLOAT:NUMBER in [0.05 - 1]"), std::string::npos) << volume;
+  EXPECT_NE(volume.find("--radius FLOAT:NUMBER in [0.5 - 4]"), std::string::npos) << volume;
+  EXPECT_EQ(volume.find("0.5 < k < 1 (paper"), std::string::npos) << volume;
+  EXPECT_NE(test::run_pss("extract --help").out.find("toward higher values"), std::string::npos);
+  EXPECT_NE(test::run_pss("project --help").out.find("--h FLOAT:POSITIVE"), std::string::npos);
+}
 }  // namespace
 }  // namespace pss

@@ -58,7 +58,7 @@ void add_extract_command(CLI::App& app, Action action) {
   auto* command = app.add_subcommand("extract", "Extract the PSS of a volume as an oriented point set: .ply, .xyz");
   auto o = std::make_shared<ExtractOptions>();
   add_volume_options(*command, o->volume, false);
-  command->add_option("-o,--output", o->output, "output points x y z nx ny nz, by extension: .ply (binary) or .xyz (text)")
+  command->add_option("-o,--output", o->output, "output points x y z nx ny nz, the normals along the gradient (toward higher values: inward where the object is the brighter), by extension: .ply (binary) or .xyz (text)")
       ->required()
       ->check(points_output());
   add_compute_options(*command, o->compute);

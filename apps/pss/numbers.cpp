@@ -12,6 +12,18 @@
 
 namespace pss::app {
 
+namespace {
+
+// What --help shows after a flag's type: its range where both ends are finite, as CLI11's
+// own ranges show theirs ("NUMBER in [1 - 170]").
+std::string range_name(double lo, double hi, bool lo_open) {
+  if (hi == double(FLT_MAX)) return lo_open && lo == 0 ? "POSITIVE" : "NUMBER";
+  if (lo == -double(FLT_MAX)) return "NUMBER";
+  return std::string("NUMBER in ") + (lo_open ? "(" : "[") + format_number(lo) + " - " + format_number(hi) + "]";
+}
+
+}  // namespace
+
 CLI::Validator finite_range(double lo, double hi, bool lo_open) {
   const std::string range = range_text(lo, hi, lo_open);
   return CLI::Validator(
@@ -29,7 +41,7 @@ CLI::Validator finite_range(double lo, double hi, bool lo_open) {
           return "expected " + range + " (got " + quote(text) + ", which is " + format_number(float(x)) + " as a float)";
         return {};
       },
-      lo_open && hi == double(FLT_MAX) ? "POSITIVE" : "NUMBER", "finite range");
+      range_name(lo, hi, lo_open), "finite range");
 }
 
 std::uint64_t parse_memory_size(const std::string& text) {

@@ -94,7 +94,7 @@ void add_render_options(CLI::App& command, RenderOptions& o) {
             o.camera.width = wh.first;
             o.camera.height = wh.second;
           },
-          "image size WIDTHxHEIGHT (default 512x512)")
+          "image size WIDTHxHEIGHT, each side from 1 to " + std::to_string(kMaxImageSide) + " (default 512x512)")
       ->check(CLI::Validator(check_size, "WxH", "size"));
   command
       .add_option_function<std::string>(

@@ -29,7 +29,7 @@ void add_volume_surface_flags(CLI::App& command, VolumeOptions& o, bool method_f
     command.add_option("--h", o.settings.h, "theta3 width h in voxels (u = (sx*sy*sz)^(1/3)), at least 0.5")
         ->check(finite_range(kMinVolumeH, FLT_MAX))
         ->capture_default_str();
-    command.add_option("--k", o.settings.k, "step b = k*h, 0.5 < k < 1 (paper 5.1)")
+    command.add_option("--k", o.settings.k, "step b = k*h (paper 5.1 takes 0.5 < k < 1)")
         ->check(finite_range(kMinStepK, kMaxStepK))
         ->capture_default_str();
   }

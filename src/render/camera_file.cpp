@@ -22,6 +22,8 @@ nlohmann::json vector_json(glm::dvec3 v) { return {v.x, v.y, v.z}; }
 
 // Rounding of a camera that was orthonormal as floats: such a camera is used as it is.
 constexpr float kOrthonormal = 1e-5f;
+// cos 1°: how far a given "right" may lie off forward × up (a hand-written camera's rounding).
+constexpr double kRightAgrees = 0.99985;
 
 bool orthonormal(vec3 f, vec3 r, vec3 u) {
   auto unit = [](vec3 v) { return std::abs(glm::length(v) - 1.0f) < kOrthonormal; };
@@ -39,9 +41,11 @@ nlohmann::json parsed_camera_file(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (!in && !in.eof()) throw file_error(path, "cannot read the camera file");
-  const nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
-  if (doc.is_discarded()) throw file_error(path, "is not a JSON object (expected a camera)");
-  return doc;
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {  // where the text stops being JSON
+    throw file_error(path, "is not JSON (expected a camera): a syntax error at byte " + std::to_string(e.byte));
+  }
 }
 
 }  // namespace
@@ -90,6 +94,13 @@ Camera camera_from_json(const nlohmann::json& doc, int width, int height, const 
   if (!(c.tan_half_fov >= kMinTanHalfFov && c.tan_half_fov <= kMaxTanHalfFov))
     throw error("camera field \"tan_half_fov\" must give a field of view from 1 to 170 degrees");
   const vec3 right = cam.contains("right") ? vec3(vector("right")) : glm::cross(forward, up);
+  // "right" is forward × up, of any length: one that is not (a mirrored camera) is an error,
+  // not a field read and then ignored.
+  if (cam.contains("right")) {
+    const glm::dvec3 derived = glm::cross(glm::dvec3(forward), glm::dvec3(up)), given(right);
+    if (!(glm::dot(derived, given) > kRightAgrees * glm::length(derived) * glm::length(given)))
+      throw error("camera field \"right\" must be forward x up (leave it out to have it so)");
+  }
   if (orthonormal(forward, right, up)) {
     c.forward = forward;
     c.right = right;
