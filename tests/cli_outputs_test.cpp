@@ -149,5 +149,28 @@ TEST_F(CliOutputs, SigtermRemovesTheTemporaries) {
   EXPECT_FALSE(fs::exists(hits));
 }
 
+
+// An image of the background alone, or an empty point file, is written but said to be so, as
+// pss volume says of its images (a new user's trial: both were silent).
+TEST_F(CliOutputs, NothingHitOrExtractedIsSaid) {
+  const std::string bunny = std::string(PSS_SOURCE_DIR) + "/data/bun_zipper.ply";
+  const test::CliResult away =
+      test::run_pss("render " + bunny + " -o " + path("away.png") + " --size 32x32 --look-at 5,5,5 --distance 0.1");
+  EXPECT_EQ(away.exit_code, 0) << away.err;
+  EXPECT_TRUE(std::filesystem::exists(path("away.png")));
+  EXPECT_NE(away.err.find("pss render: no ray hit the surface of " + bunny), std::string::npos) << away.err;
+  const test::CliResult seen = test::run_pss("render " + bunny + " -o " + path("seen.png") + " --size 32x32");
+  EXPECT_EQ(seen.err.find("no ray hit"), std::string::npos) << seen.err;
+  {
+    std::ofstream raw(path("const.raw"), std::ios::binary);
+    const float seven = 7;
+    for (int i = 0; i < 16 * 16 * 16; ++i) raw.write(reinterpret_cast<const char*>(&seven), sizeof seven);
+  }
+  const test::CliResult flat = test::run_pss("extract " + path("const.raw") +
+                                             " --dims 16x16x16 --type float32 --iso 7 -o " + path("flat.ply"));
+  EXPECT_EQ(flat.exit_code, 0) << flat.err;
+  EXPECT_NE(flat.err.find("pss extract: no point of " + path("const.raw") + " lies on the surface"), std::string::npos)
+      << flat.err;
+}
 }  // namespace
 }  // namespace pss

@@ -50,6 +50,9 @@ void run_extract(const ExtractOptions& o) {
   outputs.commit();
   std::printf("wrote %s\n", o.output.c_str());
   if (!o.compute.stats_path.empty()) std::printf("wrote %s\n", o.compute.stats_path.c_str());
+  if (counts.kept == 0)  // an empty file: say so, as pss volume does of an empty image
+    std::fprintf(stderr, "pss extract: no point of %s lies on the surface (%lld cells cross it)\n",
+                 o.volume.input.c_str(), (long long)volume.cells.crossed_count);
 }
 
 }  // namespace

@@ -117,6 +117,9 @@ void run_render(const RenderCloudOptions& o) {
   }
   outputs.commit();
   print_written(o.render);
+  if (s.hits == 0)  // an image of the background alone: say so, as pss volume does
+    std::fprintf(stderr, "pss render: no ray hit the surface of %s (the camera may look away from it, or b = %g is too "
+                 "small for its spacing)\n", o.input.c_str(), params.ball_radius);
 }
 
 std::string check_iterations(const std::string& text) {
