@@ -21,6 +21,7 @@ h, rho, b and epsilon of point clouds in its coordinates; the volume's h and err
 """
 
 import json as _json
+import numbers as _numbers
 import os as _os
 
 from . import _pss
@@ -30,6 +31,13 @@ __all__ = ["Error", "Volume", "estimate_h", "mesh", "project", "read_points", "r
            "set_threads"]
 __version__ = "0.1.0"
 
+
+
+def _path(value, name):
+    """A file name (str, bytes or os.PathLike) as a str; pss.Error for anything else."""
+    if not isinstance(value, (str, bytes, _os.PathLike)):
+        raise Error("%s: expected a file name (got %r)" % (name, value))
+    return _os.fsdecode(value)
 
 
 def set_progress(mode):
@@ -48,7 +56,9 @@ def _plain(value):
 def set_threads(count):
     """The CPU backend's threads, as `pss --threads`: 0 (the default) uses every core,
     as OpenMP's OMP_NUM_THREADS says."""
-    _pss.set_threads(count)
+    if isinstance(count, bool) or not isinstance(count, _numbers.Integral):
+        raise Error("threads: expected a count from 0 (every core) to 1024 (got %r)" % (count,))
+    _pss.set_threads(int(count))
 
 
 _CAMERA_ARGS = ("view", "fov", "look_at", "up", "distance", "zoom", "roll")
@@ -66,7 +76,7 @@ def _frame_options(size, view, fov, look_at, up, distance, zoom, roll, camera, s
         "reflectivity": reflectivity, "transparent": transparent, "backend": backend, "full_output": full_output,
     }
     if isinstance(camera, (str, bytes, _os.PathLike)):
-        options["camera_file"] = _os.fsdecode(camera)
+        options["camera_file"] = _path(camera, "camera")
     elif camera is not None:
         try:
             options["camera_json"] = _json.dumps(camera, default=_plain, allow_nan=False)
@@ -200,7 +210,7 @@ def read_points(path):
     the CLI reads it: (points, normals, colors) with (N, 3) float32 points (float64 world
     coordinates for a cloud far from zero, see above), (N, 3) float32 normals or None, (N, 3)
     uint8 colours or None."""
-    return _pss.read_points(_os.fsdecode(path))
+    return _pss.read_points(_path(path, "path"))
 
 
 def read_volume(path, *, dims=None, type="uint8", spacing=None, endian="little", skip=0):
@@ -211,7 +221,7 @@ def read_volume(path, *, dims=None, type="uint8", spacing=None, endian="little",
     `pss volume`'s raw flags. Errors about its data then name the file."""
     if dims is None and spacing is not None:
         raise Error("spacing describes a raw file, with dims; a file with a header gives its own")
-    return _pss.read_volume(_os.fsdecode(path), {"dims": dims, "type": type, "spacing": spacing,
+    return _pss.read_volume(_path(path, "path"), {"dims": dims, "type": type, "spacing": spacing,
                                                  "endian": endian, "skip": skip})
 
 

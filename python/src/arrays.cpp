@@ -22,15 +22,17 @@ std::string shape_text(const py::array& a) {
 template <class T>
 py::array_t<T, py::array::c_style | py::array::forcecast> numbers(const py::handle& value, const char* name) {
   const py::array any = py::array::ensure(value);
-  if (!any || any.dtype().kind() == 'O' || any.dtype().kind() == 'U' || any.dtype().kind() == 'S')
-    throw Error(std::string(name) + ": expected an array of numbers");
+  // Complex numbers too: a cast would drop their imaginary parts with no more than a warning.
+  const char kind = any ? any.dtype().kind() : 'O';
+  if (kind == 'O' || kind == 'U' || kind == 'S' || kind == 'c')
+    throw Error(std::string(name) + ": expected an array of real numbers");
   return py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(any);
 }
 
 template <class T>
 py::array_t<T, py::array::c_style | py::array::forcecast> rows_of_three(const py::handle& value, const char* name) {
   auto a = numbers<T>(value, name);
-  if (!a) throw Error(std::string(name) + ": expected an array of numbers");
+  if (!a) throw Error(std::string(name) + ": expected an array of real numbers");
   if (a.ndim() != 2 || a.shape(1) != 3)
     throw Error(std::string(name) + ": expected an array of shape (N, 3) (got shape " + shape_text(a) + ")");
   return a;

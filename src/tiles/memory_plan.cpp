@@ -89,8 +89,8 @@ MemoryPlan plan_memory(const std::filesystem::path& file, std::uint64_t budget, 
                                          least_budget(plan.points * costs.held + kLeastTilePoints * tile_bytes));
     const std::uint64_t kib = std::max<std::uint64_t>((least + 1023) / 1024, 1024);  // --memory takes 1M at least
     throw Error("--memory " + byte_size(double(budget)) + " is too small for " + file.string() + "'s " +
-                std::to_string(plan.points) + " points: it needs at least " + byte_size(double(kib * 1024)) +
-                " (--memory " + std::to_string(kib) + "K)");
+                std::to_string(plan.points) + " points: it needs at least " + std::to_string(kib) +
+                " KiB (--memory " + std::to_string(kib) + "K)");  // in KiB: MiB may round to the budget's figure
   }
   plan.points_per_tile = (budget - held) / tile_bytes;
   return plan;

@@ -18,7 +18,7 @@ def test_errors_are_value_errors():
 @pytest.mark.parametrize("points, message", [
     (np.zeros((5, 2)), r"^points: expected an array of shape \(N, 3\) \(got shape \(5, 2\)\)$"),
     (np.zeros(6), r"^points: expected an array of shape \(N, 3\) \(got shape \(6,\)\)$"),
-    ([["a", "b", "c"]], r"^points: expected an array of numbers$"),
+    ([["a", "b", "c"]], r"^points: expected an array of real numbers$"),
     (np.array([[0, 0, 0], [1, np.nan, 0]]), r"^points: row 1 is not three finite numbers \(that fit a float\)$"),
     (np.array([[0, 0, 1e300]]), r"^points: row 0 is not three finite numbers \(that fit a float\)$"),
 ])
@@ -159,3 +159,17 @@ def test_a_camera_dict_may_hold_numpy_arrays():
 def test_volumes_that_are_not_finite_3d_arrays_are_refused(values, spacing, message):
     with pytest.raises(pss.Error, match=message):
         pss.Volume(values, spacing=spacing)
+
+
+def test_arguments_of_the_wrong_type_raise_pss_errors():
+    # A new user's trial: these raised TypeError, or took complex numbers' real parts with a
+    # warning, where the module promises pss.Error for every problem.
+    for bad in (2.5, "a", None):
+        with pytest.raises(pss.Error, match=r"^threads: expected a count from 0 \(every core\) to 1024 \(got "):
+            pss.set_threads(bad)
+    pss.set_threads(0)
+    for call in (pss.read_points, pss.read_volume):
+        with pytest.raises(pss.Error, match=r"^path: expected a file name \(got 5\)$"):
+            call(5)
+    with pytest.raises(pss.Error, match=r"^points: expected an array of real numbers$"):
+        pss.project(SOME.astype(np.complex64))
