@@ -92,7 +92,7 @@ def main():
         for r in runs:
             results.append(r)
             print("\n%d points, %s (%s), %s threads: %.2f s whole process, %.0f points/s, peak %.0f MiB "
-                  "(%.0f bytes/point)" % (n, r["memory"], "tiles of about %d points" % r["points_per_tile"]
+                  "(%.0f bytes/point)" % (n, r["memory"], "tiles of at most %d points" % r["points_per_tile"]
                                           if r["tiled"] else "in core", r["threads"],
                                           r["process_seconds"], r["points_per_second"], r["peak_bytes"] / MIB,
                                           r["bytes_per_point"]))
