@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "pss/io/ply.hpp"
 #include "support/cli.hpp"
@@ -81,40 +82,30 @@ TEST_F(VolumeCliTest, ThresholdIsForGradientSurfacesOnly) {
   EXPECT_NE(r.err.find("--threshold"), std::string::npos) << r.err;
 }
 
-// A file with a header describes its own voxels: raw flags given with it are refused as
-// such by every command that reads volumes, not as a raw volume missing --dims.
-TEST_F(VolumeCliTest, RawFlagsWithAHeadedFileAreRefusedAsSuch) {
+// Raw volume flags given with a file they do not describe are refused as such, in one line
+// naming the file and why, by every command that reads volumes, and nothing is written:
+// - a file with a header describes its own voxels (not "a raw volume needs --dims");
+// - a point cloud is no raw volume (a new user's trial: `pss mesh cloud.ply --dims 32x32x32`
+//   read the PLY's bytes as voxels and asked for --iso).
+TEST_F(VolumeCliTest, RawFlagsWithAFileTheyDoNotDescribeAreRefusedAsSuch) {
   const std::string engine = std::string(PSS_SOURCE_DIR) + "/data/engine_256x256x128_uint8.nrrd";
-  const std::string out = (dir_ / "o").string();
-  for (const std::string& command :
-       {"volume " + engine + " --iso 100 --type uint16 -o " + out + ".png",
-        "extract " + engine + " --iso 100 --spacing 1,1,2 -o " + out + ".ply",
-        "mesh " + engine + " --iso 100 --type uint16 -o " + out + ".ply", "info " + engine + " --skip 4"}) {
-    const test::CliResult r = test::run_pss(command);
-    EXPECT_NE(r.exit_code, 0) << command;
-    EXPECT_NE(r.err.find(engine + ": the file's header describes the volume; drop --dims"), std::string::npos)
-        << command << "\n" << r.err;
-    EXPECT_FALSE(fs::exists(out + ".png") || fs::exists(out + ".ply")) << command;
-  }
-}
-
-
-// A point cloud is no raw volume: raw flags given with one are refused as such (a new user's
-// trial: `pss mesh cloud.ply --dims 32x32x32` read the PLY's bytes as voxels and asked for
-// --iso), and the commands that read clouds take nothing from them.
-TEST_F(VolumeCliTest, RawFlagsWithAPointCloudAreRefusedAsSuch) {
   const std::string bunny = std::string(PSS_SOURCE_DIR) + "/data/bun_zipper.ply";
   const std::string out = (dir_ / "o").string();
-  for (const std::string& command :
-       {"volume " + bunny + " --iso 100 --dims 32x32x32 -o " + out + ".png",
-        "extract " + bunny + " --iso 100 --dims 32x32x32 -o " + out + ".ply",
-        "mesh " + bunny + " --dims 32x32x32 -o " + out + ".ply", "info " + bunny + " --type uint16"}) {
-    const test::CliResult r = test::run_pss(command);
-    EXPECT_NE(r.exit_code, 0) << command;
-    EXPECT_EQ(test::line_count(r.err), 1) << command << "\n" << r.err;
-    EXPECT_NE(r.err.find(bunny + ": a point cloud, not a volume"), std::string::npos) << command << "\n" << r.err;
-    EXPECT_FALSE(fs::exists(out + ".png") || fs::exists(out + ".ply")) << command;
-  }
+  const struct {
+    std::string file, raw, why;
+  } cases[] = {{engine, "--type uint16", "the file's header describes the volume; drop --dims"},
+               {bunny, "--dims 32x32x32", "a point cloud, not a volume"}};
+  for (const auto& c : cases)
+    for (const std::string& command :
+         {"volume " + c.file + " --iso 100 " + c.raw + " -o " + out + ".png",
+          "extract " + c.file + " --iso 100 " + c.raw + " -o " + out + ".ply",
+          "mesh " + c.file + " --iso 100 " + c.raw + " -o " + out + ".ply", "info " + c.file + " --skip 4"}) {
+      const test::CliResult r = test::run_pss(command);
+      EXPECT_NE(r.exit_code, 0) << command;
+      EXPECT_EQ(test::line_count(r.err), 1) << command << "\n" << r.err;
+      EXPECT_NE(r.err.find(c.file + ": " + c.why), std::string::npos) << command << "\n" << r.err;
+      EXPECT_FALSE(fs::exists(out + ".png") || fs::exists(out + ".ply")) << command;
+    }
 }
 
 // --stats with an empty name is refused, not taken as no --stats (the same trial: the mesh
