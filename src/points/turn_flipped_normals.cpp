@@ -94,8 +94,10 @@ struct Link {
 // behind the other's face, so they weigh nothing or mislead (cube.pwn: six left inward on
 // its slots' edges cut five holes in its mesh). A thin part's other face does not pass
 // through the sample, and so has no say.
-std::size_t turn_stragglers(const SupportGridView& view, std::span<const vec3> points, std::span<const float> inv_h2,
-                            std::span<vec3> normals, std::span<const int> patch, std::size_t patches) {
+// Which patches turn (the normals as the groups' turn left them).
+std::vector<char> stragglers_to_turn(const SupportGridView& view, std::span<const vec3> points,
+                                     std::span<const float> inv_h2, std::span<const vec3> normals,
+                                     std::span<const int> patch, std::size_t patches) {
   std::vector<std::size_t> size(patches, 0);
   for (const int p : patch) ++size[std::size_t(p)];
   const auto settled = [&](int p) { return size[std::size_t(p)] >= kFewestPerPatch; };
@@ -113,13 +115,9 @@ std::size_t turn_stragglers(const SupportGridView& view, std::span<const vec3> p
     });
     say[std::size_t(patch[i])] += double(glm::dot(around, normals[i]));
   }
-  std::size_t turned = 0;
-  for (std::size_t i = 0; i < points.size(); ++i)
-    if (say[std::size_t(patch[i])] < 0) {
-      normals[i] = -normals[i];
-      ++turned;
-    }
-  return turned;
+  std::vector<char> turn(patches);
+  for (std::size_t p = 0; p < patches; ++p) turn[p] = say[p] < 0;
+  return turn;
 }
 
 }  // namespace
@@ -228,7 +226,18 @@ std::size_t turn_flipped_normals(const SupportGrid& grid, std::span<vec3> normal
     if (e.keep >= 2 && e.keep > 2 * e.flip) links.push_back({e.keep - e.flip, a, b, 0});
   }
   const auto count = std::size_t(patches);
-  if (links.empty()) return turn_stragglers(view, points, inv_h2, normals, patch, count);
+  // The stragglers' turn after the groups', counted once where it turns a normal back.
+  const auto turn_stragglers = [&](std::span<const char> turned_by_groups) {
+    const std::vector<char> turn = stragglers_to_turn(view, points, inv_h2, normals, patch, count);
+    std::size_t turned = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto p = std::size_t(patch[i]);
+      if (turn[p]) normals[i] = -normals[i];
+      turned += (turn[p] != 0) != (!turned_by_groups.empty() && turned_by_groups[p] != 0);
+    }
+    return turned;
+  };
+  if (links.empty()) return turn_stragglers({});
   std::sort(links.begin(), links.end(), [](const Link& x, const Link& y) {
     return x.strength != y.strength ? x.strength > y.strength : (x.a != y.a ? x.a < y.a : x.b < y.b);
   });
@@ -257,15 +266,11 @@ std::size_t turn_flipped_normals(const SupportGrid& grid, std::span<vec3> normal
     const int facing = vote[g].sign();
     turn_odd[g] = facing != 0 ? facing > 0 : odd[g] <= even[g];  // ties keep the root patch's side
   }
-  std::size_t turned = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto p = std::size_t(patch[i]);
-    if (bool(side[p]) == bool(turn_odd[std::size_t(group[p])])) {
-      normals[i] = -normals[i];
-      ++turned;
-    }
-  }
-  return turned + turn_stragglers(view, points, inv_h2, normals, patch, count);
+  std::vector<char> turned_by_groups(count);
+  for (std::size_t p = 0; p < count; ++p) turned_by_groups[p] = bool(side[p]) == bool(turn_odd[std::size_t(group[p])]);
+  for (std::size_t i = 0; i < n; ++i)
+    if (turned_by_groups[std::size_t(patch[i])]) normals[i] = -normals[i];
+  return turn_stragglers(turned_by_groups);
 }
 
 }  // namespace pss
