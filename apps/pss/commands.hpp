@@ -110,6 +110,13 @@ ProjectionParams projection_params(const CloudSurfaceFlags& flags, const std::fu
 // (points/turn_flipped_normals.hpp); nothing when none were.
 void print_normals_turned(std::size_t turned, std::size_t points);
 
+// How many of the cloud's normals have no direction (zero or not finite) where --normals file
+// (the default) asks for them; 0 otherwise. One is enough for all to be left out and
+// estimated (points/sample_normals.hpp: file_normals): the summaries say so with
+// print_file_normals_left_out (a mesh's vertex normals are 0 at its unused vertices).
+std::size_t file_normals_without_direction(const PointCloud& cloud, const SurfaceOptions& options);
+void print_file_normals_left_out(std::size_t without_direction, std::size_t points);
+
 // What a chosen subcommand does once CLI11 has parsed and validated its options: run, or
 // only check the options that need more than one flag's validator (the --iso/--gradient
 // choice, the raw-volume flags together), which reads no file and writes none. The fuzz

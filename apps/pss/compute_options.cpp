@@ -1,5 +1,6 @@
 #include "commands.hpp"
 
+#include <cmath>
 #include <cstdio>
 
 #include "numbers.hpp"
@@ -166,6 +167,22 @@ void print_normals_turned(std::size_t turned, std::size_t points) {
   if (turned > 0)
     std::printf("turned %zu of the file's normals (of %zu points): they contradicted their neighbours', as where a "
                 "part of the cloud was flipped\n", turned, points);
+}
+
+std::size_t file_normals_without_direction(const PointCloud& cloud, const SurfaceOptions& options) {
+  if (options.normals != "file") return 0;
+  std::size_t without = 0;
+  for (const vec3& n : cloud.normals) {
+    const float length = glm::length(n);
+    without += !(length > 0) || !std::isfinite(length);
+  }
+  return without;
+}
+
+void print_file_normals_left_out(std::size_t without_direction, std::size_t points) {
+  if (without_direction > 0)
+    std::printf("left out the file's normals: %zu of %zu have no direction (zero or not finite), so all were "
+                "estimated from the points\n", without_direction, points);
 }
 
 void add_cloud_surface_flags(CLI::App& command, CloudSurfaceFlags& flags) {

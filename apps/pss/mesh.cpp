@@ -136,6 +136,7 @@ void run_cloud_mesh(const MeshOptions& o, Stats& stats, std::chrono::steady_cloc
               (long long)result.outliers.set_aside, (long long)result.counts.unsupported_parts,
               kMinPartSamples);
   print_normals_turned(result.normals_turned, cloud.size());
+  print_file_normals_left_out(file_normals_without_direction(cloud, o.surface.surface), cloud.size());
   if (result.turned_outward)
     std::printf("the normals' orientation faced inward (the closed parts enclosed a negative volume): the mesh "
                 "was turned to face outward\n");

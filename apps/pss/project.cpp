@@ -56,6 +56,7 @@ struct ProjectRun {
   SupportWidths widths;
   NormalsUsed normals = NormalsUsed::none;
   std::size_t normals_turned = 0;
+  std::size_t normals_without_direction = 0;  // the file's: then all were left out
   std::int64_t set_aside = 0;
   std::string memory;  // how the run held the cloud, for the summary
   std::vector<std::uint64_t> points_per_rank;  // the points each rank projected
@@ -70,6 +71,7 @@ void check_projected(const ProjectOptions& o, const StatusCounts& counts, const 
 ProjectRun project_in_core(const ProjectOptions& o, Backend backend, Stats& stats, ProjectionParams& params) {
   PointCloud cloud = read_cloud(o.input, stats);
   params = projection_params(o.surface, cloud, o.input, plane_of(o), stats);
+  const std::size_t without_direction = file_normals_without_direction(cloud, o.surface.surface);
   // The input's arrays become the output's (issue 28). What the cloud cannot give (a
   // neighbourhood wider than it) names it.
   const CloudProjection result =
@@ -85,7 +87,7 @@ ProjectRun project_in_core(const ProjectOptions& o, Backend backend, Stats& stat
   std::vector<std::uint64_t> per_rank(std::size_t(rank_count()), 0);
   per_rank[0] = result.cloud.size();
   return {result.cloud.size(), result.cloud.origin, result.counts, result.widths, result.normals,
-          result.normals_turned, result.outliers.set_aside, "in core", per_rank};
+          result.normals_turned, without_direction, result.outliers.set_aside, "in core", per_rank};
 }
 
 // The file's next `count` points (their colours and scalars) into `part`.
@@ -150,7 +152,7 @@ ProjectRun project_in_tiles(const ProjectOptions& o, const MemoryPlan& plan, Bac
     if (stream->read(part, 1) > 0) throw file_error(o.input, "changed while it was read: it has more points than before");
     writer.commit();
   }
-  return {tiles.size(), tiles.origin(), projected.counts(), projected.widths(), projected.normals_used(), 0,
+  return {tiles.size(), tiles.origin(), projected.counts(), projected.widths(), projected.normals_used(), 0, 0,
           projected.outliers().set_aside, "tile by tile: " + tiles_text(tiles), projected.points_per_rank()};
 }
 
@@ -196,6 +198,7 @@ void run_project(const ProjectOptions& o) {
               (long long)c.not_converged, (long long)c.too_few_neighbours, (long long)c.degenerate_normal,
               (long long)run.set_aside);
   print_normals_turned(run.normals_turned, std::size_t(run.points));
+  print_file_normals_left_out(run.normals_without_direction, std::size_t(run.points));
 
   if (!o.compute.stats_path.empty()) {
     auto& v = stats.values();

@@ -91,6 +91,7 @@ void run_render(const RenderCloudOptions& o) {
               (long long)prepared.outliers().set_aside, params.projection.h,
               support_text(params.projection.support, prepared.widths()).c_str(), params.ball_radius, params.epsilon);
   print_normals_turned(prepared.normals_turned(), cloud.size());
+  print_file_normals_left_out(file_normals_without_direction(cloud, o.surface), cloud.size());
 
   if (!o.render.compute.stats_path.empty()) {
     record_render_stats(stats, o.render, frame, settings, backend, "render", o.input);
