@@ -170,7 +170,7 @@ def mesh(points, h=None, *, normals=None, surface="rimls", outliers="set-aside",
 
 def render(points, h=None, *, normals=None, colors=None, surface="rimls", outliers="set-aside", rho=None, support=None,
            b=None, epsilon=None, ball_spacing=None,
-           iterations=2, secondary="full", borders="extend",
+           iterations=2, candidates=32, secondary="full", borders="extend",
            size=None, view=None, fov=None, look_at=None, up=None, distance=None,
            zoom=None, roll=None, camera=None, shadows=False, reflections=False, reflectivity=None,
            transparent=False, backend="auto", full_output=False):
@@ -181,6 +181,7 @@ def render(points, h=None, *, normals=None, colors=None, surface="rimls", outlie
     (default h), epsilon: a hit's tolerance (default 1e-3 h),
     ball_spacing (default b/2; 0 keeps one polynomial per sample, as the paper),
     iterations: projections per ray candidate, 1 to 32 or 'auto' (default 2, the paper's),
+    candidates: ball intersections a ray tries before it is a miss, 1 to 1024 (default 32),
     secondary: 'full' or 'paper' (the paper's rough secondary hits); normals: optional hints.
     borders: 'extend' (the surface runs on past the last points, as the paper's and as `pss
     render` does for scans) or 'clip' (it ends at them: what `pss render --borders auto` does
@@ -197,8 +198,8 @@ def render(points, h=None, *, normals=None, colors=None, surface="rimls", outlie
     options.update({"normals": normals, "colors": colors, "surface": surface, "outliers": outliers, "h": h, "rho": rho,
                     "support": support,
                     "b": b,
-                    "epsilon": epsilon, "ball_spacing": ball_spacing, "iterations": iterations, "secondary": secondary,
-                    "borders": borders})
+                    "epsilon": epsilon, "ball_spacing": ball_spacing, "iterations": iterations, "candidates": candidates,
+                    "secondary": secondary, "borders": borders})
     return _pss.render(points, options)
 
 

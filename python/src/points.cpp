@@ -152,6 +152,7 @@ py::object render(const py::handle& points, const py::dict& o) {
   const int max_iterations = py::isinstance<py::str>(iterations) && iterations.cast<std::string>() == "auto"
                                  ? kAutoIterations
                                  : integer_in(o, "iterations", 1, kAutoIterations);
+  const int candidates = integer_in(o, "candidates", 1, kMaxCandidates);
   const SecondaryMode secondary =
       choice(o, "secondary", {"full", "paper"}) == "paper" ? SecondaryMode::paper : SecondaryMode::full;
   const BorderMode borders = *border_choice_of(choice(o, "borders", {"extend", "clip"}));
@@ -178,6 +179,7 @@ py::object render(const py::handle& points, const py::dict& o) {
     params.ball_spacing = spacing ? *spacing : 0.5f * params.ball_radius;
     if (epsilon) params.epsilon = *epsilon;
     params.max_iterations = max_iterations;
+    params.max_candidates = candidates;
     params.secondary = secondary;
     params.projection.borders = borders;
     validate(params);
@@ -193,7 +195,8 @@ py::object render(const py::handle& points, const py::dict& o) {
                                 {"normals", normals_used_name(prepared.normals_used())},
                                 {"h_least", prepared.widths().least}, {"h_largest", prepared.widths().largest},
                                 {"ball_spacing", params.ball_spacing}, {"epsilon", params.epsilon},
-                                {"iterations", params.max_iterations}, {"borders", border_name(borders)}};
+                                {"iterations", params.max_iterations}, {"max_candidates", params.max_candidates},
+                                {"borders", border_name(borders)}};
     return render_cloud(prepared, camera, settings, backend, stats);
   });
   stats.values()["backend"] = backend_name(backend);

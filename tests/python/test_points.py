@@ -215,6 +215,19 @@ def test_render_gives_the_cli_s_image_hits_and_counts(bunny, tmp_path):
     assert np.allclose(hits["depth"][mask], depth, rtol=1e-4)
 
 
+def test_candidates_limit_a_ray_as_the_cli_s_do(bunny, tmp_path):
+    # One candidate a ray: the rays whose first ball intersection is rejected miss, as with the
+    # CLI's --candidates 1 (the module had no such argument).
+    cli_image, cli_hits, _ = render_like_cli(tmp_path, "--size", "64x48", "--view", "80,10", "--candidates", "1",
+                                             "--borders", "extend")
+    image, hits, stats = pss.render(bunny, size=(64, 48), view=(80, 10), candidates=1, full_output=True)
+    assert np.array_equal(image, cli_image) and stats["params"]["max_candidates"] == 1
+    _, every, _ = pss.render(bunny, size=(64, 48), view=(80, 10), full_output=True)
+    assert hits["mask"].sum() == len(cli_hits) < every["mask"].sum()
+    with pytest.raises(pss.Error, match=r"^candidates: expected an integer from 1 to 1024 \(got 0\)$"):
+        pss.render(bunny, candidates=0)
+
+
 def test_colors_shade_as_the_cli_s_color_does(bunny, tmp_path):
     # Red on top, blue below, in a PLY the CLI reads: the same image from both.
     height = (bunny[:, 1] - bunny[:, 1].min()) / np.ptp(bunny[:, 1])
