@@ -1,6 +1,6 @@
 #include "commands.hpp"
 
-#include <cmath>
+#include <algorithm>
 #include <cstdio>
 
 #include "numbers.hpp"
@@ -171,12 +171,7 @@ void print_normals_turned(std::size_t turned, std::size_t points) {
 
 std::size_t file_normals_without_direction(const PointCloud& cloud, const SurfaceOptions& options) {
   if (options.normals != "file") return 0;
-  std::size_t without = 0;
-  for (const vec3& n : cloud.normals) {
-    const float length = glm::length(n);
-    without += !(length > 0) || !std::isfinite(length);
-  }
-  return without;
+  return std::size_t(std::count_if(cloud.normals.begin(), cloud.normals.end(), [](vec3 n) { return !has_direction(n); }));
 }
 
 void print_file_normals_left_out(std::size_t without_direction, std::size_t points) {

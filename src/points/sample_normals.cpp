@@ -28,9 +28,8 @@ FileNormals file_normals(const SupportGrid& grid, std::span<const vec3> input_no
         n += glm::dot(m, own) < 0 ? -m : m;
       }
     }
-    const float length = glm::length(n);
-    if (!(length > 0) || !std::isfinite(length)) return {};
-    file.sorted[i] = n / length;
+    if (!has_direction(n)) return {};
+    file.sorted[i] = n / glm::length(n);
   }
   ScopedPhase phase(stats, "check file normals");
   file.turned = turn_flipped_normals(grid, file.sorted);

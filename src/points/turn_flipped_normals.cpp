@@ -86,15 +86,15 @@ struct Link {
   int a, b, odd;
 };
 
-// Patches too small for the evidence between patches (fewer than kFewestPerPatch samples)
-// face, after the turn, as the surfaces they lie on: the normals of the larger patches'
+// Which patches turn after the groups' turn (`normals` as it left them): those too small for
+// the evidence between patches (fewer than kFewestPerPatch samples) face as the surfaces they
+// lie on: the normals of the larger patches'
 // samples in whose tangent planes they lie, weighted as the fits weigh them. Such is a
 // sample on a crease whose normal lies between its faces' (a CAD file's): it agrees with no
 // neighbour within 45°, and its pairs with them are neither side by side nor plainly one
 // behind the other's face, so they weigh nothing or mislead (cube.pwn: six left inward on
 // its slots' edges cut five holes in its mesh). A thin part's other face does not pass
 // through the sample, and so has no say.
-// Which patches turn (the normals as the groups' turn left them).
 std::vector<char> stragglers_to_turn(const SupportGridView& view, std::span<const vec3> points,
                                      std::span<const float> inv_h2, std::span<const vec3> normals,
                                      std::span<const int> patch, std::size_t patches) {
