@@ -133,6 +133,7 @@ CloudProjection project_cloud(PointCloud input, const ProjectionParams& params, 
   OutlierReport outliers;
   std::size_t normals_turned = 0;
   bool file_hints = false;  // the file's normals orient the projections
+  bool orient_after = false;  // MLS's projections without them: orient_normals_consistently
   std::vector<int> sample_of;  // where samples were merged: orient_through_samples
   {  // what the projection needs, freed before the orientation
     {
@@ -143,11 +144,14 @@ CloudProjection project_cloud(PointCloud input, const ProjectionParams& params, 
     SupportGrid grid =
         grid_of_samples(positions, widths.h, widths.merged, unit_params.rho / unit_params.h, params.outliers, backend, stats, outliers);
     phase.stop();
+    release(widths.merged);  // the grid holds the merged samples
     const FileNormals file = file_normals(grid, input.normals, unit_params, stats);
     normals_turned = file.turned;
     file_hints = !file.sorted.empty();
     prepare_sample_normals(grid, file, unit_params, backend, stats, normals_used);
-    if (!grid.masses().empty()) {  // for the orientation: whose sample each point joined
+    orient_after = !file_hints && params.surface == SurfaceOperator::mls;
+    if (!orient_after) release(widths.h);  // the orientation's supports, else the grid's alone
+    if (!grid.masses().empty() && orient_after) {  // for the orientation: whose sample each point joined
       sample_of.assign(n, -1);
       for (std::size_t k = 0; k < grid.original_index().size(); ++k)
         for (const int j : grid.members(k)) sample_of[std::size_t(j)] = grid.original_index()[k];
@@ -155,32 +159,37 @@ CloudProjection project_cloud(PointCloud input, const ProjectionParams& params, 
     // The points set aside are not samples, but points all the same: projected after the
     // samples, with a hint from the nearest sample where the file has normals. Where samples
     // were merged, a merged sample's position is its cube's mean, not its point's: every
-    // point is projected as these are.
+    // point is projected as these are, read from `positions` itself (at 10⁷ points a copy
+    // and its indices were 160 MB of the run's peak).
     const std::span<const int> original = grid.original_index();
-    const std::size_t m = grid.masses().empty() ? original.size() : 0;
+    const bool every_point = !grid.masses().empty();
+    const std::size_t m = every_point ? 0 : original.size();
     std::vector<int> set_aside;
-    if (m < n) {
+    if (!every_point && m < n) {
       std::vector<char> sample(n, 0);
       for (std::size_t k = 0; k < m; ++k) sample[std::size_t(original[k])] = 1;
       for (std::size_t i = 0; i < n; ++i)
         if (!sample[i]) set_aside.push_back(int(i));
     }
+    const std::size_t other_count = every_point ? n : set_aside.size();
+    const auto other_index = [&](std::size_t k) { return every_point ? k : std::size_t(set_aside[k]); };
     std::vector<vec3> others, other_hints;
-    for (int i : set_aside) {
-      others.push_back(positions[std::size_t(i)]);
-      if (file_hints)
-        other_hints.push_back(set_aside_hint(grid, file, positions[std::size_t(i)], input.normals[std::size_t(i)]));
+    for (std::size_t k = 0; k < other_count; ++k) {
+      const std::size_t i = other_index(k);
+      if (!every_point) others.push_back(positions[i]);
+      if (file_hints) other_hints.push_back(set_aside_hint(grid, file, positions[i], input.normals[i]));
     }
     release(input.normals);  // their hints are taken
     out.cloud.normals.resize(n);
     out.status.resize(n);
     const GridMirror g(backend, grid);
     const Mirror<vec3> hint(backend, file.sorted);
-    const Mirror<vec3> other(backend, others);
+    const Mirror<vec3> other(backend, every_point ? std::span<const vec3>(positions) : std::span<const vec3>(others));
     const Mirror<vec3> other_hint(backend, other_hints);
     Progress progress("projecting", std::int64_t(n));
     // In chunks, each placed at once, so that the projections are never all held beside the
-    // output (28 bytes a point); a GPU is given enough threads a launch to fill it.
+    // output (28 bytes a point); a GPU is given enough threads a launch to fill it. A chunk's
+    // kernel reads its own points only, so `positions` may take each chunk's projections.
     const std::size_t chunk = std::size_t(1) << (backend == Backend::cpu ? 16 : 20);
     // points[k], hints[k] (or null) are those of input point index(k), k < count.
     auto project = [&](const vec3* points, const vec3* hints, std::size_t count, auto index) {
@@ -207,8 +216,7 @@ CloudProjection project_cloud(PointCloud input, const ProjectionParams& params, 
     // eigenvector's sign is arbitrary; orientation comes after.
     project(g.view().points, file_hints ? hint.data() : nullptr, m,
             [&](std::size_t k) { return std::size_t(original[k]); });
-    project(other.data(), file_hints ? other_hint.data() : nullptr, set_aside.size(),
-            [&](std::size_t k) { return std::size_t(set_aside[k]); });
+    project(other.data(), file_hints ? other_hint.data() : nullptr, other_count, other_index);
   }
   out.widths.least = float(widths.least * frame.scale);
   out.widths.median = float(widths.median * frame.scale);
@@ -219,7 +227,7 @@ CloudProjection project_cloud(PointCloud input, const ProjectionParams& params, 
   out.normals_turned = normals_turned;
   out.outliers = outliers;
   // APSS's and RIMLS's normals follow the samples' oriented ones already.
-  if (!file_hints && params.surface == SurfaceOperator::mls) {
+  if (orient_after) {
     ScopedPhase phase(stats, "orient normals", false);  // its Progress shows it
     std::vector<float> support = std::move(widths.h);  // ρ_i: the orientation links the samples of each N(p_i)
     for (float& rho : support) rho *= unit_params.rho / unit_params.h;
