@@ -109,6 +109,7 @@ void record_mesh(Stats& stats, const MeshTopology& shape, const MarchCounts& cou
                {"crease_vertices", counts.crease_vertices},
                {"crease_flips", counts.crease_flips},
                {"pinched_triangles", counts.pinched_triangles},
+               {"normals_turned", counts.normals_turned},
                {"unsupported_parts", counts.unsupported_parts}};
 }
 

@@ -311,6 +311,7 @@ TriangleMesh march_tetrahedra(const Lattice& lattice, std::span<const vec3> seed
   counts.crease_vertices = creases.vertices;
   counts.crease_flips = creases.flips;
   counts.pinched_triangles = remove_pinches(mesh);
+  counts.normals_turned = normals_follow_winding(mesh);
   return mesh;
 }
 

@@ -212,4 +212,21 @@ void turn_inside_out(TriangleMesh& mesh) {
   for (vec3& n : mesh.normals) n = -n;
 }
 
+std::int64_t normals_follow_winding(TriangleMesh& mesh) {
+  std::vector<glm::dvec3> faces(mesh.positions.size(), glm::dvec3(0.0));
+  for (const auto& t : mesh.triangles) {
+    const glm::dvec3 a(mesh.positions[std::size_t(t[0])]), b(mesh.positions[std::size_t(t[1])]),
+        c(mesh.positions[std::size_t(t[2])]);
+    const glm::dvec3 area = glm::cross(b - a, c - a);  // twice the area, outward
+    for (const int v : t) faces[std::size_t(v)] += area;
+  }
+  std::int64_t turned = 0;
+  for (std::size_t v = 0; v < mesh.normals.size(); ++v)
+    if (glm::dot(faces[v], glm::dvec3(mesh.normals[v])) < 0) {
+      mesh.normals[v] = -mesh.normals[v];
+      ++turned;
+    }
+  return turned;
+}
+
 }  // namespace pss

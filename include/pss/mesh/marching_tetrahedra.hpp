@@ -73,6 +73,7 @@ struct MarchCounts {
   std::int64_t crease_vertices = 0;    // on sharp creases (src/mesh/creases.hpp)
   std::int64_t crease_flips = 0;       // edges turned to join two of them
   std::int64_t pinched_triangles = 0;  // removed to keep every vertex one fan (remove_pinches)
+  std::int64_t normals_turned = 0;     // facing against their triangles (normals_follow_winding)
   std::int64_t unsupported_parts = 0;  // a cloud's mesh: parts no samples hold, removed (mesh_cloud.cpp)
 };
 
@@ -87,6 +88,8 @@ struct MarchCounts {
 // distance) and deterministic: the same for any thread count and batch order. Where the
 // normals within a cube differ by more than `crease_angle` degrees (180: nowhere) and the
 // surface has a crease there, the cube's vertex on it replaces the chamfer (creases.hpp).
+// Each vertex's normal is the surface's at it, turned where it faces against its triangles
+// (at a fold or a thin part's rim the fit's normal may follow the other sheet).
 TriangleMesh march_tetrahedra(const Lattice& lattice, std::span<const vec3> seeds, const ImplicitSurface& implicit,
                               float max_slope, float crease_angle, MarchCounts& counts);
 

@@ -53,4 +53,9 @@ void drop_unused_vertices(TriangleMesh& mesh);
 // Every triangle's winding reversed and every normal negated.
 void turn_inside_out(TriangleMesh& mesh);
 
+// Turns each vertex normal that faces against its triangles (the sum of their area vectors,
+// which their winding points outward), so that shading with the normals sees the faces'
+// outside. Returns how many it turned.
+std::int64_t normals_follow_winding(TriangleMesh& mesh);
+
 }  // namespace pss
