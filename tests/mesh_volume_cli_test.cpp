@@ -191,6 +191,11 @@ TEST_F(MeshVolumeCli, AGradientSurfaceIsMeshedAboveItsThreshold) {
     worst = std::max(worst, std::min(std::abs(glm::length(p - kCenter) - kRadius),
                                      std::abs(glm::length(p - faint) - kRadius)));
   EXPECT_LT(worst, 0.3f);
+  // 0 is a threshold too (it was taken for none given, and 0.5 used).
+  const test::CliResult zero = mesh(input, "z.ply", "--gradient --threshold 0 --stats " + path("z.json"));
+  ASSERT_EQ(zero.exit_code, 0) << zero.err;
+  EXPECT_NE(zero.out.find("gradient surface (threshold 0)"), std::string::npos) << zero.out;
+  EXPECT_EQ(stats("z.json")["volume"]["feature"]["threshold"].get<float>(), 0.0f);
 }
 
 TEST_F(MeshVolumeCli, TheMeshIsTheSameForAnyThreadCount) {
@@ -215,6 +220,7 @@ TEST_F(MeshVolumeCli, FlagsOfTheOtherKindAndBadInputGetOneLineAndNoOutput) {
                          std::string(flag).substr(0, std::string(flag).find(' ')) + " applies to volumes only", out);
   expect_clean_failure("mesh " + volume + " -o " + out, "choose the surface", out);
   expect_clean_failure("mesh " + volume + " --iso 100 --threshold 0.3 -o " + out, "--threshold", out);
+  expect_clean_failure("mesh " + volume + " --iso 100 --threshold 0 -o " + out, "--threshold", out);
   expect_clean_failure("mesh " + volume + " --iso 100 --h 0.3 -o " + out, "--h", out);
   expect_clean_failure("mesh " + volume + " --iso 300 -o " + out, "ball.raw", out);  // no surface
   expect_clean_failure("mesh " + volume + " --iso 100 --cell 1e-3 -o " + out, "too small for this volume", out);

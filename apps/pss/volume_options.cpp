@@ -50,7 +50,7 @@ void add_volume_surface_flags(CLI::App& command, VolumeOptions& o, bool method_f
   command.add_option("--error", o.settings.error, "epsilon in voxels: r is a hit when |gamma - r| <= epsilon")
       ->check(finite_positive())
       ->capture_default_str();
-  command.add_option("--threshold", o.settings.threshold,
+  o.threshold_option = command.add_option("--threshold", o.settings.threshold,
                      "gradient surfaces: samples with (|grad f|/max)^2 > T are projected (default 0.5); iso-surfaces "
                      "are looked for next to the cells the data crosses V in, with no threshold")
       ->check(finite_range(0, 1));
@@ -59,7 +59,8 @@ void add_volume_surface_flags(CLI::App& command, VolumeOptions& o, bool method_f
 
 std::optional<RawVolumeFormat> check_volume_options(const VolumeOptions& o) {
   if (o.iso_option->count() == 0 && !o.settings.gradient) throw Error("choose the surface: --iso V or --gradient");
-  if (o.settings.threshold > 0 && !o.settings.gradient) throw Error("--threshold applies to --gradient surfaces only");
+  if (o.threshold_option->count() > 0 && !o.settings.gradient)
+    throw Error("--threshold applies to --gradient surfaces only");
   return raw_volume_format(o.raw, o.input);
 }
 

@@ -16,7 +16,8 @@ namespace pss::app {
 struct VolumeOptions {
   std::string input;
   RawVolumeOptions raw;  // raw volumes only
-  const CLI::Option* iso_option = nullptr;  // counts whether --iso was given
+  const CLI::Option* iso_option = nullptr;        // counts whether --iso was given
+  const CLI::Option* threshold_option = nullptr;  // and --threshold
   std::string method = "predictor-corrector";
   VolumeSettings settings;  // the library's defaults; method set from `method`
 };

@@ -98,7 +98,7 @@ FeatureParams iso_feature(float iso, float smoothing) {
 FeatureParams gradient_feature(float threshold) {
   FeatureParams f;
   f.kind = FeatureKind::gradient;
-  f.threshold = threshold > 0 ? threshold : 0.5f;
+  f.threshold = threshold;
   return f;
 }
 

@@ -103,8 +103,8 @@ VolumeFields compute_fields(Volume volume);
 inline constexpr float kIsoSmoothingVoxels = 1.25f;
 
 // The feature parameters. θ1's k is in world units (the CLI's --smoothing is in voxels);
-// the gradient mode's threshold defaults to the paper's 0.5 when 0.
+// the gradient mode's threshold defaults to the paper's 0.5.
 FeatureParams iso_feature(float iso, float smoothing);
-FeatureParams gradient_feature(float threshold = 0);
+FeatureParams gradient_feature(float threshold = 0.5f);
 
 }  // namespace pss

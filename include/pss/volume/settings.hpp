@@ -28,7 +28,7 @@ struct VolumeSettings {
   float alpha = 0.9f;     // α1 of the corrector, in [0, 1]
   float error = 0.1f;     // ε, voxels
   float smoothing = kIsoSmoothingVoxels;  // θ1's k, voxels
-  float threshold = 0;    // gradient surfaces: (|∇f|/max)² above it is projected; 0: the paper's 0.5
+  float threshold = 0.5f;  // gradient surfaces: (|∇f|/max)² above it is projected (the paper's 0.5)
 
   bool operator==(const VolumeSettings&) const = default;
 };
