@@ -522,14 +522,35 @@ TEST(MeshCloud, TheCellSetsTheResolution) {
   test::SampleOptions o;
   o.count = 6000;
   const PointCloud sphere = test::sample(test::Sphere{}, o);
-  const CloudMesh coarse = mesh_of(sphere, SurfaceOperator::mls, 0.1f), fine = mesh_of(sphere, SurfaceOperator::mls, 0.05f);
-  EXPECT_EQ(coarse.cell, 0.1f);
+  const CloudMesh coarse = mesh_of(sphere, SurfaceOperator::mls, 0.09f), fine = mesh_of(sphere, SurfaceOperator::mls, 0.045f);
+  EXPECT_EQ(coarse.cell, 0.09f);
   const double ratio = double(fine.mesh.triangles.size()) / double(coarse.mesh.triangles.size());
   EXPECT_GT(ratio, 3.5);
   EXPECT_LT(ratio, 4.5);
   EXPECT_TRUE(topology(fine.mesh).watertight());
   // The default: half the h of the spacing.
   EXPECT_FLOAT_EQ(mesh_of(sphere).cell, kDefaultCellPerH * test::suggested_h(sphere));
+}
+
+// A cube the surface crosses has corners a diagonal, √3 cells, off it, and a corner needs
+// samples within its support: a cell over ρ/2 is refused, with the largest that serves (at
+// 0.55ρ this sphere opened, and the bunny broke apart at 0.9ρ); at ρ/2 it is one closed
+// surface.
+TEST(MeshCloud, ACellWhoseCornersLeaveTheSupportsIsRefused) {
+  test::SampleOptions o;
+  o.count = 6000;
+  const PointCloud sphere = test::sample(test::Sphere{}, o);
+  const float largest = 0.5f * ProjectionParams::from_h(test::suggested_h(sphere)).rho;
+  try {
+    mesh_of(sphere, SurfaceOperator::mls, 1.01f * largest);
+    ADD_FAILURE() << "a cell over rho/2 was taken";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("larger than rho/2 = " + format_number(largest)), std::string::npos)
+        << e.what();
+  }
+  const CloudMesh m = mesh_of(sphere, SurfaceOperator::mls, largest);
+  EXPECT_TRUE(topology(m.mesh).watertight());
+  EXPECT_EQ(topology(m.mesh).components, 1);
 }
 
 // An open sheet's mesh ends where its samples end (clip), with one boundary; extend runs on

@@ -230,7 +230,7 @@ void add_mesh_command(CLI::App& app, Action action) {
       "theta3 width in voxels u = (sx*sy*sz)^(1/3), at least 0.5 (default 2)");
   command->add_option("--cell", o->cell,
                       "side of the cubes the surface is meshed in: smaller gives more, smaller triangles (default: "
-                      "a cloud's h/2, about the samples' spacing; a volume's voxel u)")
+                      "a cloud's h/2, about the samples' spacing, at most rho/2: for coarser raise --h too; a volume's voxel u)")
       ->check(finite_positive());
   clouds->add_option("--borders", o->borders,
                       "where the mesh ends: clip (at its samples' hull), extend (as far as the projection "

@@ -74,6 +74,16 @@ CloudMesh mesh_cloud(const PointCloud& cloud, const MeshParams& params, Backend 
   if (!(params.cell >= 0) || !std::isfinite(params.cell))
     throw Error("the cell size must be a positive number (got " + std::to_string(params.cell) + ")");
   out.cell = params.cell > 0 ? params.cell : kDefaultCellPerH * projection.h;
+  // A cube the surface crosses has corners up to its diagonal, √3 cells, off the surface, and
+  // a corner's projection needs samples within its support (at least ρ): a 6,000-point
+  // sphere stays closed up to a cell of ρ/2 and opens at 0.55ρ, and the bunny broke into a
+  // hundred pieces at 0.9ρ.
+  if (out.cell > 0.5f * projection.rho)
+    throw Error("the cell size " + format_number(out.cell) + " is larger than rho/2 = " +
+                format_number(0.5f * projection.rho) + " (h = " + format_number(projection.h) + ", rho = " +
+                format_number(projection.rho) +
+                "): a cube's corners would lie beyond the samples' supports and the mesh would break apart; for a "
+                "coarser mesh give a larger h as well");
   check_not_a_line(cloud.positions);
   {
     ScopedPhase phase(stats, "support widths", projection.support == Support::global);
