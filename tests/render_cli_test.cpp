@@ -109,10 +109,16 @@ TEST_F(RenderCli, FramesRepeatTheSameFrameAndReportTheMedian) {
 TEST_F(RenderCli, OnePointCloudHasNoSurface) {
   std::ofstream(dir_ / "one.xyz") << "1 2 3\n";
   std::string err;
-  EXPECT_EQ(run(path("one.xyz") + " -o " + path("one.png") + " --size 16x16", err), 1) << err;
-  EXPECT_NE(err.find(path("one.xyz") + ": no surface with h = "), std::string::npos) << err;
+  EXPECT_EQ(run(path("one.xyz") + " -o " + path("one.png") + " --size 16x16 --h 1", err), 1) << err;
+  EXPECT_NE(err.find(path("one.xyz") + ": no surface with h = 1"), std::string::npos) << err;
   EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
   EXPECT_FALSE(fs::exists(path("one.png")));
+  // Without --h, too few points for the default h (the 15th neighbour's distance): said so,
+  // not "give a smaller h", which a new user's trial had not given.
+  std::ofstream(dir_ / "four.xyz") << "0 0 0\n1 0 0\n0 1 0\n1 1 0.1\n";
+  EXPECT_EQ(run(path("four.xyz") + " -o " + path("four.png") + " --size 16x16", err), 1) << err;
+  EXPECT_NE(err.find(path("four.xyz") + ": has 4 points: too few for the default h"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(path("four.png")));
 }
 
 TEST_F(RenderCli, BadInputsAreOneLineErrorsWithoutOutput) {

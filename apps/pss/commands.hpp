@@ -69,6 +69,9 @@ std::string tiles_text(const TiledCloud& tiles);
 // estimate_spacing of a cloud read from `file`, its errors ("the points coincide") naming
 // the file.
 SpacingEstimate estimate_spacing_of(const PointCloud& cloud, const std::string& file);
+// Throws an Error naming `file` where its `points` are too few for the default h (which --h
+// then must give).
+void check_enough_for_default_h(std::size_t points, const std::string& file);
 
 // --support adaptive|global (points/support.hpp); `choice` is empty when the flag is not
 // given: adaptive then, unless --h fixed one width for every sample.

@@ -192,8 +192,20 @@ void add_cloud_surface_flags(CLI::App& command, CloudSurfaceFlags& flags) {
       ->capture_default_str();
 }
 
+void check_enough_for_default_h(std::size_t points, const std::string& file) {
+  // The default h is the points' median distance to their 15th nearest neighbour: a cloud of
+  // 15 points or fewer has none, and the estimate spanned the whole cloud (a new user's trial:
+  // 4 points were told to give a smaller --h, which they had not given).
+  constexpr std::size_t kNeighbours = 15;
+  if (points <= kNeighbours)
+    throw file_error(file, "has " + std::to_string(points) + (points == 1 ? " point" : " points") +
+                               ": too few for the default h (their distance to the 15th nearest neighbour); "
+                               "give --h");
+}
+
 ProjectionParams projection_params(const CloudSurfaceFlags& flags, const PointCloud& cloud, const std::string& file,
                                    PlaneFitMethod plane, Stats& stats) {
+  if (flags.h == 0) check_enough_for_default_h(cloud.size(), file);
   return projection_params(flags, [&] { return float(estimate_spacing_of(cloud, file).suggested_h); }, plane, stats);
 }
 

@@ -48,6 +48,7 @@ void run_render(const RenderCloudOptions& o) {
     throw file_error(o.input, "has no per-point colours (--color needs red, green, blue)");
   float h = o.h;
   if (h == 0) {
+    check_enough_for_default_h(cloud.size(), o.input);
     ScopedPhase phase(stats, "estimate h");
     h = naming_input(o.input, [&] { return default_h(cloud.positions); });
   }
