@@ -295,6 +295,44 @@ TEST(MeshTopology, NormalsFollowTheTrianglesWinding) {
   EXPECT_EQ(m.normals[3], tilted);
 }
 
+// Closed parts face out at an even depth and in at an odd one (a cavity's wall): a tetrahedron
+// facing in, one inside a larger one facing out (a cavity: in), and a third apart facing
+// in are turned to out, in, out; an open part is left as it is.
+TEST(MeshTopology, ClosedPartsFaceOutwardByTheirDepth) {
+  const std::vector<vec3> corners = {vec3(0, 0, 0), vec3(1, 0, 0), vec3(0, 1, 0), vec3(0, 0, 1)};
+  const std::vector<std::array<int, 3>> outward = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+  TriangleMesh m;
+  auto add = [&](float scale, vec3 shift, bool in, std::size_t faces) {
+    const int base = int(m.positions.size());
+    for (const vec3& c : corners) {
+      m.positions.push_back(scale * c + shift);
+      m.normals.push_back(vec3(0, 0, 1));
+    }
+    for (std::size_t f = 0; f < faces; ++f) {
+      const auto& t = outward[f];
+      m.triangles.push_back(in ? std::array<int, 3>{base + t[0], base + t[2], base + t[1]}
+                               : std::array<int, 3>{base + t[0], base + t[1], base + t[2]});
+    }
+  };
+  add(8, vec3(-1), true, 4);                  // the outer wall, facing in
+  add(1, vec3(0.5f), false, 4);               // a cavity inside it, facing out
+  add(1, vec3(20, 0, 0), true, 4);            // apart, facing in
+  add(1, vec3(40, 0, 0), true, 3);            // open (one face missing): left
+  const auto before = m.triangles;
+  EXPECT_EQ(face_closed_parts_outward(m), 3);
+  TriangleMesh outer = m, cavity = m, apart = m;
+  outer.triangles.assign(m.triangles.begin(), m.triangles.begin() + 4);
+  cavity.triangles.assign(m.triangles.begin() + 4, m.triangles.begin() + 8);
+  apart.triangles.assign(m.triangles.begin() + 8, m.triangles.begin() + 12);
+  EXPECT_NEAR(enclosed_volume(outer), 512.0 / 6, 1e-3);
+  EXPECT_NEAR(enclosed_volume(cavity), -1.0 / 6, 1e-6);
+  EXPECT_NEAR(enclosed_volume(apart), 1.0 / 6, 1e-6);
+  EXPECT_EQ(m.normals[0], vec3(0, 0, -1));  // a turned part's normals turn with it
+  EXPECT_EQ(m.normals[8], vec3(0, 0, -1));
+  EXPECT_EQ(m.normals[12], vec3(0, 0, 1));  // the open part's stay
+  EXPECT_TRUE(std::equal(before.begin() + 12, before.end(), m.triangles.begin() + 12));
+}
+
 // remove_pinches keeps the larger fan at a pinched vertex and drops unused vertices.
 TEST(MeshTopology, RemovePinchesKeepsTheLargestFan) {
   TriangleMesh m;

@@ -110,7 +110,8 @@ void record_mesh(Stats& stats, const MeshTopology& shape, const MarchCounts& cou
                {"crease_flips", counts.crease_flips},
                {"pinched_triangles", counts.pinched_triangles},
                {"normals_turned", counts.normals_turned},
-               {"unsupported_parts", counts.unsupported_parts}};
+               {"unsupported_parts", counts.unsupported_parts},
+               {"closed_parts_turned", counts.closed_parts_turned}};
 }
 
 void run_cloud_mesh(const MeshOptions& o, Stats& stats, std::chrono::steady_clock::time_point start) {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "pss/core/connected_components.hpp"
+#include "pss/mesh/triangle_mesh.hpp"
 
 namespace pss::mesh_detail {
 
@@ -29,5 +30,14 @@ struct Incidence {
 // Triangles with a repeated vertex take part in no fan (their corners stay alone). Throws
 // Error for 2^31 triangles or more (march_tetrahedra makes fewer).
 Incidence incidence(const std::vector<std::array<int, 3>>& triangles);
+
+// Per component, indexed by its root triangle (in.components): its area, whether it counts
+// closed (its holes' lids, fans from each hole's centre, at most a quarter of its area), and
+// then the volume its triangles and lids enclose, signed by their winding (else 0).
+struct ComponentVolumes {
+  std::vector<double> volume, area;
+  std::vector<char> closed;
+};
+ComponentVolumes component_volumes(const TriangleMesh& mesh, Incidence& in);
 
 }  // namespace pss::mesh_detail

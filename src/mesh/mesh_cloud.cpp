@@ -128,6 +128,7 @@ CloudMesh mesh_cloud(const PointCloud& cloud, const MeshParams& params, Backend 
     turn_inside_out(out.mesh);
     out.turned_outward = true;
   }
+  if (guessed) out.counts.closed_parts_turned = face_closed_parts_outward(out.mesh);
   if (out.mesh.triangles.empty())
     throw Error("the surface gave no triangle with h = " + format_number(projection.h) + ", rho = " +
                 format_number(projection.rho) +

@@ -113,11 +113,11 @@ MeshTopology topology(const TriangleMesh& mesh) {
   return t;
 }
 
-double enclosed_volume(const TriangleMesh& mesh, double* closed_share) {
-  mesh_detail::Incidence in = mesh_detail::incidence(mesh.triangles);
+namespace mesh_detail {
+
+ComponentVolumes component_volumes(const TriangleMesh& mesh, Incidence& in) {
   const std::size_t nt = mesh.triangles.size(), nv = mesh.positions.size();
-  if (closed_share) *closed_share = 0;
-  if (nt == 0) return 0;
+  ComponentVolumes out{std::vector<double>(nt, 0.0), std::vector<double>(nt, 0.0), std::vector<char>(nt, 0)};
   auto position = [&](int v) { return glm::dvec3(mesh.positions[std::size_t(v)]); };
   // The rim: each edge with one side, as its triangle runs, and the component it bounds
   // (its root triangle); its holes: the rim's pieces joined at their vertices.
@@ -142,7 +142,8 @@ double enclosed_volume(const TriangleMesh& mesh, double* closed_share) {
   // Each hole's centre (the mean of its edges' ends) and its vector area ½ Σ a × b (its
   // lid's area where flat); each component's own area and its holes'.
   std::vector<glm::dvec3> centre(nv, glm::dvec3(0.0)), hole_area(nv, glm::dvec3(0.0));
-  std::vector<double> ends(nv, 0), area(nt, 0), lids(nt, 0);
+  std::vector<double> ends(nv, 0), lids(nt, 0);
+  std::vector<double>& area = out.area;
   for (const RimEdge& e : rim) {
     const auto hole = std::size_t(holes.find(e.from));
     centre[hole] += position(e.from) + position(e.to);
@@ -168,24 +169,32 @@ double enclosed_volume(const TriangleMesh& mesh, double* closed_share) {
     const glm::dvec3 o = position(mesh.triangles[component][0]);
     return glm::dot(a - o, glm::cross(b - o, c - o)) / 6;
   };
-  auto closed = [&](std::size_t component) { return lids[component] <= kLidShare * area[component]; };
-  double volume = 0;
+  for (std::size_t c = 0; c < nt; ++c) out.closed[c] = area[c] > 0 && lids[c] <= kLidShare * area[c];
   for (std::size_t t = 0; t < nt; ++t) {
     const auto component = std::size_t(in.components.find(std::int64_t(t)));
     const auto& v = mesh.triangles[t];
-    if (closed(component)) volume += cone(position(v[0]), position(v[1]), position(v[2]), component);
+    if (out.closed[component]) out.volume[component] += cone(position(v[0]), position(v[1]), position(v[2]), component);
   }
   for (const RimEdge& e : rim)
-    if (closed(e.component))
-      volume += cone(position(e.to), position(e.from), centre[std::size_t(holes.find(e.from))], e.component);
-  if (closed_share) {
-    double total = 0, in_closed = 0;
-    for (std::size_t c = 0; c < nt; ++c) {
-      total += area[c];
-      if (closed(c)) in_closed += area[c];
-    }
-    *closed_share = total > 0 ? in_closed / total : 0;
+    if (out.closed[e.component])
+      out.volume[e.component] += cone(position(e.to), position(e.from), centre[std::size_t(holes.find(e.from))], e.component);
+  return out;
+}
+
+}  // namespace mesh_detail
+
+double enclosed_volume(const TriangleMesh& mesh, double* closed_share) {
+  if (closed_share) *closed_share = 0;
+  if (mesh.triangles.empty()) return 0;
+  mesh_detail::Incidence in = mesh_detail::incidence(mesh.triangles);
+  const mesh_detail::ComponentVolumes parts = mesh_detail::component_volumes(mesh, in);
+  double volume = 0, total = 0, in_closed = 0;
+  for (std::size_t c = 0; c < parts.volume.size(); ++c) {
+    volume += parts.volume[c];
+    total += parts.area[c];
+    if (parts.closed[c]) in_closed += parts.area[c];
   }
+  if (closed_share) *closed_share = total > 0 ? in_closed / total : 0;
   return volume;
 }
 

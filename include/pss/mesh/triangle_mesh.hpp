@@ -53,6 +53,13 @@ void drop_unused_vertices(TriangleMesh& mesh);
 // Every triangle's winding reversed and every normal negated.
 void turn_inside_out(TriangleMesh& mesh);
 
+// Turns each closed component (as enclosed_volume counts them: nearly closed ones by their
+// holes' lids) that faces the wrong way for its depth: one inside no other (or inside an even number) must enclose a positive volume, one
+// inside an odd number, a cavity's wall, a negative one; depth by the parity of a ray's
+// crossings. Where the side was a guess, parts the orientation joined across a gap may
+// come out one in, one out. Returns how many it turned.
+std::int64_t face_closed_parts_outward(TriangleMesh& mesh);
+
 // Turns each vertex normal that faces against its triangles (the sum of their area vectors,
 // which their winding points outward), so that shading with the normals sees the faces'
 // outside. Returns how many it turned.
