@@ -117,7 +117,7 @@ def estimate_h(points):
 
 
 def project(points, h=None, *, normals=None, surface="rimls", outliers="set-aside", method="mls", rho=None, support=None,
-            iterations=4, backend="auto"):
+            iterations=8, backend="auto"):
     """Move every point onto the point set surface, as `pss project`.
 
     points: (N, 3). h: the Gaussian width (default: estimate_h(points)); rho: the
@@ -146,7 +146,7 @@ def project(points, h=None, *, normals=None, surface="rimls", outliers="set-asid
 
 
 def mesh(points, h=None, *, normals=None, surface="rimls", outliers="set-aside", rho=None, support=None, cell=None,
-         borders="auto", iterations=4, crease_angle=30, backend="auto"):
+         borders="auto", iterations=8, crease_angle=30, backend="auto"):
     """A triangle mesh of the point set surface, as `pss mesh`: marching tetrahedra over the
     cubes near the points, every vertex on the surface with its normal.
 

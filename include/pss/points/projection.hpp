@@ -75,8 +75,10 @@ struct ProjectionParams {
   OutlierPolicy outliers = OutlierPolicy::set_aside;  // likewise
   BorderMode borders = BorderMode::extend;  // clip: Projection::surrounded is computed
   // The MLS alternations of t and n; for APSS and RIMLS, the fits moved to the last point
-  // (with PlaneFitMethod::wls, one fit at r, as the ray tracer's loop takes).
-  int max_mls_iterations = 4;
+  // (with PlaneFitMethod::wls, one fit at r, as the ray tracer's loop takes). Where the
+  // noise sets h (3σ), APSS's and RIMLS's moves shrink by only a fifth or so a fit: at 4,
+  // 17 % of a noisy sphere's projections were still moving (docs/paper-notes.md).
+  int max_mls_iterations = 8;
   float t_tolerance = 0;  // MLS stops when t moves less than this (default 1e-3·h), at h
 
   static ProjectionParams from_h(float h, PlaneFitMethod plane = PlaneFitMethod::mls) {
