@@ -142,7 +142,7 @@ TEST_F(CameraFile, VolumeAcceptsItsOwnStatsAsTheCamera) {
 TEST_F(CameraFile, BadCameraFlagsFailCleanly) {
   std::ofstream(path("one.xyz")) << "1 2 3\n0 0 0\n1 0 0\n";
   write("camera.json", R"({"eye": [0, 0, 5], "forward": [0, 0, -1], "up": [0, 0, 1], "tan_half_fov": 0.3})");
-  const std::string render = "render " + path("one.xyz") + " -o " + path("out.png") + " --size 8x8";
+  const std::string render = "render " + path("one.xyz") + " -o " + path("out.png") + " --size 8x8 --h 1";
   expect_clean_failure(render + " --camera " + path("camera.json"), "camera.json", path("out.png"));
   expect_clean_failure(render + " --camera " + path("missing.json"), "missing.json", path("out.png"));
   expect_clean_failure(render + " --camera " + path("camera.json") + " --view 10,10", "--view", path("out.png"));

@@ -278,7 +278,9 @@ TEST_F(HostileParams, NonPrintableHeaderBytesAreEscaped) {
 
 // The spacing estimate's errors ("the points coincide") name the cloud they are about.
 TEST_F(HostileParams, SpacingErrorsNameTheFile) {
-  std::ofstream(path("same.xyz")) << "1 2 3\n1 2 3\n1 2 3\n";
+  std::ofstream same(path("same.xyz"));  // more than the 15 points the default h needs
+  for (int i = 0; i < 20; ++i) same << "1 2 3\n";
+  same.close();
   const std::string in = path("same.xyz");
   for (const std::string& args : {"project " + in + " -o " + path("o.ply"), "render " + in + " -o " + path("o.png"),
                                   "info " + in}) {

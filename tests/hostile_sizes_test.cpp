@@ -127,10 +127,13 @@ TEST_F(HostileSizes, ARunThatProjectsNothingSaysSo) {
 // in project and render as in mesh.
 TEST_F(HostileSizes, ACloudTooSmallForItsNeighbourhoodIsNamed) {
   const std::string four = write("four.xyz", "0 0 0\n1 0 0\n0 1 0\n1 1 0.1\n");
-  expect_clean_failure("project " + four + " -o " + path("out.ply"), four + ": the neighbourhood radius",
+  expect_clean_failure("project " + four + " -o " + path("out.ply") + " --h 5", four + ": the neighbourhood radius",
                        path("out.ply"));
-  expect_clean_failure("render " + four + " -o " + path("out.png"), four + ": the neighbourhood radius",
+  expect_clean_failure("render " + four + " -o " + path("out.png") + " --h 5", four + ": the neighbourhood radius",
                        path("out.png"));
+  // Without --h, too few points for the default h (the 15th neighbour's distance).
+  expect_clean_failure("project " + four + " -o " + path("out.ply"), four + ": has 4 points: too few for the default h",
+                       path("out.ply"));
 }
 
 // A thousand points on a line project nowhere: the error says why, not that h is too small.

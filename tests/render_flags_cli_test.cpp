@@ -195,7 +195,7 @@ TEST_F(ProjectFlags, ApssAndRimlsConvergeOnANoisyCloudByDefault) {
 
 // --rho below the samples' spacing leaves every point without the 3 neighbours a plane
 // needs; with MLS, --iterations 1 leaves some of a noisy sphere's points short of
-// convergence that the default 8 brings home (RIMLS's one step lands within its tolerance).
+// convergence that the default 4 brings home (RIMLS's one step lands within its tolerance).
 TEST_F(ProjectFlags, RhoAndIterationsTakeEffect) {
   test::SampleOptions o;
   o.count = 2000;
@@ -210,6 +210,7 @@ TEST_F(ProjectFlags, RhoAndIterationsTakeEffect) {
   };
   const nlohmann::json defaults = project("", "default.json");
   EXPECT_EQ(defaults["status"]["converged"], 2000);
+  EXPECT_EQ(defaults["params"]["max_mls_iterations"], 4);  // MLS's default (APSS's and RIMLS's: 8)
   const nlohmann::json one = project(" --iterations 1", "one.json");
   EXPECT_EQ(one["params"]["max_mls_iterations"], 1);
   EXPECT_GT(one["status"]["not_converged"].get<int>(), 100);

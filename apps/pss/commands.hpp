@@ -98,7 +98,7 @@ struct CloudSurfaceFlags {
   float h = 0, rho = 0;
   std::string support;  // empty: support_of's default
   SurfaceOptions surface;
-  int iterations = 8;
+  int iterations = 0;  // 0: default_iterations of the surface
 };
 void add_cloud_surface_flags(CLI::App& command, CloudSurfaceFlags& flags);
 // The projection's parameters the flags give, h estimated from the spacing of `cloud` (read

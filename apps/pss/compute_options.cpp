@@ -187,9 +187,10 @@ void add_cloud_surface_flags(CLI::App& command, CloudSurfaceFlags& flags) {
       ->check(finite_positive());
   add_support_option(command, flags.support);
   add_surface_options(command, flags.surface);
-  command.add_option("--iterations", flags.iterations, "most MLS alternations of t and n (apss, rimls: fits)")
-      ->check(finite_range(1, 100))
-      ->capture_default_str();
+  command
+      .add_option("--iterations", flags.iterations,
+                  "most MLS alternations of t and n, default 4 (apss, rimls: fits moved to the point, default 8)")
+      ->check(finite_range(1, 100));
 }
 
 void check_enough_for_default_h(std::size_t points, const std::string& file) {
@@ -220,7 +221,7 @@ ProjectionParams projection_params(const CloudSurfaceFlags& flags, const std::fu
   if (flags.rho != 0) params.rho = flags.rho;
   params.support = support_of(flags.support, flags.h != 0);
   apply_surface_options(flags.surface, params);
-  params.max_mls_iterations = flags.iterations;
+  params.max_mls_iterations = flags.iterations > 0 ? flags.iterations : default_iterations(params.surface);
   return params;
 }
 

@@ -117,7 +117,7 @@ def estimate_h(points):
 
 
 def project(points, h=None, *, normals=None, surface="rimls", outliers="set-aside", method="mls", rho=None, support=None,
-            iterations=8, backend="auto"):
+            iterations=None, backend="auto"):
     """Move every point onto the point set surface, as `pss project`.
 
     points: (N, 3). h: the Gaussian width (default: estimate_h(points)); rho: the
@@ -125,7 +125,7 @@ def project(points, h=None, *, normals=None, surface="rimls", outliers="set-asid
     where the distance to its 15th nearest neighbour is over 4/3 of the median, and at least
     3 times the samples' noise where they are noisy; lengths given at h scale with it) or 'global' (h for every sample, as the paper); default adaptive,
     global when h is given; method: 'mls' (the paper's Eq. 2) or 'wls' (Eq. 1);
-    iterations: the most MLS alternations; normals: (N, 3) hints of the side each point's
+    iterations: the most MLS alternations (default 4; apss, rimls: 8 fits); normals: (N, 3) hints of the side each point's
     normal faces (without them the normals are oriented consistently over the cloud).
     surface: 'rimls' (robust implicit MLS: keeps sharp creases; the default), 'mls' (the
     paper's) or 'apss' (algebraic spheres fitted to the points and their normals), as the CLI's
@@ -146,7 +146,7 @@ def project(points, h=None, *, normals=None, surface="rimls", outliers="set-asid
 
 
 def mesh(points, h=None, *, normals=None, surface="rimls", outliers="set-aside", rho=None, support=None, cell=None,
-         borders="auto", iterations=8, crease_angle=30, backend="auto"):
+         borders="auto", iterations=None, crease_angle=30, backend="auto"):
     """A triangle mesh of the point set surface, as `pss mesh`: marching tetrahedra over the
     cubes near the points, every vertex on the surface with its normal.
 

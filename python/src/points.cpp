@@ -70,7 +70,7 @@ float estimate_h(const py::handle& points) {
 // from the spacing where None (run without the GIL).
 struct CloudSurfaceArgs {
   std::optional<float> h, rho;
-  int iterations;
+  std::optional<int> iterations;  // none: default_iterations of the surface
   Support support;
   SurfaceOperator surface;
   OutlierPolicy outliers;
@@ -78,7 +78,7 @@ struct CloudSurfaceArgs {
   explicit CloudSurfaceArgs(const py::dict& o)
       : h(positive_or_none(o, "h")),
         rho(positive_or_none(o, "rho")),
-        iterations(integer_in(o, "iterations", 1, 100)),
+        iterations(is_given(o, "iterations") ? std::optional<int>(integer_in(o, "iterations", 1, 100)) : std::nullopt),
         support(support_of(o, h.has_value())),
         surface(surface_of(o)),
         outliers(outliers_of(o)) {}
@@ -89,7 +89,7 @@ struct CloudSurfaceArgs {
     p.support = support;
     p.surface = surface;
     p.outliers = outliers;
-    p.max_mls_iterations = iterations;
+    p.max_mls_iterations = iterations ? *iterations : default_iterations(surface);
     return p;
   }
 };

@@ -43,8 +43,10 @@ vec3 spacing_of(const py::handle& value) {
 
 PyVolume volume_of(const py::handle& values, const py::handle& spacing, const py::handle& origin) {
   const py::array any = py::array::ensure(values);
-  if (!any || any.ndim() != 3 || any.dtype().kind() == 'O' || any.dtype().kind() == 'U' || any.dtype().kind() == 'S')
-    throw Error("values: expected a 3-D array of numbers indexed [z, y, x] (got " +
+  // Complex numbers too: a cast would drop their imaginary parts with no more than a warning.
+  const char kind = any ? any.dtype().kind() : 'O';
+  if (!any || any.ndim() != 3 || kind == 'O' || kind == 'U' || kind == 'S' || kind == 'c')
+    throw Error("values: expected a 3-D array of real numbers indexed [z, y, x] (got " +
                 (any ? std::to_string(any.ndim()) + "-D " + std::string(py::str(any.dtype())) : shown(values)) + ")");
   const auto a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(any);
   PyVolume v;

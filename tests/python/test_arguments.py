@@ -149,7 +149,9 @@ def test_a_camera_dict_may_hold_numpy_arrays():
 
 
 @pytest.mark.parametrize("values, spacing, message", [
-    (np.zeros((4, 4)), (1, 1, 1), r"^values: expected a 3-D array of numbers indexed \[z, y, x\] \(got 2-D float64\)$"),
+    (np.zeros((4, 4)), (1, 1, 1), r"^values: expected a 3-D array of real numbers indexed \[z, y, x\] \(got 2-D float64\)$"),
+    (np.zeros((2, 2, 2), complex), (1, 1, 1),
+     r"^values: expected a 3-D array of real numbers indexed \[z, y, x\] \(got 3-D complex128\)$"),
     (np.full((2, 2, 2), np.nan), (1, 1, 1), r"^values\[0, 0, 0\] is not a finite number$"),
     (np.pad(np.full((1, 1, 1), np.inf), ((2, 0), (1, 2), (3, 0))), (1, 1, 1), r"^values\[2, 1, 3\] is not a finite number$"),
     (np.zeros((0, 2, 2)), (1, 1, 1), r"^values: the array is empty$"),

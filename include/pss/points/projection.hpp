@@ -65,6 +65,13 @@ enum class BorderMode : unsigned char { clip, extend };
 
 inline const char* border_name(BorderMode m) { return m == BorderMode::clip ? "clip" : "extend"; }
 
+// The most MLS alternations, or APSS's and RIMLS's fits, per projection by default. MLS: 4;
+// more let t wander past the data (Amenta and Kil's spurious minima): `pss mesh` of the bunny
+// opened from 784 to 1,080 boundary edges at 8. APSS and RIMLS: 8; where the noise sets h
+// (3σ), each fit's move is only a few times shorter than the last, and at 4, 17 % of a noisy
+// sphere's projections were still moving (docs/paper-notes.md).
+inline int default_iterations(SurfaceOperator s) { return s == SurfaceOperator::mls ? 4 : 8; }
+
 struct ProjectionParams {
   float h = 0;    // Gaussian width of θ3, the local level of detail (with adaptive support, the least h_i)
   float rho = 0;  // range-query radius, 2h in the paper
@@ -75,10 +82,9 @@ struct ProjectionParams {
   OutlierPolicy outliers = OutlierPolicy::set_aside;  // likewise
   BorderMode borders = BorderMode::extend;  // clip: Projection::surrounded is computed
   // The MLS alternations of t and n; for APSS and RIMLS, the fits moved to the last point
-  // (with PlaneFitMethod::wls, one fit at r, as the ray tracer's loop takes). Where the
-  // noise sets h (3σ), APSS's and RIMLS's moves shrink by only a fifth or so a fit: at 4,
-  // 17 % of a noisy sphere's projections were still moving (docs/paper-notes.md).
-  int max_mls_iterations = 8;
+  // (with PlaneFitMethod::wls, one fit at r, as the ray tracer's loop takes). Defaults:
+  // default_iterations.
+  int max_mls_iterations = 4;
   float t_tolerance = 0;  // MLS stops when t moves less than this (default 1e-3·h), at h
 
   static ProjectionParams from_h(float h, PlaneFitMethod plane = PlaneFitMethod::mls) {
