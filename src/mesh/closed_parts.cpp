@@ -35,11 +35,10 @@ bool crosses(glm::dvec3 p, glm::dvec3 d, glm::dvec3 a, glm::dvec3 b, glm::dvec3 
 
 }  // namespace
 
-std::int64_t face_closed_parts_outward(TriangleMesh& mesh) {
+namespace mesh_detail {
+
+std::int64_t face_closed_parts_outward(TriangleMesh& mesh, Incidence& in, const ComponentVolumes& volumes) {
   const std::size_t nt = mesh.triangles.size();
-  if (nt == 0) return 0;
-  mesh_detail::Incidence in = mesh_detail::incidence(mesh.triangles);
-  const mesh_detail::ComponentVolumes volumes = mesh_detail::component_volumes(mesh, in);
   auto position = [&](int v) { return glm::dvec3(mesh.positions[std::size_t(v)]); };
   // The closed components, those nearly closed by their holes' lids too (enclosed_volume).
   std::vector<int> part_of(nt, -1);
@@ -92,6 +91,14 @@ std::int64_t face_closed_parts_outward(TriangleMesh& mesh) {
   for (std::size_t v = 0; v < mesh.normals.size(); ++v)
     if (flip_vertex[v]) mesh.normals[v] = -mesh.normals[v];
   return turned;
+}
+
+}  // namespace mesh_detail
+
+std::int64_t face_closed_parts_outward(TriangleMesh& mesh) {
+  if (mesh.triangles.empty()) return 0;
+  mesh_detail::Incidence in = mesh_detail::incidence(mesh.triangles);
+  return mesh_detail::face_closed_parts_outward(mesh, in, mesh_detail::component_volumes(mesh, in));
 }
 
 }  // namespace pss

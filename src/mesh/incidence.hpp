@@ -39,5 +39,10 @@ struct ComponentVolumes {
   std::vector<char> closed;
 };
 ComponentVolumes component_volumes(const TriangleMesh& mesh, Incidence& in);
+// What enclosed_volume (triangle_mesh.hpp) gives, from the components' volumes.
+double enclosed_volume(const ComponentVolumes& parts, double* closed_share);
+// face_closed_parts_outward (triangle_mesh.hpp) of the mesh whose incidence and volumes
+// these are (the winding may have been turned since, the volumes negated with it).
+std::int64_t face_closed_parts_outward(TriangleMesh& mesh, Incidence& in, const ComponentVolumes& volumes);
 
 }  // namespace pss::mesh_detail

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "implicit_surface.hpp"
+#include "incidence.hpp"
 #include "unsupported_parts.hpp"
 #include "pss/core/error.hpp"
 #include "pss/core/text.hpp"
@@ -122,13 +123,20 @@ CloudMesh mesh_cloud(const PointCloud& cloud, const MeshParams& params, Backend 
   // parts' volume tells it where they are most of the mesh; where most is open (an aerial
   // scan's ground and roofs), a few closed blobs would decide by chance, and the guess (the
   // highest sample facing up) stands.
+  // Then each closed part faces out by its depth (face_closed_parts_outward), from the same
+  // components and volumes.
   const bool guessed = out.normals == NormalsUsed::estimated || out.normals_turned > 0;
-  double closed_share = 0;
-  if (guessed && enclosed_volume(out.mesh, &closed_share) < 0 && closed_share >= kClosedShareToTurn) {
-    turn_inside_out(out.mesh);
-    out.turned_outward = true;
+  if (guessed && !out.mesh.triangles.empty()) {
+    mesh_detail::Incidence in = mesh_detail::incidence(out.mesh.triangles);
+    mesh_detail::ComponentVolumes parts = mesh_detail::component_volumes(out.mesh, in);
+    double closed_share = 0;
+    if (mesh_detail::enclosed_volume(parts, &closed_share) < 0 && closed_share >= kClosedShareToTurn) {
+      turn_inside_out(out.mesh);
+      for (double& volume : parts.volume) volume = -volume;
+      out.turned_outward = true;
+    }
+    out.counts.closed_parts_turned = mesh_detail::face_closed_parts_outward(out.mesh, in, parts);
   }
-  if (guessed) out.counts.closed_parts_turned = face_closed_parts_outward(out.mesh);
   if (out.mesh.triangles.empty())
     throw Error("the surface gave no triangle with h = " + format_number(projection.h) + ", rho = " +
                 format_number(projection.rho) +

@@ -181,13 +181,7 @@ ComponentVolumes component_volumes(const TriangleMesh& mesh, Incidence& in) {
   return out;
 }
 
-}  // namespace mesh_detail
-
-double enclosed_volume(const TriangleMesh& mesh, double* closed_share) {
-  if (closed_share) *closed_share = 0;
-  if (mesh.triangles.empty()) return 0;
-  mesh_detail::Incidence in = mesh_detail::incidence(mesh.triangles);
-  const mesh_detail::ComponentVolumes parts = mesh_detail::component_volumes(mesh, in);
+double enclosed_volume(const ComponentVolumes& parts, double* closed_share) {
   double volume = 0, total = 0, in_closed = 0;
   for (std::size_t c = 0; c < parts.volume.size(); ++c) {
     volume += parts.volume[c];
@@ -196,6 +190,15 @@ double enclosed_volume(const TriangleMesh& mesh, double* closed_share) {
   }
   if (closed_share) *closed_share = total > 0 ? in_closed / total : 0;
   return volume;
+}
+
+}  // namespace mesh_detail
+
+double enclosed_volume(const TriangleMesh& mesh, double* closed_share) {
+  if (closed_share) *closed_share = 0;
+  if (mesh.triangles.empty()) return 0;
+  mesh_detail::Incidence in = mesh_detail::incidence(mesh.triangles);
+  return mesh_detail::enclosed_volume(mesh_detail::component_volumes(mesh, in), closed_share);
 }
 
 void drop_unused_vertices(TriangleMesh& mesh) {
