@@ -20,7 +20,7 @@ namespace {
 // highest point's +z; rank(k) is sorted point k's place in the cloud. Returns each sorted
 // point's part and each part's root, in sorted indices.
 template <class Rank>
-OrientedParts orient_sorted(const SupportGrid& grid, std::vector<vec3>& sorted, Rank rank, Progress* progress) {
+OrientedParts orient_sorted(const SupportGrid& grid, std::span<vec3> sorted, Rank rank, Progress* progress) {
   const SupportGridView view = grid.view();
   // The tree grows in the grid's order, where a point's neighbours lie near it in memory.
   // Ties go by the cloud's order, so the tree is the one that order gives.
@@ -78,14 +78,16 @@ OrientedParts orient_sorted(const SupportGrid& grid, std::vector<vec3>& sorted, 
 }
 
 // Turns each part whose converged points vote that it faces inward (facing_vote.hpp); the
-// grid's widths are the supports ρ (κ = 1).
+// supports ρ are the grid's κ·h_i (its widths where κ = 1, as the tiles' grids are built).
 template <class Status>
-void face_as_voted(const SupportGrid& grid, std::vector<vec3>& sorted, const OrientedParts& parts, Status status) {
+void face_as_voted(const SupportGrid& grid, std::span<vec3> sorted, const OrientedParts& parts, Status status) {
   const std::span<const vec3> at = grid.sorted_points();
   const std::span<const float> inv_h2 = grid.inv_h2();
+  const float kappa2 = grid.kappa() * grid.kappa();
   std::vector<FacingVote> votes(parts.root.size());
   for (std::size_t k = 0; k < sorted.size(); ++k)
-    votes[std::size_t(parts.of_point[k])].add(at[k], sorted[k], inv_h2[k], status(k));
+    votes[std::size_t(parts.of_point[k])].add(at[k], sorted[k], kappa2 == 1 ? inv_h2[k] : inv_h2[k] / kappa2,
+                                              status(k));
   std::vector<char> turns(votes.size());
   for (std::size_t p = 0; p < votes.size(); ++p) turns[p] = votes[p].sign() < 0;
   release(votes);
@@ -121,6 +123,17 @@ void orient_normals_consistently(std::span<const vec3> points, std::span<vec3> n
   const OrientedParts parts = orient_sorted(grid, sorted, [&](int k) { return original[std::size_t(k)]; }, &progress);
   face_as_voted(grid, sorted, parts, [&](std::size_t k) { return status[std::size_t(original[k])]; });
   for (std::size_t k = 0; k < sorted.size(); ++k) normals[std::size_t(original[k])] = sorted[k];
+}
+
+void orient_grid_normals(const SupportGrid& grid, std::span<vec3> sorted_normals,
+                         std::span<const ProjectionStatus> sorted_status) {
+  check_one_normal_per_point(grid.sorted_points().size(), sorted_normals.size());
+  check_one_status_per_point(grid.sorted_points().size(), sorted_status.size());
+  const std::span<const int> original = grid.original_index();
+  Progress progress("orient normals", std::int64_t(original.size()));
+  const OrientedParts parts =
+      orient_sorted(grid, sorted_normals, [&](int k) { return original[std::size_t(k)]; }, &progress);
+  face_as_voted(grid, sorted_normals, parts, [&](std::size_t k) { return sorted_status[k]; });
 }
 
 OrientedParts orient_normals_in_parts(std::span<const vec3> points, std::span<vec3> normals,

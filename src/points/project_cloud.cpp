@@ -148,9 +148,9 @@ CloudProjection project_cloud(PointCloud input, const ProjectionParams& params, 
     const FileNormals file = file_normals(grid, input.normals, unit_params, stats);
     normals_turned = file.turned;
     file_hints = !file.sorted.empty();
-    prepare_sample_normals(grid, file, unit_params, backend, stats, normals_used);
     orient_after = !file_hints && params.surface == SurfaceOperator::mls;
     if (!orient_after) release(widths.h);  // the orientation's supports, else the grid's alone
+    prepare_sample_normals(grid, file, unit_params, backend, stats, normals_used);
     if (!grid.masses().empty() && orient_after) {  // for the orientation: whose sample each point joined
       sample_of.assign(n, -1);
       for (std::size_t k = 0; k < grid.original_index().size(); ++k)
