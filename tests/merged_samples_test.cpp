@@ -191,6 +191,32 @@ TEST(MergedSamples, ANoisyTorusIsMergedAndProjectsAsCloseToTheTruth) {
   EXPECT_LT(with_all, 0.35 * o.noise);  // both smooth the noise away, but for the curvature bias
 }
 
+// Merged, every point is projected (in the grid's cells' order, not the file's), each with its
+// own file normal as the hint that turns its projection's normal: all face as the file says.
+TEST(MergedSamples, EveryPointOfAMergedCloudFacesAsItsFileNormal) {
+  test::SampleOptions o;
+  o.count = 60000;
+  o.noise = 0.06f;
+  const test::Torus torus;
+  PointCloud cloud = test::sample(torus, o);
+  cloud.normals.resize(cloud.size());
+  for (std::size_t i = 0; i < cloud.size(); ++i) cloud.normals[i] = torus.normal(cloud.positions[i]);
+  ProjectionParams params = ProjectionParams::from_h(test::suggested_h(cloud));
+  params.support = Support::adaptive;
+  Stats stats;
+  const CloudProjection p = project_cloud(cloud, params, Backend::cpu, stats);
+  EXPECT_GT(p.widths.merged_count, std::int64_t(cloud.size() / 2));
+  EXPECT_EQ(p.normals_turned, 0u);
+  std::size_t against = 0, converged = 0;
+  for (std::size_t i = 0; i < p.cloud.size(); ++i)
+    if (p.status[i] == ProjectionStatus::converged) {
+      ++converged;
+      against += glm::dot(p.cloud.normals[i], cloud.normals[i]) < 0;
+    }
+  EXPECT_GT(converged, cloud.size() * 9 / 10);
+  EXPECT_EQ(against, 0u);
+}
+
 // Clean clouds, evenly or unevenly sampled, keep every sample; so does a clean plane scanned
 // in dense rows far apart, whose supports (as wide as the rows' gaps) hold thousands of samples
 // but no noise.

@@ -109,6 +109,16 @@ void orient_through_samples(std::vector<vec3>& positions, std::vector<vec3>& nor
   }
 }
 
+// The points' indices in the order of the grid's first level's cells (4 bytes a point).
+std::vector<int> cell_order(const SupportGrid& grid, std::span<const vec3> points) {
+  const GridView& cells = grid.levels_on_host()[0].grid;
+  std::vector<int> key(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) key[i] = cells.cell_index(points[i]);
+  std::vector<int> start, order;
+  counting_sort(key, std::size_t(cells.dims.x) * cells.dims.y * cells.dims.z, start, order);
+  return order;
+}
+
 }  // namespace
 
 CloudProjection project_cloud(PointCloud input, const ProjectionParams& params, Backend backend, Stats& stats) {
@@ -159,8 +169,8 @@ CloudProjection project_cloud(PointCloud input, const ProjectionParams& params, 
     // The points set aside are not samples, but points all the same: projected after the
     // samples, with a hint from the nearest sample where the file has normals. Where samples
     // were merged, a merged sample's position is its cube's mean, not its point's: every
-    // point is projected as these are, read from `positions` itself (at 10⁷ points a copy
-    // and its indices were 160 MB of the run's peak).
+    // point is projected as these are, gathered from `positions` itself a chunk at a time (at
+    // 10⁷ points a copy and its indices were 160 MB of the run's peak).
     const std::span<const int> original = grid.original_index();
     const bool every_point = !grid.masses().empty();
     const std::size_t m = every_point ? 0 : original.size();
@@ -184,21 +194,30 @@ CloudProjection project_cloud(PointCloud input, const ProjectionParams& params, 
     out.status.resize(n);
     const GridMirror g(backend, grid);
     const Mirror<vec3> hint(backend, file.sorted);
-    const Mirror<vec3> other(backend, every_point ? std::span<const vec3>(positions) : std::span<const vec3>(others));
-    const Mirror<vec3> other_hint(backend, other_hints);
     Progress progress("projecting", std::int64_t(n));
     // In chunks, each placed at once, so that the projections are never all held beside the
     // output (28 bytes a point); a GPU is given enough threads a launch to fill it. A chunk's
     // kernel reads its own points only, so `positions` may take each chunk's projections.
     const std::size_t chunk = std::size_t(1) << (backend == Backend::cpu ? 16 : 20);
-    // points[k], hints[k] (or null) are those of input point index(k), k < count.
-    auto project = [&](const vec3* points, const vec3* hints, std::size_t count, auto index) {
+    // points[k], hints[k] (or null) are those of input point index(k), k < count; with
+    // `gather`, points[index(k)] and hints[index(k)] are.
+    std::vector<vec3> gathered_points, gathered_hints;
+    auto project = [&](const vec3* points, const vec3* hints, std::size_t count, auto index, bool gather) {
       for (std::size_t begin = 0; begin < count; begin += chunk) {
         const std::size_t size = std::min(chunk, count - begin);
+        if (gather) {
+          gathered_points.resize(size);
+          gathered_hints.resize(hints ? size : 0);
+          for (std::size_t k = 0; k < size; ++k) gathered_points[k] = points[index(begin + k)];
+          for (std::size_t k = 0; k < gathered_hints.size(); ++k) gathered_hints[k] = hints[index(begin + k)];
+        }
+        const Mirror<vec3> chunk_points(backend, gathered_points);
+        const Mirror<vec3> chunk_hints(backend, gathered_hints);
         Mirror<ProjectedPoint> projected(backend, size);
         parallel_for(backend, "projection", std::int64_t(size),
-                     ProjectPointsKernel{g.view(), points + begin, hints ? hints + begin : nullptr, projected.data(),
-                                         unit_params},
+                     ProjectPointsKernel{g.view(), gather ? chunk_points.data() : points + begin,
+                                         !hints ? nullptr : gather ? chunk_hints.data() : hints + begin,
+                                         projected.data(), unit_params},
                      stats, &progress);
         const std::vector<ProjectedPoint> done = projected.take();
         cpu::parallel_for(std::int64_t(size), [&](std::int64_t k) {
@@ -215,8 +234,19 @@ CloudProjection project_cloud(PointCloud input, const ProjectionParams& params, 
     // the rate of 10⁶ on a GPU (docs/benchmarks.md, issue 29). Without input normals the
     // eigenvector's sign is arbitrary; orientation comes after.
     project(g.view().points, file_hints ? hint.data() : nullptr, m,
-            [&](std::size_t k) { return std::size_t(original[k]); });
-    project(other.data(), file_hints ? other_hint.data() : nullptr, other_count, other_index);
+            [&](std::size_t k) { return std::size_t(original[k]); }, false);
+    if (every_point) {
+      // Every point, where samples were merged: in the order of the grid's cells too, not the
+      // file's (a scan's, or a generated cloud's random order), so that neighbouring threads
+      // and chunks gather the same samples from the cache.
+      const std::vector<int> by_cell = cell_order(grid, positions);
+      project(positions.data(), file_hints ? other_hints.data() : nullptr, n,
+              [&](std::size_t k) { return std::size_t(by_cell[k]); }, true);
+    } else {
+      const Mirror<vec3> other(backend, others);
+      const Mirror<vec3> other_hint(backend, other_hints);
+      project(other.data(), file_hints ? other_hint.data() : nullptr, other_count, other_index, false);
+    }
   }
   out.widths.least = float(widths.least * frame.scale);
   out.widths.median = float(widths.median * frame.scale);
