@@ -58,6 +58,28 @@ TEST(ProgressLines, OneLineAPhaseBeginsAndPerTenPerCentInOrderFromManyThreads) {
   EXPECT_TRUE(std::regex_match(lines[10], std::regex("work: done in [0-9.]+ s"))) << lines[10];
 }
 
+// Steps added as the work finds them (a mesh's band, wave by wave) stay one phase: one first
+// line, one done line, and a 10 % line only where the grown total's share passes a new one.
+TEST(ProgressLines, StepsAddedAsTheyAreFoundStayOnePhase) {
+  const ModeScope mode(ProgressMode::always);
+  testing::internal::CaptureStderr();
+  {
+    Progress progress("band", 10);
+    std::this_thread::sleep_for(std::chrono::milliseconds(1100));
+    progress.advance(5);   // 50 %
+    progress.add_total(10);
+    progress.advance(5);   // 10 of 20: 50 % again, not written twice
+    progress.advance(4);   // 70 % of the grown total (140 % of the first)
+  }
+  const std::vector<std::string> lines = lines_of(testing::internal::GetCapturedStderr());
+  ASSERT_EQ(lines.size(), 9u);
+  EXPECT_EQ(lines[0], "band: 10 steps ...");
+  EXPECT_EQ(lines[5].rfind("band: 50% after", 0), 0u) << lines[5];
+  EXPECT_EQ(lines[6].rfind("band: 60% after", 0), 0u) << lines[6];
+  EXPECT_EQ(lines[7].rfind("band: 70% after", 0), 0u) << lines[7];
+  EXPECT_TRUE(std::regex_match(lines[8], std::regex("band: done in [0-9.]+ s"))) << lines[8];
+}
+
 TEST(ProgressLines, ALargeStepWritesEveryTenPerCentItCrosses) {
   const ModeScope mode(ProgressMode::always);
   testing::internal::CaptureStderr();
@@ -234,6 +256,28 @@ TEST_F(ProgressCli, AlwaysWritesEveryPhaseOfAProjectionIncludingTheOrientationAn
   EXPECT_GE(s["total"].get<double>(), s["read"].get<double>() + s["projection"].get<double>() +
                                           s["sample normals"].get<double>() + s["orient normals"].get<double>() +
                                           s["write"].get<double>());
+}
+
+// A mesh's band grows in waves, each a batch of corners: one phase for all of them (a new
+// user's trial read nine "mesh corners" phases on the bunny).
+TEST_F(ProgressCli, AMeshsBandIsOnePhaseOfCornersBeforeItsVertices) {
+  const std::string cloud = PSS_SOURCE_DIR "/data/bun_zipper.ply";
+  const test::CliResult r = test::run_pss("mesh " + cloud + " -o " + path("m.ply") + " --progress always");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<std::string> lines = lines_of(r.err);
+  int begun = 0, done = 0;
+  std::size_t done_at = 0, vertices_at = 0;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    begun += std::regex_match(lines[i], std::regex("mesh corners: [0-9]+ steps \\.\\.\\."));
+    if (lines[i].rfind("mesh corners: done in", 0) == 0) {
+      ++done;
+      done_at = i;
+    }
+    if (lines[i].rfind("mesh vertices: ", 0) == 0 && vertices_at == 0) vertices_at = i;
+  }
+  EXPECT_EQ(begun, 1) << r.err;
+  EXPECT_EQ(done, 1) << r.err;
+  EXPECT_LT(done_at, vertices_at) << r.err;
 }
 
 TEST_F(ProgressCli, NeverAndTheDefaultOffATerminalWriteNothingToStderr) {

@@ -77,11 +77,14 @@ Progress::~Progress() {
   std::fflush(stderr);
 }
 
+void Progress::add_total(std::int64_t n) { total_.fetch_add(n); }
+
 void Progress::advance(std::int64_t n) {
   const std::int64_t done = done_.fetch_add(n) + n;
   if (style_ == Style::lines) {
     // A line per 10 % crossed, in order, whichever thread crosses it.
-    if (done * 10 / total_ == (done - n) * 10 / total_) return;
+    const std::int64_t total = total_.load();
+    if (done * 10 / total == (done - n) * 10 / total) return;
     std::lock_guard lock(draw_mutex_);
     write_lines(done);
   } else if (style_ == Style::bar) {
@@ -102,7 +105,7 @@ double Progress::elapsed() const {
 void Progress::write_lines(std::int64_t done) {
   // 100 % is the "done" line the destructor writes; a phase shorter than a second needs no
   // more than its first and last lines.
-  const int decile = int(std::min<std::int64_t>(done * 10 / total_, 9));
+  const int decile = int(std::min<std::int64_t>(done * 10 / total_.load(), 9));
   const double seconds = elapsed();
   if (seconds < kQuietSeconds) {
     deciles_written_ = decile;
@@ -117,7 +120,7 @@ void Progress::write_lines(std::int64_t done) {
 }
 
 void Progress::draw_bar(std::int64_t done) {
-  const double fraction = double(done) / double(total_);
+  const double fraction = double(done) / double(total_.load());
   const double seconds = elapsed();
   const int width = 30, filled = int(fraction * width + 0.5);
   std::fprintf(stderr, "\r%-22s [%.*s%*s] %5.1f%%  %.1f s%s\033[K", label_.c_str(), filled,

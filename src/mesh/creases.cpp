@@ -255,7 +255,10 @@ CreaseCounts snap_creases(TriangleMesh& mesh, const CubeTriangles& cubes, float 
   std::vector<vec3> centres(candidates.size());
   for (std::size_t k = 0; k < candidates.size(); ++k) centres[k] = fans[candidates[k]].centre;
   std::vector<CornerSample> at(candidates.size());
-  if (!centres.empty()) implicit.sample(centres, at);
+  if (!centres.empty()) {
+    Progress progress("mesh creases", std::int64_t(centres.size()));
+    implicit.sample(centres, at, &progress);
+  }
   // A centre on a crease lies on the surface; it moves onto it, as every vertex, unless that
   // takes it out of its cube (it is then nearer than the tolerance already).
   for (std::size_t k = 0; k < candidates.size(); ++k) {

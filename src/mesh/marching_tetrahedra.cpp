@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -201,6 +202,8 @@ TriangleMesh march_tetrahedra(const Lattice& lattice, std::span<const vec3> seed
   for (const vec3& s : seeds) consider(frontier, lattice.cube_of(s));
   frontier = unique_sorted(std::move(frontier));
 
+  // One phase for the band's corners, wave after wave: the first wave holds most of them.
+  std::optional<Progress> progress;
   while (!frontier.empty()) {
     visited = merged(visited, frontier);
     counts.cubes_visited += std::int64_t(frontier.size());
@@ -213,7 +216,11 @@ TriangleMesh march_tetrahedra(const Lattice& lattice, std::span<const vec3> seed
     std::vector<vec3> positions(fresh.size());
     for (std::size_t i = 0; i < fresh.size(); ++i) positions[i] = lattice.position(Lattice::corner(fresh[i]));
     std::vector<CornerSample> samples(fresh.size());
-    implicit.sample(positions, samples);
+    if (!progress)
+      progress.emplace("mesh corners", std::int64_t(fresh.size()));
+    else
+      progress->add_total(std::int64_t(fresh.size()));
+    implicit.sample(positions, samples, &*progress);
     counts.corners += std::int64_t(fresh.size());
     corners.merge(fresh, samples);
 
@@ -244,6 +251,7 @@ TriangleMesh march_tetrahedra(const Lattice& lattice, std::span<const vec3> seed
     }
     frontier = missing(unique_sorted(std::move(next)), visited);
   }
+  progress.reset();
   release(visited);
   std::sort(crossed.begin(), crossed.end());
   counts.cubes_crossed = std::int64_t(crossed.size());

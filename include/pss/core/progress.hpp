@@ -30,6 +30,9 @@ class Progress {
   Progress& operator=(const Progress&) = delete;
 
   void advance(std::int64_t n);
+  // More steps than the phase began with (a mesh's band, found wave by wave): one phase, whose
+  // share done falls back; no 10 % line is written twice.
+  void add_total(std::int64_t n);
   bool shown() const { return style_ != Style::none; }
 
   // How the current mode shows progress where stderr is now.
@@ -47,7 +50,7 @@ class Progress {
   double elapsed() const;
 
   std::string label_;
-  std::int64_t total_;
+  std::atomic<std::int64_t> total_;
   std::atomic<std::int64_t> done_{0};
   Style style_;
   int exceptions_at_start_;

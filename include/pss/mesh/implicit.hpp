@@ -7,6 +7,7 @@
 #include <functional>
 #include <span>
 
+#include "pss/core/progress.hpp"
 #include "pss/core/types.hpp"
 
 namespace pss {
@@ -34,9 +35,11 @@ struct MeshVertex {
   vec3 position, normal;
 };
 
-// The implicit, evaluated in batches (on whichever backend the caller runs).
+// The implicit, evaluated in batches (on whichever backend the caller runs). A batch of
+// corners advances `progress` where one is given (the band's, over its waves), else a
+// "mesh corners" phase of its own.
 struct ImplicitSurface {
-  std::function<void(std::span<const vec3> corners, std::span<CornerSample> out)> sample;
+  std::function<void(std::span<const vec3> corners, std::span<CornerSample> out, Progress* progress)> sample;
   std::function<void(std::span<const EdgeCrossing> edges, std::span<MeshVertex> out)> cross;
 };
 
