@@ -612,6 +612,45 @@ TEST(MeshCloud, AnOpenSheetEndsAtItsSamples) {
   EXPECT_GT(reach_extended, 1.0f + 2 * extended.cell);
 }
 
+// Where a file's normals were turned (a flipped part of a sheet), which side is out is a
+// guess, and the closed parts' volume decides it only where they are most of the mesh: a
+// small blob facing inward above a large open sheet turns itself outward (its depth), not the
+// sheet downward.
+TEST(MeshCloud, AFewClosedBlobsDoNotTurnAMostlyOpenMesh) {
+  test::SampleOptions o;
+  o.count = 6000;
+  PointCloud cloud = test::sample_plane(1.0f, o);
+  cloud.normals.resize(cloud.size());
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    cloud.normals[i] = vec3(0, 0, cloud.positions[i].x < 0.4f ? 1.0f : -1.0f);  // a flipped part: turned
+  const test::Sphere blob{vec3(0, 0, 0.6f), 0.15f};
+  o.count = 500;
+  const PointCloud ball = test::sample(blob, o);
+  for (std::size_t i = 0; i < ball.size(); ++i) {
+    cloud.positions.push_back(ball.positions[i]);
+    cloud.normals.push_back(-blob.normal(ball.positions[i]));  // inward, all alike: nothing to turn
+  }
+  const CloudMesh m = mesh_of(cloud);
+  EXPECT_GT(m.normals_turned, 0u);
+  EXPECT_FALSE(m.turned_outward);
+  EXPECT_EQ(m.counts.closed_parts_turned, 1);
+  std::size_t sheet = 0, sheet_down = 0, ball_vertices = 0, ball_in = 0;
+  for (std::size_t v = 0; v < m.mesh.positions.size(); ++v) {
+    const vec3 p = m.mesh.positions[v], n = m.mesh.normals[v];
+    if (p.z > 0.3f) {
+      ++ball_vertices;
+      ball_in += glm::dot(n, p - blob.center) < 0;
+    } else {
+      ++sheet;
+      sheet_down += n.z < 0;
+    }
+  }
+  EXPECT_GT(sheet, 1000u);
+  EXPECT_EQ(sheet_down, 0u);
+  EXPECT_GT(ball_vertices, 100u);
+  EXPECT_EQ(ball_in, 0u);
+}
+
 TEST(MeshCloud, TooFewPointsOrABadCellAreRefused) {
   PointCloud two;
   two.positions = {vec3(0), vec3(1)};
