@@ -135,6 +135,22 @@ TEST(Camera, OrbitsAboutAnotherUp) {
   s.azimuth_deg = 90;  // a quarter turn about z, toward +x as for y up
   const Camera side = Camera::framing(box(), s);
   EXPECT_NEAR(glm::dot(glm::normalize(side.eye - center), vec3(1, 0, 0)), 1.0f, 1e-6f);
+  // Straight down along this up (a new user's trial was refused): the eye above the centre
+  // along z, the basis orthonormal, the picture turned as just below 90°.
+  s.azimuth_deg = 30;
+  s.elevation_deg = 90;
+  const Camera top = Camera::framing(box(), s);
+  s.elevation_deg = 89.9f;
+  const Camera below = Camera::framing(box(), s);
+  EXPECT_NEAR(glm::dot(glm::normalize(top.eye - center), vec3(0, 0, 1)), 1.0f, 1e-6f);
+  EXPECT_NEAR(glm::length(top.up), 1.0f, 1e-5f);
+  EXPECT_NEAR(glm::dot(top.up, top.forward), 0.0f, 1e-5f);
+  EXPECT_NEAR(glm::dot(top.right, below.right), 1.0f, 1e-5f);
+  EXPECT_NEAR(glm::dot(top.up, below.up), 1.0f, 1e-3f);
+  EXPECT_NO_THROW(validate(s));
+  s.elevation_deg = -90;  // and straight up
+  EXPECT_NO_THROW(validate(s));
+  EXPECT_NEAR(glm::dot(glm::normalize(Camera::framing(box(), s).eye - center), vec3(0, 0, -1)), 1.0f, 1e-6f);
 }
 
 // --roll 90: what lay to the right of the centre of the picture lies below it.

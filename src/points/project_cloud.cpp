@@ -109,16 +109,6 @@ void orient_through_samples(std::vector<vec3>& positions, std::vector<vec3>& nor
   }
 }
 
-// The points' indices in the order of the grid's first level's cells (4 bytes a point).
-std::vector<int> cell_order(const SupportGrid& grid, std::span<const vec3> points) {
-  const GridView& cells = grid.levels_on_host()[0].grid;
-  std::vector<int> key(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) key[i] = cells.cell_index(points[i]);
-  std::vector<int> start, order;
-  counting_sort(key, std::size_t(cells.dims.x) * cells.dims.y * cells.dims.z, start, order);
-  return order;
-}
-
 }  // namespace
 
 CloudProjection project_cloud(PointCloud input, const ProjectionParams& params, Backend backend, Stats& stats) {
@@ -239,7 +229,7 @@ CloudProjection project_cloud(PointCloud input, const ProjectionParams& params, 
       // Every point, where samples were merged: in the order of the grid's cells too, not the
       // file's (a scan's, or a generated cloud's random order), so that neighbouring threads
       // and chunks gather the same samples from the cache.
-      const std::vector<int> by_cell = cell_order(grid, positions);
+      const std::vector<int> by_cell = grid.cell_order(positions);
       project(positions.data(), file_hints ? other_hints.data() : nullptr, n,
               [&](std::size_t k) { return std::size_t(by_cell[k]); }, true);
     } else {

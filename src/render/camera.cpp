@@ -12,7 +12,6 @@ namespace pss {
 
 namespace {
 
-std::string triple_text(vec3 v) { return format_number(v.x) + "," + format_number(v.y) + "," + format_number(v.z); }
 
 bool finite(vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
@@ -41,12 +40,6 @@ void validate(const CameraSettings& s) {
     throw Error("the distance must be a finite positive number (got " + format_number(s.distance) + ")");
   check_range("the zoom", s.zoom, kMinZoom, kMaxZoom);
   check_range("the roll", s.roll_deg, -kMaxRollDeg, kMaxRollDeg);
-  // The eye sits at elevation el above the plane across up: the view direction lies along
-  // up when |sin el| is 1 (the default up has a frame for it: Camera::framing's side axis).
-  constexpr float degree = std::numbers::pi_v<float> / 180.0f;
-  if (std::abs(std::sin(s.elevation_deg * degree)) > 0.9999f && glm::normalize(s.up) != vec3(0, 1, 0))
-    throw Error("the view direction lies along up " + triple_text(s.up) +
-                ": choose another elevation or up direction");
 }
 
 Camera Camera::framing(const Aabb& box, const CameraSettings& s) {
@@ -78,7 +71,7 @@ Camera Camera::framing(const Aabb& box, const CameraSettings& s) {
   c.eye = center + distance * toward_eye;
   c.forward = -toward_eye;
   // The horizontal axis depends on the azimuth alone, so the basis stays defined looking
-  // straight down or up.
+  // straight down or up, about any up (an aerial scan seen from above with --up 0,0,1).
   c.right = std::cos(az) * side - std::sin(az) * front;
   c.up = glm::cross(c.right, c.forward);
   if (s.roll_deg != 0) {

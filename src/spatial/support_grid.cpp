@@ -90,6 +90,15 @@ void SupportGrid::build(std::span<const vec3> points, std::span<const float> h, 
   }
 }
 
+std::vector<int> SupportGrid::cell_order(std::span<const vec3> points) const {
+  const GridView& cells = levels_.front().grid;
+  std::vector<int> key(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) key[i] = cells.cell_index(points[i]);
+  std::vector<int> start, order;
+  counting_sort(key, std::size_t(cells.dims.x) * cells.dims.y * cells.dims.z, start, order);
+  return order;
+}
+
 SupportGridView SupportGrid::view() const {
   SupportGridView v;
   v.points = sorted_.data();

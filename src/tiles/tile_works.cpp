@@ -149,8 +149,9 @@ std::vector<std::byte> work_projection(std::span<const std::byte> request) {
   if (params.surface != SurfaceOperator::mls && t.normals.empty())
     throw Error("a tile's work does not hold together: APSS and RIMLS need the samples' normals");
   const SupportGrid grid = grid_of_tile(t);
-  // The own points in the grid's order, then those set aside: neighbouring threads gather
-  // neighbouring samples, as in core (a file's random order costs a fifth).
+  // The own points in the grid's order, then the rest (set aside, or merged into samples) in
+  // its cells' order: neighbouring threads gather neighbouring samples, as in core (a file's
+  // random order costs a fifth).
   std::vector<int> order;
   order.reserve(t.own);
   std::vector<char> placed(t.own, 0);
@@ -159,8 +160,8 @@ std::vector<std::byte> work_projection(std::span<const std::byte> request) {
       order.push_back(i);
       placed[std::size_t(i)] = 1;
     }
-  for (std::size_t i = 0; i < t.own; ++i)
-    if (!placed[i]) order.push_back(int(i));
+  for (const int i : grid.cell_order(std::span<const vec3>(t.unit).first(t.own)))
+    if (!placed[std::size_t(i)]) order.push_back(i);
   const std::vector<ProjectedPoint> done = project_on(grid, gathered<vec3>(t.unit, order), params, backend);
   std::vector<vec3> point(done.size()), normal(done.size());
   std::vector<ProjectionStatus> status(done.size());

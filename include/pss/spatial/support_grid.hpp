@@ -115,6 +115,9 @@ class SupportGrid {
   std::span<const int> original_index() const { return original_index_; }
   int levels() const { return int(levels_.size()); }
   float kappa() const { return kappa_; }
+  // The indices of `points` (any points, not the grid's) in the order of the first level's
+  // cells, ties by index: queries in that order gather neighbouring samples one after another.
+  std::vector<int> cell_order(std::span<const vec3> points) const;
 
  private:
   template <class Index>
