@@ -130,11 +130,12 @@ fs::path key_of(const fs::path& path) {
   return (ec ? path : absolute).lexically_normal();
 }
 
-// The same file: the same path once symlinks and ".." are resolved, or (both existing) the
-// same inode, which also catches hard links.
+// The same file: the same path once made absolute and symlinks and ".." are resolved (a
+// relative path that does not exist yet is otherwise left as it is: "o.png" and "./o.png"
+// differed), or (both existing) the same inode, which also catches hard links.
 bool same_file(const fs::path& a, const fs::path& b) {
   std::error_code ec1, ec2;
-  const fs::path ca = fs::weakly_canonical(a, ec1), cb = fs::weakly_canonical(b, ec2);
+  const fs::path ca = fs::weakly_canonical(key_of(a), ec1), cb = fs::weakly_canonical(key_of(b), ec2);
   if (!ec1 && !ec2 && ca == cb) return true;
   std::error_code ec;
   return fs::equivalent(a, b, ec) && !ec;
