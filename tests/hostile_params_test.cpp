@@ -102,9 +102,11 @@ std::vector<std::string> with_non_finite(std::vector<std::string> out_of_range) 
   return out_of_range;
 }
 // The same for a flag that must be > 0: also a positive value that is 0 as a float (--h 1e-50
-// meant "estimate h").
+// meant "estimate h"), and one below float's normal range (--h 1e-45: "epsilon must be a
+// positive number").
 std::vector<std::string> positive_or_refused(std::vector<std::string> out_of_range) {
   out_of_range.push_back("1e-50");
+  out_of_range.push_back("1e-45");
   return with_non_finite(std::move(out_of_range));
 }
 

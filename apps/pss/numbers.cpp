@@ -36,9 +36,12 @@ CLI::Validator finite_range(double lo, double hi, bool lo_open) {
         if (!parsed || !std::isfinite(x) || errno == ERANGE || x > hi || (lo_open ? !(x > lo) : !(x >= lo)))
           return "expected " + range + " (got " + quote(text) + ")";
         // The flags hold floats: a positive value below float's range becomes 0, which for
-        // --h, --rho, --b and --epsilon means "the default" (--h 1e-50 was accepted so).
+        // --h, --rho, --b and --epsilon means "the default" (--h 1e-50 was accepted so), and
+        // one below its normal range makes lengths of 0 (--h 1e-45: "epsilon must be positive").
         if (lo_open && !(float(x) > float(lo)))
           return "expected " + range + " (got " + quote(text) + ", which is " + format_number(float(x)) + " as a float)";
+        if (lo_open && lo == 0 && float(x) < FLT_MIN)
+          return "expected " + range + " (got " + quote(text) + ", below a float's normal range)";
         return {};
       },
       range_name(lo, hi, lo_open), "finite range");

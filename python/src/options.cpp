@@ -48,8 +48,11 @@ double number_in(const py::dict& options, const char* key, double lo, double hi,
                                            py::hasattr(value, "__float__")))
     throw bad(key, range, value);
   const double x = value.cast<double>();
-  // As float, as the library holds it: a positive value that would become 0 is refused.
-  if (!std::isfinite(x) || x > hi || (lo_open ? !(float(x) > float(lo)) : !(x >= lo))) throw bad(key, range, value);
+  // As float, as the library holds it: a positive value that would become 0, or a length
+  // below float's normal range (whose thousandth, ε, is 0), is refused.
+  if (!std::isfinite(x) || x > hi || (lo_open ? !(float(x) > float(lo)) : !(x >= lo)) ||
+      (lo_open && lo == 0 && float(x) < FLT_MIN))
+    throw bad(key, range, value);
   return x;
 }
 

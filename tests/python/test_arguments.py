@@ -32,6 +32,7 @@ def test_points_that_are_not_finite_rows_of_three_are_refused(points, message):
     ({"h": float("nan")}, r"^h: expected a finite number > 0 \(got nan\)$"),
     ({"h": -1}, r"^h: expected a finite number > 0 \(got -1\)$"),
     ({"h": 1e-50}, r"^h: expected a finite number > 0 \(got 1e-50\)$"),
+    ({"h": 1e-45}, r"^h: expected a finite number > 0 \(got 1e-45\)$"),
     ({"h": "0.1"}, r"^h: expected a finite number > 0 \(got '0.1'\)$"),
     ({"fov": 200}, r"^fov: expected a finite number from 1 to 170 \(got 200\)$"),
     ({"zoom": 0}, r"^zoom: expected a finite number from 0.001 to 1000 \(got 0\)$"),
