@@ -421,6 +421,9 @@ TEST_F(PlyTest, DataErrors) {
       {ascii + "1 2 3\n4 5\n", "truncated: expected 2 vertices, read 1"},
       {ascii + "1 2 3\n4 abc 6\n", "line 9: malformed number 'abc'"},
       {ascii + "1 2 3\n4 5.5.5 6\n", "line 9: malformed number '5.5.5'"},
+      // A value too many or too few on a line shifted every later vertex by one.
+      {ascii + "1 2 3 7\n4 5 6\n", "line 8: values left on the line after a vertex's 3 properties"},
+      {ascii + "1 2\n3 4 5 6\n", "line 9: values left on the line after a vertex's 3 properties"},
       {ascii + "1 2 3\n4 1e999 6\n", "line 9: number out of range '1e999'"},
       {ascii + "1 2 3\n4 nan 6\n", "vertex 1 has a non-finite coordinate"},
       {ascii + "1 -inf 3\n4 5 6\n", "vertex 0 has a non-finite coordinate"},
@@ -444,6 +447,15 @@ TEST_F(PlyTest, DataErrors) {
     const fs::path path = write("bad.ply", bytes);
     expect_file_error([&] { pss::read_ply(path); }, path, problem);
   }
+}
+
+// A vertex may span lines (the spec does not forbid it); trailing blanks and CR end a line.
+TEST_F(PlyTest, AsciiVertexAcrossLinesAndTrailingBlanks) {
+  const fs::path path = write("split.ply", "ply\nformat ascii 1.0\n" + kXyzHeader + "1 2\n3 \t\r\n4 5 6");
+  const PointCloud cloud = pss::read_ply(path);
+  ASSERT_EQ(cloud.size(), 2u);
+  EXPECT_EQ(cloud.positions[0], vec3(1, 2, 3));
+  EXPECT_EQ(cloud.positions[1], vec3(4, 5, 6));
 }
 
 TEST_F(PlyTest, TruncatedRealFile) {

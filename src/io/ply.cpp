@@ -137,6 +137,23 @@ class AsciiCursor {
   void skip(Scalar, std::uint64_t n = 1) {
     for (std::uint64_t i = 0; i < n; ++i) next();
   }
+  // After a vertex's `properties` values, the rest of its line must be blank: a line of one
+  // value more would otherwise shift every later vertex by a value, silently (a new user's
+  // trial). A vertex may still span lines.
+  void end_record(std::size_t properties) {
+    for (;;) {
+      const std::string_view v = data_.view();
+      std::size_t i = 0;
+      while (i < v.size() && (v[i] == ' ' || v[i] == '\t' || v[i] == '\r')) ++i;
+      data_.consume(i);
+      if (i < v.size()) {
+        if (v[i] == '\n') return;
+        fail("values left on the line after a vertex's " + std::to_string(properties) +
+             " properties (one vertex a line, as the header declares them)");
+      }
+      if (!data_.fill(1)) return;  // the file ends with the record
+    }
+  }
   [[noreturn]] void fail(const std::string& problem) const {
     throw file_error(path_, "line " + std::to_string(line_) + ": " + problem);
   }
@@ -195,6 +212,7 @@ class BinaryCursor {
   void skip(Scalar type, std::uint64_t n = 1) {
     if (!data_.skip(n * size_of(type))) throw EndOfData{};
   }
+  void end_record(std::size_t) {}  // records have their sizes
   [[noreturn]] void fail(const std::string& problem) const {
     throw file_error(path_, "byte " + std::to_string(data_.offset() - data_begin_) + " of the data: " + problem);
   }
@@ -399,6 +417,7 @@ class PlyStream final : public PointStream {
       else if (slots_[j] >= 0) v[slots_[j]] = in_.value(p.type);
       else in_.skip(p.type);
     }
+    in_.end_record(slots_.size());
     // A double beyond float range becomes infinite here, and is refused with the NaNs.
     const vec3 p(glm::dvec3(v[0], v[1], v[2]));
     if (!is_finite(p)) throw file_error(path_, "vertex " + std::to_string(i) + " has a non-finite coordinate");
