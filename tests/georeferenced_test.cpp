@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <glm/ext/vector_double3.hpp>
@@ -14,9 +15,11 @@
 #include <nlohmann/json.hpp>
 
 #include "pss/io/ply.hpp"
+#include "pss/io/tiled_cloud.hpp"
 #include "pss/io/point_cloud_file.hpp"
 #include "pss/io/xyz.hpp"
 #include "pss/points/cloud.hpp"
+#include "pss/points/unit_frame.hpp"
 #include "support/cli.hpp"
 
 namespace {
@@ -176,6 +179,43 @@ TEST_F(GeoTest, ProjectAndRenderOnTheSphere) {
     for (double v : s.values) (s.name == "px" ? mean_x : mean_y) += v / double(hits.size());
   EXPECT_NEAR(mean_x, 31.5, 1.0);
   EXPECT_NEAR(mean_y, 31.5, 1.0);
+}
+
+// One point far from the rest (a scanner's (0,0,0) beside a georeferenced scan; a stray at 10⁶
+// beside a cloud at zero) decided the origin and the unit frame's centre by the box: the scan
+// was read on quarter-metre steps and projected off its sphere (a new user's trial). The
+// bulk decides now (core/bulk_sample.hpp), in core and in tiles alike.
+TEST_F(GeoTest, AStrayFarFromTheRestTakesNothingFromItsDigits) {
+  std::vector<dvec3> scan = sphere(4000);
+  std::vector<dvec3> at_zero;
+  for (const dvec3& p : scan) at_zero.push_back(p - kCentre);
+  for (const auto& [name, points, stray] :
+       {std::tuple{std::string("georeferenced.xyz"), scan, dvec3(0.0)},
+        std::tuple{std::string("at_zero.xyz"), at_zero, dvec3(1e6, 0, 0)}}) {
+    std::vector<dvec3> with_stray = points;
+    with_stray.insert(with_stray.begin() + 100, stray);
+    write(name, text_of(with_stray, ""));
+    const PointCloud cloud = pss::read_point_cloud(path(name));
+    ASSERT_EQ(cloud.size(), with_stray.size());
+    double worst = 0;
+    for (std::size_t i = 0; i < cloud.size(); ++i)
+      if (i != 100) worst = std::max(worst, glm::length(cloud.world(i) - with_stray[i]));
+    EXPECT_LT(worst, 1e-6) << name;
+    const pss::TiledCloud tiles(path(name), dir_, 1000, 1 << 16);
+    EXPECT_EQ(tiles.origin(), cloud.origin) << name;
+    EXPECT_EQ(tiles.unit_frame().centre, pss::unit_frame(cloud.positions).centre) << name;
+    EXPECT_LT(glm::length(pss::unit_frame(cloud.positions).centre - (points[0] - cloud.origin)), 2 * kRadius) << name;
+
+    const pss::test::CliResult project = pss::test::run_pss("project " + path(name) + " -o " + path("p.ply"));
+    ASSERT_EQ(project.exit_code, 0) << project.err;
+    const PointCloud projected = pss::read_point_cloud(path("p.ply"));
+    ASSERT_EQ(projected.size(), with_stray.size());
+    const dvec3 centre = name == "at_zero.xyz" ? dvec3(0.0) : kCentre;
+    double off = 0;
+    for (std::size_t i = 0; i < projected.size(); ++i)
+      if (i != 100) off = std::max(off, std::abs(glm::length(projected.world(i) - centre) - kRadius));
+    EXPECT_LT(off, 1e-3) << name;  // as without the stray (ProjectAndRenderOnTheSphere)
+  }
 }
 
 // The ray through the image's centre passes through --look-at: a world point (0.1 m apart

@@ -27,6 +27,10 @@ static_assert(sizeof(Record) == 32);
 
 // In double: a float's square overflows past ~1.8e19, and a halo point 1e30 away would
 // read as infinitely far.
+UnitFrame TiledCloud::unit_frame() const {
+  return unit_frame_about(glm::dvec3(bounds_.lo), glm::dvec3(bounds_.hi), bulk_centre_);
+}
+
 double distance_to_box(vec3 p, const Aabb& box) {
   return glm::length(glm::max(glm::max(glm::dvec3(box.lo) - glm::dvec3(p), glm::dvec3(p) - glm::dvec3(box.hi)), glm::dvec3(0.0)));
 }
@@ -35,6 +39,7 @@ TiledCloud::TiledCloud(const std::filesystem::path& input, const std::filesystem
                        std::uint64_t points_per_tile, std::size_t buffer_bytes) {
   // Pass 1: the count, the box, whether the normals are usable (tidy_normals).
   glm::dvec3 lo(0.0), hi(0.0);
+  BulkSample sample;  // the in-core reader's (cloud.hpp: bulk_origin)
   bool any_normals = false, finite_normals = true;
   {
     const auto stream = open_point_stream(input);
@@ -48,6 +53,7 @@ TiledCloud::TiledCloud(const std::filesystem::path& input, const std::filesystem
         if (points_ == 0) lo = hi = w;
         lo = glm::min(lo, w);
         hi = glm::max(hi, w);
+        sample.add(w);
         ++points_;
       }
       any_normals = any_normals || !part.normals.empty();
@@ -56,12 +62,19 @@ TiledCloud::TiledCloud(const std::filesystem::path& input, const std::filesystem
       part.clear();
     }
   }
-  origin_ = local_origin(lo, hi);
+  origin_ = bulk_origin(sample, lo, hi);
+
   normals_ = any_normals && finite_normals;
   // Rounding to float keeps order: the box of the rounded positions is the rounded box.
   bounds_.lo = vec3(lo - origin_);
   bounds_.hi = vec3(hi - origin_);
-
+  {  // the unit frame's centre, from the positions the in-core cloud holds (its floats)
+    std::vector<glm::dvec3> kept;
+    for (const glm::dvec3& w : sample.kept()) kept.emplace_back(vec3(w - origin_));
+    const BulkSample::Bulk bulk = BulkSample::bulk_of(std::move(kept));
+    const glm::dvec3 box_lo(bounds_.lo), box_hi(bounds_.hi);
+    bulk_centre_ = BulkSample::box_of_strays(bulk, box_lo, box_hi) ? bulk.median : 0.5 * (box_lo + box_hi);
+  }
   // Tiles as wide as a surface across the box's longest side needs for points_per_tile
   // points a tile (a surface's points grow with its area, the square of the side).
   const vec3 extent = bounds_.extent();

@@ -257,7 +257,7 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
     throw NotTiled("tile by tile, pss project does not take a file's normals so far (--normals estimate leaves them "
                    "out)");
   const std::uint64_t n = cloud.size();
-  frame_ = unit_frame_of_box(glm::dvec3(cloud.bounds().lo), glm::dvec3(cloud.bounds().hi));
+  frame_ = cloud.unit_frame();
   check_neighbourhood(params, frame_.diagonal);
   const ProjectionParams unit_params = in_unit_frame(params, frame_.scale);
   const float kappa = unit_params.rho / unit_params.h;

@@ -19,7 +19,7 @@ SpacingEstimate estimate_spacing(const TiledCloud& cloud, int k, std::size_t max
   if (n < 2) throw Error("cannot estimate the sample spacing of fewer than two points");
   k = int(std::min<std::uint64_t>(std::uint64_t(k), n - 1));
   // The in-core frame: the box of the same floats.
-  const UnitFrame frame = unit_frame_of_box(glm::dvec3(cloud.bounds().lo), glm::dvec3(cloud.bounds().hi));
+  const UnitFrame frame = cloud.unit_frame();
   const double scale = frame.scale;
 
   const std::size_t stride = spacing_stride(std::size_t(n), max_samples);

@@ -87,7 +87,7 @@ SupportWidths support_widths(const TiledCloud& cloud, const ProjectionParams& pa
   out.least = out.median = out.largest = h;
   out.h.assign(std::size_t(n), h);
   if (params.support == Support::global || n < 2) return out;
-  const UnitFrame frame = unit_frame_of_box(glm::dvec3(cloud.bounds().lo), glm::dvec3(cloud.bounds().hi));
+  const UnitFrame frame = cloud.unit_frame();
   const std::size_t stride = noise_query_stride(std::size_t(n));
   const std::size_t queries = std::size_t((n + stride - 1) / stride);
 

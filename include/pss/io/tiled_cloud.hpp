@@ -16,6 +16,7 @@
 
 #include "pss/core/types.hpp"
 #include "pss/io/bucket_file.hpp"
+#include "pss/points/unit_frame.hpp"
 
 namespace pss {
 
@@ -42,6 +43,8 @@ class TiledCloud {
   std::uint64_t size() const { return points_; }
   glm::dvec3 origin() const { return origin_; }
   const Aabb& bounds() const { return bounds_; }  // of the positions about the origin
+  // The in-core cloud's unit frame (points/unit_frame.hpp), from the same sample.
+  UnitFrame unit_frame() const;
   bool has_normals() const { return normals_; }
   bool has_colors() const { return colors_; }  // the file's (a tile does not carry them)
   int tiles() const { return int(counts_.x) * counts_.y * counts_.z; }
@@ -62,6 +65,7 @@ class TiledCloud {
   std::uint64_t points_ = 0;
   glm::dvec3 origin_{0.0};
   Aabb bounds_;
+  glm::dvec3 bulk_centre_{0.0};  // the unit frame's centre, about the origin
   bool normals_ = false;
   bool colors_ = false;
   float side_ = 1;

@@ -9,6 +9,7 @@
 #include <glm/ext/vector_double3.hpp>
 #include <glm/ext/vector_uint3_sized.hpp>
 
+#include "pss/core/bulk_sample.hpp"
 #include "pss/core/types.hpp"
 
 namespace pss {
@@ -64,6 +65,13 @@ struct PointCloud {
 // longest side: a scan whose box spans 4·10⁶ m (a stray point at zero) keeps a float's
 // steps at that scale.
 glm::dvec3 local_origin(const glm::dvec3& lo, const glm::dvec3& hi);
+// The same about a given centre (rounded as above).
+glm::dvec3 local_origin(const glm::dvec3& lo, const glm::dvec3& hi, const glm::dvec3& centre);
+// The origin the readers choose for world positions within [lo, hi] of which `sample` kept
+// some: local_origin of [lo, hi], unless that box is the strays' (BulkSample::box_of_strays):
+// then of the bulk (its 2–98 % box, about its median), so that a few points far from the rest
+// do not take the floats' precision from it.
+glm::dvec3 bulk_origin(const BulkSample& sample, const glm::dvec3& lo, const glm::dvec3& hi);
 
 // Sets the cloud's origin and its positions from world positions, finite and within float's
 // range (the readers refuse others, naming the point).

@@ -1,8 +1,11 @@
 // Coordinates relative to a cloud's bounding-box centre, in units of its largest extent:
 // the float arithmetic of projection (squared distances, Gaussian weights) then sees
 // numbers near 1 whatever the data's units, so a cloud at 1e30 or 1e-30 gives the same
-// surface, up to the scale, as the same cloud at 1. The steps run tile by tile (src/tiles)
-// take the whole cloud's frame from its box, so that they see the in-core floats.
+// surface, up to the scale, as the same cloud at 1. Where a few points far from the rest
+// make the box (BulkSample::box_of_strays: a stray at 10⁶ beside the bunny), the centre is
+// the bulk's median instead: the box's, half-way to the stray, rounded the rest to the
+// floats' steps there. The steps run tile by tile (src/tiles) take the whole cloud's frame
+// (TiledCloud::unit_frame), so that they see the in-core floats.
 #pragma once
 
 #include <algorithm>
@@ -12,6 +15,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "pss/core/bulk_sample.hpp"
 #include "pss/core/types.hpp"
 
 namespace pss {
@@ -25,11 +29,11 @@ struct UnitFrame {
   vec3 from_unit(vec3 p) const { return vec3(glm::dvec3(p) * scale + centre); }
 };
 
-// The frame of the box [lo, hi].
-inline UnitFrame unit_frame_of_box(glm::dvec3 lo, glm::dvec3 hi) {
+// The frame about `centre` of a cloud whose box is [lo, hi].
+inline UnitFrame unit_frame_about(glm::dvec3 lo, glm::dvec3 hi, glm::dvec3 centre) {
   UnitFrame f;
   const glm::dvec3 extent = hi - lo;
-  f.centre = 0.5 * (lo + hi);
+  f.centre = centre;
   const double largest = std::max({extent.x, extent.y, extent.z});
   f.scale = largest > 0 && std::isfinite(largest) ? largest : 1.0;
   f.diagonal = std::sqrt(extent.x * extent.x + extent.y * extent.y + extent.z * extent.z);
@@ -39,11 +43,14 @@ inline UnitFrame unit_frame_of_box(glm::dvec3 lo, glm::dvec3 hi) {
 inline UnitFrame unit_frame(std::span<const vec3> points) {
   if (points.empty()) return {};
   glm::dvec3 lo(points[0]), hi(points[0]);
+  BulkSample sample;
   for (const vec3& p : points) {
     lo = glm::min(lo, glm::dvec3(p));
     hi = glm::max(hi, glm::dvec3(p));
+    sample.add(glm::dvec3(p));
   }
-  return unit_frame_of_box(lo, hi);
+  const BulkSample::Bulk bulk = BulkSample::bulk_of(sample.kept());
+  return unit_frame_about(lo, hi, BulkSample::box_of_strays(bulk, lo, hi) ? bulk.median : 0.5 * (lo + hi));
 }
 
 inline std::vector<vec3> to_unit(std::span<const vec3> points, const UnitFrame& f) {
