@@ -121,13 +121,19 @@ TEST(MergedSamples, AMergedSamplesFileNormalIsItsPointsMeanTurnedToItsSide) {
   }
 }
 
+// 60,000 points of the torus with noise of 4 spacings (0.06).
+test::SampleOptions noisy_torus_options() {
+  test::SampleOptions o;
+  o.count = 60000;
+  o.noise = 0.06f;
+  return o;
+}
+
 // A torus with noise of 4 spacings: h = 3σ puts about 3,000 samples in each support. Merged,
 // the grid holds a fraction of them, and the projections are as close to the true torus as
 // those with every sample at the same widths (global support merges none).
 TEST(MergedSamples, ANoisyTorusIsMergedAndProjectsAsCloseToTheTruth) {
-  test::SampleOptions o;
-  o.count = 60000;
-  o.noise = 0.06f;
+  const test::SampleOptions o = noisy_torus_options();
   const test::Torus torus;
   PointCloud cloud = test::sample(torus, o);
   const float h = test::suggested_h(cloud);
@@ -194,11 +200,8 @@ TEST(MergedSamples, ANoisyTorusIsMergedAndProjectsAsCloseToTheTruth) {
 // Merged, every point is projected (in the grid's cells' order, not the file's), each with its
 // own file normal as the hint that turns its projection's normal: all face as the file says.
 TEST(MergedSamples, EveryPointOfAMergedCloudFacesAsItsFileNormal) {
-  test::SampleOptions o;
-  o.count = 60000;
-  o.noise = 0.06f;
   const test::Torus torus;
-  PointCloud cloud = test::sample(torus, o);
+  PointCloud cloud = test::sample(torus, noisy_torus_options());
   cloud.normals.resize(cloud.size());
   for (std::size_t i = 0; i < cloud.size(); ++i) cloud.normals[i] = torus.normal(cloud.positions[i]);
   ProjectionParams params = ProjectionParams::from_h(test::suggested_h(cloud));
