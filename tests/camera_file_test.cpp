@@ -151,6 +151,9 @@ TEST_F(CameraFile, BadCameraFlagsFailCleanly) {
   expect_clean_failure(render + " --camera " + path("camera.json") + " --zoom 2", "--zoom", path("out.png"));
   expect_clean_failure(render + " --look-at 1,2", "--look-at", path("out.png"));
   expect_clean_failure(render + " --look-at 1,2,nan", "--look-at", path("out.png"));
+  // Finite but beyond the camera's reach: the message says how far it may be.
+  const test::CliResult far = test::run_pss(render + " --look-at 1e30,0,0");
+  EXPECT_NE(far.err.find("less than 1e30 from zero"), std::string::npos) << far.err;
   expect_clean_failure(render + " --up 0,0,0", "--up", path("out.png"));
   expect_clean_failure(render + " --distance -1", "--distance", path("out.png"));
   expect_clean_failure(render + " --zoom 0", "--zoom", path("out.png"));

@@ -57,7 +57,7 @@ CLI::Validator triple(bool nonzero) {
   return CLI::Validator(
       [nonzero](std::string& text) -> std::string {
         const auto v = parse_triple(text);
-        if (!v) return "expected X,Y,Z, three finite numbers (got " + quote(text) + ")";
+        if (!v) return "expected X,Y,Z, three finite numbers less than 1e30 from zero (got " + quote(text) + ")";
         if (nonzero && !(glm::length(*v) > 0)) return "expected a non-zero direction X,Y,Z (got " + quote(text) + ")";
         return {};
       },

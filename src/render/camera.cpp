@@ -34,7 +34,7 @@ void validate(const CameraSettings& s) {
   check_range("the elevation", s.elevation_deg, -90, 90);
   check_range("the field of view", s.fov_deg, kMinFovDeg, kMaxFovDeg);
   if (s.has_look_at && !(glm::length(s.look_at) < 1e30))  // false for NaN and infinity too
-    throw Error("the look-at point must be three finite numbers");
+    throw Error("the look-at point must be three finite numbers, less than 1e30 from zero");
   if (!finite(s.up) || !(glm::length(s.up) > 0)) throw Error("up must be a non-zero direction of three finite numbers");
   if (!(s.distance >= 0 && std::isfinite(s.distance)))
     throw Error("the distance must be a finite positive number (got " + format_number(s.distance) + ")");
