@@ -216,6 +216,13 @@ TEST_F(GeoTest, AStrayFarFromTheRestTakesNothingFromItsDigits) {
       if (i != 100) off = std::max(off, std::abs(glm::length(projected.world(i) - centre) - kRadius));
     EXPECT_LT(off, 1e-3) << name;  // as without the stray (ProjectAndRenderOnTheSphere)
   }
+  // 10³⁰ away the rest is below float's reach in the cloud's frame: the estimate says why.
+  std::vector<dvec3> beyond = at_zero;
+  beyond.push_back(dvec3(1e30, 0, 0));
+  write("beyond.xyz", text_of(beyond, ""));
+  const pss::test::CliResult info = pss::test::run_pss("info " + path("beyond.xyz"));
+  EXPECT_NE(info.exit_code, 0);
+  EXPECT_NE(info.err.find("nearly all do beside a few very far from the rest"), std::string::npos) << info.err;
 }
 
 // The ray through the image's centre passes through --look-at: a world point (0.1 m apart
