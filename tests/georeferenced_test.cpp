@@ -216,6 +216,13 @@ TEST_F(GeoTest, AStrayFarFromTheRestTakesNothingFromItsDigits) {
       if (i != 100) off = std::max(off, std::abs(glm::length(projected.world(i) - centre) - kRadius));
     EXPECT_LT(off, 1e-3) << name;  // as without the stray (ProjectAndRenderOnTheSphere)
   }
+  // 10²⁰ away: the rest still has its spacing, and the diagonal is printed, not "inf".
+  std::vector<dvec3> far_off = at_zero;
+  far_off.push_back(dvec3(1e20, 0, 0));
+  write("far_off.xyz", text_of(far_off, ""));
+  const pss::test::CliResult far_info = pss::test::run_pss("info " + path("far_off.xyz"));
+  EXPECT_EQ(far_info.exit_code, 0) << far_info.err;
+  EXPECT_NE(far_info.out.find("(diagonal 1e+20)"), std::string::npos) << far_info.out;
   // 10³⁰ away the rest is below float's reach in the cloud's frame: the estimate says why.
   std::vector<dvec3> beyond = at_zero;
   beyond.push_back(dvec3(1e30, 0, 0));

@@ -99,7 +99,7 @@ void print_summary(const std::string& path, const CloudSummary& c) {
     std::printf("%s[%s, %s]", k ? " x " : "", world_coordinate(c.origin[k], c.box.lo[k]).c_str(),
                 world_coordinate(c.origin[k], c.box.hi[k]).c_str());
   std::printf("\n");
-  const double diagonal = glm::length(size);
+  const double diagonal = glm::length(glm::dvec3(size));  // in double: a box of 10²⁰ overflows a float's square
   std::printf("size            %g x %g x %g (diagonal %g)\n", size.x, size.y, size.z, diagonal);
   if (c.points < 2) return;
   const SpacingEstimate& s = c.spacing;
