@@ -71,9 +71,7 @@ TiledCloud::TiledCloud(const std::filesystem::path& input, const std::filesystem
   {  // the unit frame's centre, from the positions the in-core cloud holds (its floats)
     std::vector<glm::dvec3> kept;
     for (const glm::dvec3& w : sample.kept()) kept.emplace_back(vec3(w - origin_));
-    const BulkSample::Bulk bulk = BulkSample::bulk_of(std::move(kept));
-    const glm::dvec3 box_lo(bounds_.lo), box_hi(bounds_.hi);
-    bulk_centre_ = BulkSample::box_of_strays(bulk, box_lo, box_hi) ? bulk.median : 0.5 * (box_lo + box_hi);
+    bulk_centre_ = frame_centre(std::move(kept), glm::dvec3(bounds_.lo), glm::dvec3(bounds_.hi));
   }
   // Tiles as wide as a surface across the box's longest side needs for points_per_tile
   // points a tile (a surface's points grow with its area, the square of the side).

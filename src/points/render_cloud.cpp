@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <string>
 
+#include <glm/geometric.hpp>
+
 #include "pss/backend/mirror.hpp"
 #include "pss/backend/parallel_for.hpp"
 #include "pss/core/error.hpp"
@@ -15,7 +17,6 @@
 #include "pss/render/image.hpp"
 #include "pss/render/render_frame.hpp"
 #include "pss/spatial/grid_mirror.hpp"
-#include "pss/points/unit_frame.hpp"
 
 namespace pss {
 
@@ -55,7 +56,8 @@ std::vector<LocalFit> fit_all(const SupportGrid& grid, const FileNormals& file, 
 // neighbourhood texture).
 SupportGrid timed_grid(const PointCloud& cloud, const ProjectionParams& projection, Backend backend, Stats& stats,
                        SupportWidths& widths, OutlierReport& outliers) {
-  check_neighbourhood(projection, unit_frame(cloud.positions).diagonal);
+  const Aabb box = cloud.bounds();  // its diagonal in double, as the unit frame's
+  check_neighbourhood(projection, glm::length(glm::dvec3(box.hi) - glm::dvec3(box.lo)));
   {
     ScopedPhase phase(stats, "support widths", projection.support == Support::global);  // else its Progress shows it
     widths = support_widths(cloud.positions, projection);

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -40,6 +41,13 @@ inline UnitFrame unit_frame_about(glm::dvec3 lo, glm::dvec3 hi, glm::dvec3 centr
   return f;
 }
 
+// The centre of the unit frame of a cloud whose box is [lo, hi], from a sample of its
+// positions (BulkSample): the box's, unless the box is the strays' (then the bulk's median).
+inline glm::dvec3 frame_centre(std::vector<glm::dvec3> sample, glm::dvec3 lo, glm::dvec3 hi) {
+  const BulkSample::Bulk bulk = BulkSample::bulk_of(std::move(sample));
+  return BulkSample::box_of_strays(bulk, lo, hi) ? bulk.median : 0.5 * (lo + hi);
+}
+
 inline UnitFrame unit_frame(std::span<const vec3> points) {
   if (points.empty()) return {};
   glm::dvec3 lo(points[0]), hi(points[0]);
@@ -49,8 +57,7 @@ inline UnitFrame unit_frame(std::span<const vec3> points) {
     hi = glm::max(hi, glm::dvec3(p));
     sample.add(glm::dvec3(p));
   }
-  const BulkSample::Bulk bulk = BulkSample::bulk_of(sample.kept());
-  return unit_frame_about(lo, hi, BulkSample::box_of_strays(bulk, lo, hi) ? bulk.median : 0.5 * (lo + hi));
+  return unit_frame_about(lo, hi, frame_centre(sample.kept(), lo, hi));
 }
 
 inline std::vector<vec3> to_unit(std::span<const vec3> points, const UnitFrame& f) {
