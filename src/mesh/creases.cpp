@@ -257,7 +257,7 @@ CreaseCounts snap_creases(TriangleMesh& mesh, const CubeTriangles& cubes, float 
   std::vector<CornerSample> at(candidates.size());
   if (!centres.empty()) {
     Progress progress("mesh creases", std::int64_t(centres.size()));
-    implicit.sample(centres, at, &progress);
+    implicit.sample(centres, at, progress);
   }
   // A centre on a crease lies on the surface; it moves onto it, as every vertex, unless that
   // takes it out of its cube (it is then nearer than the tolerance already).

@@ -33,14 +33,11 @@ template <class Implicit>
 ImplicitSurface implicit_surface(Backend backend, const Implicit& implicit, float cell, Stats& stats) {
   ImplicitSurface surface;
   surface.sample = [backend, implicit, &stats](std::span<const vec3> corners, std::span<CornerSample> samples,
-                                               Progress* progress) {
+                                               Progress& progress) {
     const Mirror<vec3> in(backend, corners);
     Mirror<CornerSample> result(backend, corners.size());
-    const SampleCornersKernel<Implicit> kernel{implicit, in.data(), result.data()};
-    if (progress)
-      parallel_for(backend, "mesh corners", std::int64_t(corners.size()), kernel, stats, progress);
-    else
-      run(backend, "mesh corners", std::int64_t(corners.size()), kernel, stats);
+    parallel_for(backend, "mesh corners", std::int64_t(corners.size()),
+                 SampleCornersKernel<Implicit>{implicit, in.data(), result.data()}, stats, &progress);
     const std::vector<CornerSample> taken = result.take();
     std::copy(taken.begin(), taken.end(), samples.begin());
   };

@@ -220,7 +220,7 @@ TriangleMesh march_tetrahedra(const Lattice& lattice, std::span<const vec3> seed
       progress.emplace("mesh corners", std::int64_t(fresh.size()));
     else
       progress->add_total(std::int64_t(fresh.size()));
-    implicit.sample(positions, samples, &*progress);
+    implicit.sample(positions, samples, *progress);
     counts.corners += std::int64_t(fresh.size());
     corners.merge(fresh, samples);
 

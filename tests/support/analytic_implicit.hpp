@@ -14,7 +14,7 @@ namespace pss::test {
 inline ImplicitSurface analytic(std::function<float(vec3)> distance, std::function<vec3(vec3)> normal,
                          std::function<bool(vec3)> valid = [](vec3) { return true; }) {
   ImplicitSurface s;
-  s.sample = [=](std::span<const vec3> corners, std::span<CornerSample> out, Progress*) {
+  s.sample = [=](std::span<const vec3> corners, std::span<CornerSample> out, Progress&) {
     for (std::size_t i = 0; i < corners.size(); ++i) {
       const float d = distance(corners[i]);
       out[i] = {d, corners[i] - d * normal(corners[i]), valid(corners[i])};

@@ -36,10 +36,9 @@ struct MeshVertex {
 };
 
 // The implicit, evaluated in batches (on whichever backend the caller runs). A batch of
-// corners advances `progress` where one is given (the band's, over its waves), else a
-// "mesh corners" phase of its own.
+// corners advances the caller's `progress` (the band's, over its waves; the creases' own).
 struct ImplicitSurface {
-  std::function<void(std::span<const vec3> corners, std::span<CornerSample> out, Progress* progress)> sample;
+  std::function<void(std::span<const vec3> corners, std::span<CornerSample> out, Progress& progress)> sample;
   std::function<void(std::span<const EdgeCrossing> edges, std::span<MeshVertex> out)> cross;
 };
 
