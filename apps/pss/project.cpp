@@ -40,10 +40,11 @@ struct ProjectOptions {
 
 // Bytes a point (tiles/memory_plan.hpp): in core, above what the noisy tori take (2026-11-30,
 // docs/benchmarks.md: 10^6 points MLS 76, RIMLS 90; 10^7 63) for a cloud whose grid takes
-// more cells a sample (up to 32 of 4 bytes, spatial/support_grid.hpp); beside the tiles, each point's width, whether it is a sample and
-// whether it merges, and in the outliers' passes its distance, neighbours' mass and mass (a
-// copy of one for a median without masses); a tile's point, its record, unit position,
-// width, merged sample, grid and projection, and in the orientation its record, tree and parts.
+// more cells a sample (up to 32 of 4 bytes, spatial/support_grid.hpp); beside the tiles, each
+// point's width, whether it is a sample and whether it merges, and in the outliers' passes
+// its distance, neighbours' mass and mass (a copy of one for a median without masses); a
+// tile's point, its record, unit position, width, merged sample, grid and projection, and in
+// the orientation its record, tree and parts.
 // APSS and RIMLS: a tile's point also carries its sample's normal in the set, the request and
 // the grid (the projection's peak 15 % higher on a 300,000-point torus at --memory 24M).
 constexpr MemoryCosts kProjectCosts{160, 24, 256};

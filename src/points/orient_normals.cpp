@@ -86,8 +86,7 @@ void face_as_voted(const SupportGrid& grid, std::span<vec3> sorted, const Orient
   const float kappa2 = grid.kappa() * grid.kappa();
   std::vector<FacingVote> votes(parts.root.size());
   for (std::size_t k = 0; k < sorted.size(); ++k)
-    votes[std::size_t(parts.of_point[k])].add(at[k], sorted[k], kappa2 == 1 ? inv_h2[k] : inv_h2[k] / kappa2,
-                                              status(k));
+    votes[std::size_t(parts.of_point[k])].add(at[k], sorted[k], inv_h2[k] / kappa2, status(k));
   std::vector<char> turns(votes.size());
   for (std::size_t p = 0; p < votes.size(); ++p) turns[p] = votes[p].sign() < 0;
   release(votes);

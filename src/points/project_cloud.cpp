@@ -185,10 +185,10 @@ CloudProjection project_cloud(PointCloud input, const ProjectionParams& params, 
     const GridMirror g(backend, grid);
     const Mirror<vec3> hint(backend, file.sorted);
     Progress progress("projecting", std::int64_t(n));
-    // In chunks, each placed at once, so that the projections are never all held beside the
-    // output (28 bytes a point); a GPU is given enough threads a launch to fill it. A chunk's
-    // kernel reads its own points only, so `positions` may take each chunk's projections.
-    const std::size_t chunk = std::size_t(1) << (backend == Backend::cpu ? 16 : 20);
+    // In chunks (projection_chunk), each placed at once, so that the projections are never all
+    // held beside the output. A chunk's kernel reads its own points only, so `positions` may
+    // take each chunk's projections.
+    const std::size_t chunk = projection_chunk(backend);
     // points[k], hints[k] (or null) are those of input point index(k), k < count; with
     // `gather`, points[index(k)] and hints[index(k)] are.
     std::vector<vec3> gathered_points, gathered_hints;

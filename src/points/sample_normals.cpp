@@ -2,7 +2,6 @@
 
 #include <algorithm>
 
-
 #include "pss/backend/mirror.hpp"
 #include "pss/backend/parallel_for.hpp"
 #include "pss/points/orient_normals.hpp"
@@ -61,9 +60,9 @@ std::vector<vec3> sample_normals(const SupportGrid& grid, const FileNormals& fil
     normals.resize(n);
     status.resize(n);
     Progress progress("sample normals", std::int64_t(n));
-    // In chunks, as the projections (project_cloud.cpp): the fits' 28 bytes a point are never
-    // all held beside the normals (issue 28: at 10^6 points they set the run's peak).
-    const std::size_t chunk = std::size_t(1) << (backend == Backend::cpu ? 16 : 20);
+    // In chunks, as the projections (projection_chunk): the fits are never all held beside the
+    // normals (issue 28: at 10^6 points they set the run's peak).
+    const std::size_t chunk = projection_chunk(backend);
     for (std::size_t begin = 0; begin < n; begin += chunk) {
       const std::size_t size = std::min(chunk, n - begin);
       Mirror<ProjectedPoint> out(backend, size);

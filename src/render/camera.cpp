@@ -12,7 +12,6 @@ namespace pss {
 
 namespace {
 
-
 bool finite(vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 void check_range(const char* what, double x, double lo, double hi) {

@@ -3,8 +3,10 @@
 // (sample_normals.hpp).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
+#include "pss/backend/backend.hpp"
 #include "pss/points/surface_projection.hpp"
 
 namespace pss {
@@ -14,6 +16,11 @@ struct ProjectedPoint {
   vec3 normal;
   ProjectionStatus status;
 };
+
+// How many points a launch of the kernel below projects where a cloud's are taken in chunks,
+// each placed at once (project_cloud.cpp, sample_normals.cpp), so that the 28 bytes a point
+// of the results are never all held: a GPU is given enough threads a launch to fill it.
+inline std::size_t projection_chunk(Backend backend) { return std::size_t(1) << (backend == Backend::cpu ? 16 : 20); }
 
 // The per-point kernel both backends run.
 PSS_INLINE ProjectedPoint project_point(const SupportGridView& grid, vec3 r, vec3 hint, const ProjectionParams& params) {
