@@ -15,6 +15,9 @@ What the numbers mean (all per view, in pixels of the 384x384 image):
     holes %   holes where the data are, by shared/tools/scan_holes.py: the share of the pixels
               well inside the data's footprint (points drawn as tangent discs) where pss has no hit,
               or only one more than 3 disc radii behind the data.
+    floor %   for a PLY scan with faces (the bunny, the dragon: the points are the mesh's vertices),
+              the same measure of the mesh itself cast through pss's camera: what the true surface
+              scores, since discs tangent near a convex silhouette reach past it.
   meshes (.off: pss renders the vertices; the faces are the ground truth, ray-cast per pixel with
   pss's own camera from the stats JSON, in the same frame, pss's 'origin' taken off both):
     holes %   mesh pixels where pss has no hit, or a hit more than TOL farther along the ray than
@@ -169,11 +172,46 @@ def mesh_quality(mesh, st, hits):
                 mesh_pixels=int(mesh.sum()), tolerance=float(tol))
 
 
+def has_faces(path):
+    """Whether a PLY declares faces: a scan kept with the mesh its points are the vertices of."""
+    if not path.lower().endswith('.ply'): return False
+    head = open(path, 'rb').read(4096).split(b'end_header')[0]
+    return any(l.split()[:2] == [b'element', b'face'] and int(l.split()[2]) > 0 for l in head.splitlines())
+
+
+def write_mesh_hits(mesh, st, path):
+    """The mesh's first hit per pixel, through pss's camera, as a hits PLY like pss's (px, py, x, y, z)."""
+    org = np.array(st.get('origin', [0, 0, 0]), float)
+    v, tris = read_mesh(mesh)
+    shifted = dict(st, camera=dict(st['camera'], eye=list(np.array(st['camera']['eye']) - org)))
+    eye, t, _ = cast_mesh(v - org, tris, shifted)
+    W, H = st['width'], st['height']; _, fw, right, up, th = camera(st)
+    yy, xx = np.mgrid[0:H, 0:W]
+    sx = (2.0 * (xx + 0.5) / W - 1.0) * th * W / H; sy = (1.0 - 2.0 * (yy + 0.5) / H) * th
+    d = fw + sx[..., None] * right + sy[..., None] * up; d /= np.linalg.norm(d, axis=-1, keepdims=True)
+    m = np.isfinite(t); p = eye + org + t[m][:, None] * d[m]
+    rec = np.zeros(int(m.sum()), [(c, '<f8') for c in ('px', 'py', 'x', 'y', 'z')])
+    rec['px'], rec['py'] = xx[m], yy[m]; rec['x'], rec['y'], rec['z'] = p.T
+    head = f'ply\nformat binary_little_endian 1.0\nelement vertex {len(rec)}\n' + \
+        ''.join(f'property double {c}\n' for c in ('px', 'py', 'x', 'y', 'z')) + 'end_header\n'
+    with open(path, 'wb') as f:
+        f.write(head.encode()); f.write(rec.tobytes())
+
+
 def scan_quality(cloud, stats, hits, scan_holes):
+    """scan_holes.py's holes where the data are; for a scan kept with its mesh, also the same
+    measure of that mesh ('floor_pct'): the true surface's own score, since its silhouettes lie
+    inside the discs' union (a disc tangent near a convex silhouette reaches past it)."""
     sys.path.insert(0, os.path.dirname(os.path.abspath(scan_holes)))
     import scan_holes as sh
+    share = lambda inner, good: 100.0 * (inner & ~good).sum() / max(1, inner.sum())
     inner, good, _ = sh.splat_holes(cloud, stats, hits)
-    return dict(holes_pct=100.0 * (inner & ~good).sum() / max(1, inner.sum()), data_pixels=int(inner.sum()))
+    row = dict(holes_pct=share(inner, good), data_pixels=int(inner.sum()))
+    if has_faces(cloud):
+        mesh_hits = os.path.join(os.path.dirname(hits), 'mesh_hits.ply')
+        write_mesh_hits(cloud, json.load(open(stats)), mesh_hits)
+        row['floor_pct'] = share(*sh.splat_holes(cloud, stats, mesh_hits)[:2])
+    return row
 
 
 def main():
@@ -207,11 +245,13 @@ def main():
                 rows.append(row)
     fmt = lambda x, f: '-' if x is None else format(x, f)
     print(f'# {a.label}: {a.pss} render --size {SIZE}x{SIZE} {" ".join(extra)}')
-    print(f'{"cloud":30} {"view":8} {"holes %":>8} {"extra %":>8} {"normal°":>8} {">10° %":>7} {"frame s":>8} {"hits":>7}')
+    print(f'{"cloud":30} {"view":8} {"holes %":>8} {"floor %":>8} {"extra %":>8} {"normal°":>8} {">10° %":>7} '
+          f'{"frame s":>8} {"hits":>7}')
     for r in rows:
         if 'error' in r:
             print(f'{r["cloud"]:30} {r["view"]:8} failed'); continue
-        print(f'{r["cloud"]:30} {r["view"]:8} {r["holes_pct"]:8.2f} {fmt(r.get("extra_pct"), "8.2f"):>8} '
+        print(f'{r["cloud"]:30} {r["view"]:8} {r["holes_pct"]:8.2f} {fmt(r.get("floor_pct"), "8.2f"):>8} '
+              f'{fmt(r.get("extra_pct"), "8.2f"):>8} '
               f'{fmt(r.get("normal_mean_deg"), "8.2f"):>8} {fmt(r.get("normal_over10_pct"), "7.2f"):>7} '
               f'{r["frame_seconds"]:8.3f} {r["hits"]:7d}')
     json.dump(dict(label=a.label, pss=a.pss, extra_flags=extra, size=SIZE, rows=rows), open(a.out, 'w'), indent=1)
