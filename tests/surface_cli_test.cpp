@@ -24,9 +24,10 @@ using SurfaceCli = test::CliTest;
 
 nlohmann::json read_json(const std::string& file) { return nlohmann::json::parse(std::ifstream(file)); }
 
-// A unit sphere as XYZ, with its exact normals (six columns), wrong ones (+x everywhere),
-// exact ones flipped on the half x > 0, or some zero (about its pole z > 0.9; the others
-// any: (x, 0, z)).
+// A unit sphere as XYZ, with its exact normals (six columns), wrong ones (tilted toward +x by
+// up to 30°: they still follow the points), ones that do not follow the points (+x
+// everywhere: "one way"), exact ones flipped on the half x > 0, or some zero (about its pole
+// z > 0.9; the others any: (x, 0, z)).
 std::string sphere(const std::string& file, const char* normals) {
   test::SampleOptions o;
   o.count = 6000;
@@ -35,7 +36,8 @@ std::string sphere(const std::string& file, const char* normals) {
   for (const vec3& p : test::sample(test::Sphere{}, o).positions) {
     out << p.x << ' ' << p.y << ' ' << p.z;
     if (normals == std::string("exact")) out << ' ' << p.x << ' ' << p.y << ' ' << p.z;
-    if (normals == std::string("wrong")) out << " 1 0 0";
+    if (normals == std::string("wrong")) out << ' ' << p.x + 0.5f << ' ' << p.y << ' ' << p.z;
+    if (normals == std::string("one way")) out << " 1 0 0";
     if (normals == std::string("some zero")) out << ' ' << (p.z > 0.9f ? 0.0f : p.x) << " 0 " << (p.z > 0.9f ? 0.0f : p.z);
     if (normals == std::string("flipped")) {
       const float sign = p.x > 0 ? -1.0f : 1.0f;
@@ -125,15 +127,20 @@ TEST_F(SurfaceCli, InfoSaysWhetherTheFilesNormalsAgree) {
     const std::size_t at = r.out.find("normals         ");
     return at == std::string::npos ? std::string() : r.out.substr(at, r.out.find('\n', at) - at);
   };
-  EXPECT_EQ(info(sphere(path("exact.xyz"), "exact")), "normals         the file's agree with their neighbours'");
+  EXPECT_EQ(info(sphere(path("exact.xyz"), "exact")), "normals         the file's follow the points and face one way");
   const std::string flipped = sphere(path("flipped.xyz"), "flipped");
   const test::CliResult projected = test::run_pss("project " + flipped + " -o " + path("p.ply") + " --stats " +
                                                   path("p.json"));
   ASSERT_EQ(projected.exit_code, 0) << projected.err;
   const int turned = read_json(path("p.json"))["normals_turned"];
   ASSERT_GT(turned, 2500);
-  EXPECT_EQ(info(flipped), "normals         the file's: " + std::to_string(turned) +
-                               " of 6000 contradict their neighbours' (render and project turn them)");
+  EXPECT_EQ(info(flipped), "normals         the file's: render and project turn " + std::to_string(turned) +
+                               " of 6000 (a part faced inward, or was flipped against the rest)");
+  const std::string one_way = info(sphere(path("one_way.xyz"), "one way"));
+  unsigned long long off = 0;
+  ASSERT_EQ(std::sscanf(one_way.c_str(), "normals         the file's: those of %llu of 6000 samples lie more than 45 "
+                                         "degrees off their neighbours' plane", &off), 1) << one_way;
+  EXPECT_NEAR(double(off), 0.707 * 6000, 200);  // where |x| < cos 45°
   std::ofstream(path("zero.xyz")) << "0 0 0 0 0 1\n1 0 0 0 0 0\n0 1 0 0 0 1\n1 1 0 0 0 1\n0.5 0.5 0.1 0 0 1\n";
   EXPECT_EQ(info(path("zero.xyz")), "normals         the file's: one or more has no direction (render and project estimate them)");
   EXPECT_EQ(info(sphere(path("plain.xyz"), "none")), "");
@@ -241,6 +248,35 @@ TEST_F(SurfaceCli, FileNormalsLeftOutForSomeWithoutDirectionAreSaidToBe) {
     const test::CliResult estimated =
         test::run_pss(std::string(command) + " " + cloud + " -o " + path(output) + " --normals estimate");
     EXPECT_EQ(estimated.out.find("left out"), std::string::npos) << estimated.out;
+  }
+}
+
+// Normals that do not follow the points (one direction for all, here: 45° or more off the
+// sphere on 71 % of it) are left out and estimated, as --normals estimate would, by render,
+// project and mesh alike, which say so and count them; the sphere comes out as with the
+// estimated normals, not bent by the file's.
+TEST_F(SurfaceCli, FileNormalsThatDoNotFollowThePointsAreLeftOut) {
+  const std::string cloud = sphere(path("one_way.xyz"), "one way"), exact = sphere(path("exact.xyz"), "exact");
+  for (const auto& [command, output] : {std::pair{"render", "r.png"}, {"project", "p.ply"}, {"mesh", "m.ply"}}) {
+    SCOPED_TRACE(command);
+    const std::string flags = std::string(" -o ") + path(output) + " --stats " + path("s.json") + " --surface apss";
+    const test::CliResult r = test::run_pss(std::string(command) + " " + cloud + flags);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("(estimated normals)"), std::string::npos) << r.out;
+    const std::size_t at = r.out.find("left out the file's normals: ");
+    ASSERT_NE(at, std::string::npos) << r.out;
+    unsigned long long off = 0, points = 0;
+    ASSERT_EQ(std::sscanf(r.out.c_str() + at, "left out the file's normals: those of %llu samples (of %llu points) lie "
+                          "more than 45 degrees off their neighbours' plane", &off, &points), 2)
+        << r.out;
+    EXPECT_NEAR(double(off), 0.707 * 6000, 200);
+    EXPECT_EQ(points, 6000u);
+    EXPECT_EQ(read_json(path("s.json"))["file_normals_off"], off);
+    if (command == std::string("project")) EXPECT_LT(worst_radius_error(path("p.ply")), 1e-3);
+    const test::CliResult kept = test::run_pss(std::string(command) + " " + exact + flags);
+    ASSERT_EQ(kept.exit_code, 0) << kept.err;
+    EXPECT_EQ(kept.out.find("left out"), std::string::npos) << kept.out;
+    EXPECT_EQ(read_json(path("s.json"))["file_normals_off"], 0);
   }
 }
 }  // namespace

@@ -202,6 +202,40 @@ TEST(TurnFlippedNormals, NormalsWithoutOrderAreLeftAsTheyAre) {
   EXPECT_EQ(normals, before);
 }
 
+// A file's normals are the samples' unless over a third lie more than 45° off their
+// neighbours' plane: random ones on a fifth of a sphere are kept (to be turned or outvoted by
+// the fits), random ones everywhere (71 % off) and one direction for all are left out, and a
+// box's exact normals, off only where the plane straddles a crease, are kept.
+TEST(FileNormals, NormalsThatDoNotFollowThePointsAreLeftOut) {
+  const auto check = [](const std::vector<vec3>& points, const std::vector<vec3>& normals, float h) {
+    const std::vector<float> widths(points.size(), h);
+    const SupportGrid grid(points, widths, 2.0f);
+    ProjectionParams params;
+    params.normals = NormalSource::file;
+    Stats stats;
+    return file_normals(grid, normals, params, stats);
+  };
+  const Sampled s = sphere(4000);
+  std::mt19937 rng(9);
+  std::normal_distribution<float> g;
+  std::vector<vec3> some = s.truth, all = s.truth, one_way(s.points.size(), vec3(0, 0, 1));
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    all[i] = glm::normalize(vec3(g(rng), g(rng), g(rng)));
+    if (i % 5 == 0) some[i] = all[i];
+  }
+  const FileNormals exact = check(s.points, s.truth, kSphereH);
+  EXPECT_EQ(exact.sorted.size(), s.points.size());
+  EXPECT_EQ(exact.off_the_points, 0u);
+  EXPECT_EQ(check(s.points, some, kSphereH).sorted.size(), s.points.size());
+  for (const auto* normals : {&all, &one_way}) {
+    const FileNormals off = check(s.points, *normals, kSphereH);
+    EXPECT_TRUE(off.sorted.empty());
+    EXPECT_NEAR(double(off.off_the_points), 0.707 * 4000, 150);  // |cos| < 0.707 on 70.7 % of a sphere
+  }
+  const Sampled b = box(1500);
+  EXPECT_EQ(check(b.points, b.truth, 0.12f).sorted.size(), b.points.size());
+}
+
 // `pss project` of a sphere whose file normals are flipped on x > 0, with strays off it (set
 // aside as outliers, so not among the samples that the turn sees) carrying their side's
 // normals: every projection, the strays' too, comes out oriented as the others.

@@ -113,6 +113,11 @@ ProjectionParams projection_params(const CloudSurfaceFlags& flags, const std::fu
 // (points/turn_flipped_normals.hpp); nothing when none were.
 void print_normals_turned(std::size_t turned, std::size_t points);
 
+// A line on stdout when the file's normals were left out as not following the points: `off`
+// of the samples' lay more than 45° off their neighbours' plane (points/sample_normals.hpp:
+// FileNormals); nothing when 0.
+void print_file_normals_off(std::size_t off, std::size_t points);
+
 // How many of the cloud's normals have no direction (zero or not finite) where --normals file
 // (the default) asks for them; 0 otherwise. One is enough for all to be left out and
 // estimated (points/sample_normals.hpp: file_normals): the summaries say so with

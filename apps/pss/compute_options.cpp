@@ -165,8 +165,15 @@ const char* normals_text(NormalsUsed used) {
 
 void print_normals_turned(std::size_t turned, std::size_t points) {
   if (turned > 0)
-    std::printf("turned %zu of the file's normals (of %zu points): they contradicted their neighbours', as where a "
-                "part of the cloud was flipped\n", turned, points);
+    std::printf("turned %zu of the file's normals (of %zu points): a part of the cloud faced inward, or was flipped "
+                "against the rest\n", turned, points);
+}
+
+void print_file_normals_off(std::size_t off, std::size_t points) {
+  if (off > 0)
+    std::printf("left out the file's normals: those of %zu samples (of %zu points) lie more than 45 degrees off their "
+                "neighbours' plane: they do not follow the points, so all were estimated from the points\n", off,
+                points);
 }
 
 std::size_t file_normals_without_direction(const PointCloud& cloud, const SurfaceOptions& options) {

@@ -51,19 +51,23 @@ std::string ordinal(int k) {
   return std::to_string(k) + suffix;
 }
 
-// Whether the file's normals agree with each other, as render and project would find (all
-// points as samples here: those set aside as outliers are counted too).
+// Whether the file's normals follow the points and face one way, as render and project would
+// find (all points as samples here: those set aside as outliers are counted too).
 void print_file_normals(const PointCloud& cloud, const SupportWidths& widths, const ProjectionParams& params) {
   const SupportGrid grid(cloud.positions, widths.h, params.rho / params.h);
   Stats stats;
   const FileNormals file = file_normals(grid, cloud.normals, params, stats);
-  if (file.sorted.empty())
+  if (file.off_the_points > 0)
+    std::printf("normals         the file's: those of %zu of %zu samples lie more than 45 degrees off their neighbours' "
+                "plane: they do not follow the points (render and project estimate them)\n",
+                file.off_the_points, grid.sorted_points().size());
+  else if (file.sorted.empty())
     std::printf("normals         the file's: one or more has no direction (render and project estimate them)\n");
   else if (file.turned == 0)
-    std::printf("normals         the file's agree with their neighbours'\n");
+    std::printf("normals         the file's follow the points and face one way\n");
   else
-    std::printf("normals         the file's: %zu of %zu contradict their neighbours' (render and project turn them)\n",
-                file.turned, cloud.size());
+    std::printf("normals         the file's: render and project turn %zu of %zu (a part faced inward, or was flipped "
+                "against the rest)\n", file.turned, cloud.size());
 }
 
 // What pss info says of a cloud, found in core or tile by tile.

@@ -138,6 +138,7 @@ void run_cloud_mesh(const MeshOptions& o, Stats& stats, std::chrono::steady_cloc
               (long long)result.outliers.set_aside, (long long)result.counts.unsupported_parts,
               result.counts.unsupported_parts == 1 ? "" : "s", kMinPartSamples);
   print_normals_turned(result.normals_turned, cloud.size());
+  print_file_normals_off(result.file_normals_off, cloud.size());
   print_file_normals_left_out(file_normals_without_direction(cloud, o.surface.surface), cloud.size());
   if (result.turned_outward)
     std::printf("the normals' orientation faced inward (the closed parts enclosed a negative volume): the mesh "
@@ -157,6 +158,7 @@ void run_cloud_mesh(const MeshOptions& o, Stats& stats, std::chrono::steady_cloc
     v["outliers_set_aside"] = result.outliers.set_aside;
     v["points_merged"] = result.widths.merged_count;
     v["normals_turned"] = result.normals_turned;
+    v["file_normals_off"] = result.file_normals_off;
     v["turned_outward"] = result.turned_outward;
   }
 }

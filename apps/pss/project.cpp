@@ -58,6 +58,7 @@ struct ProjectRun {
   SupportWidths widths;
   NormalsUsed normals = NormalsUsed::none;
   std::size_t normals_turned = 0;
+  std::size_t file_normals_off = 0;  // where all were left out as not following the points
   std::size_t normals_without_direction = 0;  // the file's: then all were left out
   std::int64_t set_aside = 0;
   std::string memory;  // how the run held the cloud, for the summary
@@ -89,7 +90,7 @@ ProjectRun project_in_core(const ProjectOptions& o, Backend backend, Stats& stat
   std::vector<std::uint64_t> per_rank(std::size_t(rank_count()), 0);
   per_rank[0] = result.cloud.size();
   return {result.cloud.size(), result.cloud.origin, result.counts, result.widths, result.normals,
-          result.normals_turned, without_direction, result.outliers.set_aside, "in core", per_rank};
+          result.normals_turned, result.file_normals_off, without_direction, result.outliers.set_aside, "in core", per_rank};
 }
 
 // The file's next `count` points (their colours and scalars) into `part`.
@@ -154,7 +155,7 @@ ProjectRun project_in_tiles(const ProjectOptions& o, const MemoryPlan& plan, Bac
     if (stream->read(part, 1) > 0) throw file_error(o.input, "changed while it was read: it has more points than before");
     writer.commit();
   }
-  return {tiles.size(), tiles.origin(), projected.counts(), projected.widths(), projected.normals_used(), 0, 0,
+  return {tiles.size(), tiles.origin(), projected.counts(), projected.widths(), projected.normals_used(), 0, 0, 0,
           projected.outliers().set_aside, "tile by tile: " + tiles_text(tiles), projected.points_per_rank()};
 }
 
@@ -200,6 +201,7 @@ void run_project(const ProjectOptions& o) {
               (long long)c.not_converged, (long long)c.too_few_neighbours, (long long)c.degenerate_normal,
               (long long)run.set_aside);
   print_normals_turned(run.normals_turned, std::size_t(run.points));
+  print_file_normals_off(run.file_normals_off, std::size_t(run.points));
   print_file_normals_left_out(run.normals_without_direction, std::size_t(run.points));
 
   if (!o.compute.stats_path.empty()) {
@@ -216,6 +218,7 @@ void run_project(const ProjectOptions& o) {
     v["outliers_set_aside"] = run.set_aside;
     v["points_merged"] = run.widths.merged_count;
     v["normals_turned"] = run.normals_turned;
+    v["file_normals_off"] = run.file_normals_off;
     v["points_per_second"] = double(run.points) / projection_s;
     v["memory"] = {{"budget", plan.budget}, {"tiled", plan.tiled}};
     if (plan.tiled) v["memory"]["points_per_tile"] = plan.points_per_tile;

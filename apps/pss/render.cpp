@@ -92,6 +92,7 @@ void run_render(const RenderCloudOptions& o) {
               (long long)prepared.outliers().set_aside, params.projection.h,
               support_text(params.projection.support, prepared.widths()).c_str(), params.ball_radius, params.epsilon);
   print_normals_turned(prepared.normals_turned(), cloud.size());
+  print_file_normals_off(prepared.file_normals_off(), cloud.size());
   print_file_normals_left_out(file_normals_without_direction(cloud, o.surface), cloud.size());
 
   if (!o.render.compute.stats_path.empty()) {
@@ -102,6 +103,7 @@ void run_render(const RenderCloudOptions& o) {
     v["outliers_set_aside"] = prepared.outliers().set_aside;
     v["points_merged"] = prepared.widths().merged_count;
     v["normals_turned"] = prepared.normals_turned();
+    v["file_normals_off"] = prepared.file_normals_off();
     v["local_polynomials"] = prepared.locals().size();
     v["params"] = {{"h", params.projection.h}, {"rho", params.projection.rho}, {"b", params.ball_radius},
                    {"support", support_name(params.projection.support)},

@@ -190,6 +190,7 @@ py::object render(const py::handle& points, const py::dict& o) {
     stats.values()["outliers_set_aside"] = prepared.outliers().set_aside;
     stats.values()["points_merged"] = prepared.widths().merged_count;
     stats.values()["normals_turned"] = prepared.normals_turned();
+    stats.values()["file_normals_off"] = prepared.file_normals_off();
     stats.values()["params"] = {{"h", params.projection.h}, {"rho", params.projection.rho}, {"b", params.ball_radius},
                                 {"support", support_name(support)}, {"surface", surface_name(surface)},
                                 {"normals", normals_used_name(prepared.normals_used())},

@@ -106,6 +106,7 @@ CloudMesh mesh_cloud(const PointCloud& cloud, const MeshParams& params, Backend 
   // Every operator's mesh needs the samples' oriented normals: they say which side is out.
   const FileNormals file = file_normals(grid, cloud.normals, projection, stats);
   out.normals_turned = file.turned;
+  out.file_normals_off = file.off_the_points;
   grid.set_normals(sample_normals(grid, file, projection, backend, stats, out.normals));
 
   const GridMirror g(backend, grid);

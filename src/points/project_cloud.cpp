@@ -131,7 +131,7 @@ CloudProjection project_cloud(PointCloud input, const ProjectionParams& params, 
   SupportWidths widths;
   NormalsUsed normals_used = NormalsUsed::none;
   OutlierReport outliers;
-  std::size_t normals_turned = 0;
+  std::size_t normals_turned = 0, file_normals_off = 0;
   bool file_hints = false;  // the file's normals orient the projections
   bool orient_after = false;  // MLS's projections without them: orient_normals_consistently
   std::vector<int> sample_of;  // where samples were merged: orient_through_samples
@@ -147,6 +147,7 @@ CloudProjection project_cloud(PointCloud input, const ProjectionParams& params, 
     release(widths.merged);  // the grid holds the merged samples
     const FileNormals file = file_normals(grid, input.normals, unit_params, stats);
     normals_turned = file.turned;
+    file_normals_off = file.off_the_points;
     file_hints = !file.sorted.empty();
     orient_after = !file_hints && params.surface == SurfaceOperator::mls;
     if (!orient_after) release(widths.h);  // the orientation's supports, else the grid's alone
@@ -245,6 +246,7 @@ CloudProjection project_cloud(PointCloud input, const ProjectionParams& params, 
   for (const ProjectionStatus status : out.status) out.counts.add(status);
   out.normals = normals_used;
   out.normals_turned = normals_turned;
+  out.file_normals_off = file_normals_off;
   out.outliers = outliers;
   // APSS's and RIMLS's normals follow the samples' oriented ones already.
   if (orient_after) {

@@ -156,6 +156,7 @@ PreparedCloud::PreparedCloud(const PointCloud& cloud, const RayPssParams& params
       bvh_(std::span<const Aabb>{}) {
   const FileNormals file = file_normals(grid_, cloud.normals, params.projection, stats);
   normals_turned_ = file.turned;
+  file_normals_off_ = file.off_the_points;
   prepare_sample_normals(grid_, file, params.projection, backend, stats, normals_used_);
   {
     ScopedPhase phase(stats, "preprocess");

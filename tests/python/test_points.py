@@ -135,7 +135,7 @@ def test_a_noisy_clouds_samples_are_merged_as_by_the_cli(tmp_path):
 
 def test_surface_fits_the_given_normals_or_estimates_them():
     points = unit_sphere()
-    wrong = np.tile(np.float32([1, 0, 0]), (len(points), 1))
+    wrong = points + np.float32([0.5, 0, 0])  # up to 30 degrees off: they still follow the points
     off = lambda p: np.abs(np.linalg.norm(p, axis=1) - 1).mean()
     bias = 2 * pss.estimate_h(points) ** 4  # MLS's bound on a sphere (tests/projection_test.cpp)
     assert off(pss.project(points, normals=wrong, surface="apss")[0]) > 20 * bias
@@ -157,7 +157,16 @@ def test_a_flipped_half_of_the_given_normals_is_turned():
     _, _, stats = pss.render(points, normals=flipped, surface="rimls", size=(32, 32), full_output=True)
     assert stats["normals_turned"] == half > 100
     _, _, stats = pss.render(points, normals=points, surface="rimls", size=(32, 32), full_output=True)
-    assert stats["normals_turned"] == 0
+    assert stats["normals_turned"] == 0 and stats["file_normals_off"] == 0
+
+
+def test_given_normals_that_do_not_follow_the_points_are_left_out():
+    points = unit_sphere()
+    one_way = np.tile([1.0, 0.0, 0.0], (len(points), 1))  # 45 degrees or more off where |x| <= 0.707: 71 %
+    _, _, stats = pss.render(points, normals=one_way, surface="rimls", size=(32, 32), full_output=True)
+    off = int((np.abs(points[:, 0]) < 0.7071).sum())
+    assert stats["params"]["normals"] == "estimated"
+    assert abs(stats["file_normals_off"] - off) <= 0.01 * len(points) and off > len(points) / 2
 
 
 def test_borders_are_the_cli_s_and_extended_by_default(tmp_path):

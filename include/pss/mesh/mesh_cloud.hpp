@@ -47,6 +47,7 @@ struct CloudMesh {
   SupportWidths widths;  // least, median, largest h_i (h is not kept)
   NormalsUsed normals = NormalsUsed::none;  // the samples' oriented normals: the file's or estimated
   std::size_t normals_turned = 0;
+  std::size_t file_normals_off = 0;  // the file's off their neighbours' planes, where all were left out
   OutlierReport outliers;
   // Whether the normals' orientation, a guess (estimated: orient_normals.hpp; or the file's
   // with some turned), enclosed a negative volume, and the mesh was turned to face out.

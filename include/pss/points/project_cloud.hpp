@@ -35,6 +35,7 @@ struct CloudProjection {
   SupportWidths widths;  // least, median, largest h_i (h is not kept)
   NormalsUsed normals = NormalsUsed::none;  // the samples' normals APSS and RIMLS fitted
   std::size_t normals_turned = 0;           // the file's, contradicting the points (turn_flipped_normals.hpp)
+  std::size_t file_normals_off = 0;  // the file's off their neighbours' planes, where all were left out (FileNormals)
   OutlierReport outliers;  // the points that are not samples (points/outliers.hpp); projected all the same
 };
 

@@ -75,6 +75,8 @@ class PreparedCloud {
   NormalsUsed normals_used() const { return normals_used_; }  // the samples' normals, for APSS and RIMLS
   // The file's normals turned as contradicting the points (points/turn_flipped_normals.hpp).
   std::size_t normals_turned() const { return normals_turned_; }
+  // The file's off their neighbours' planes, where all were left out (sample_normals.hpp: FileNormals).
+  std::size_t file_normals_off() const { return file_normals_off_; }
   // The samples set aside as off the surface (points/outliers.hpp), none with OutlierPolicy::keep.
   const OutlierReport& outliers() const { return outliers_; }
   const Bvh& bvh() const { return bvh_; }
@@ -90,7 +92,7 @@ class PreparedCloud {
   std::vector<vec3> colors_;  // empty, or linear RGB in the grid's order
   std::int64_t left_out_ = 0;
   NormalsUsed normals_used_ = NormalsUsed::none;
-  std::size_t normals_turned_ = 0;
+  std::size_t normals_turned_ = 0, file_normals_off_ = 0;
   Bvh bvh_;
   struct DeviceCopy;
   mutable std::unique_ptr<DeviceCopy> device_;

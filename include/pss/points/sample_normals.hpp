@@ -27,12 +27,14 @@ inline bool has_direction(vec3 normal) {
 
 // The file's normals of the grid's samples, in its sorted order, unit length, those that
 // contradict the points turned (turn_flipped_normals.hpp); empty when params.normals is
-// NormalSource::estimate, the cloud has none (`input_normals` empty; in its input order) or
-// one has no direction (zero, not finite): a file that lies about some cannot be trusted
-// for any.
+// NormalSource::estimate, the cloud has none (`input_normals` empty; in its input order), one
+// has no direction (zero, not finite): a file that lies about some cannot be trusted for any,
+// or over a third lie more than 45° off their neighbours' plane (random normals, or one
+// direction for all): they do not follow the points.
 struct FileNormals {
   std::vector<vec3> sorted;
   std::size_t turned = 0;
+  std::size_t off_the_points = 0;  // where they were left out for that: how many samples' were off
 };
 FileNormals file_normals(const SupportGrid& grid, std::span<const vec3> input_normals, const ProjectionParams& params,
                          Stats& stats);
