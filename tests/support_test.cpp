@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <numeric>
 #include <random>
 
 #include "pss/core/error.hpp"
@@ -255,6 +256,58 @@ TEST(SupportGrid, RefusesWidthsThatAreNotPositiveOrMiscounted) {
   EXPECT_THROW(SupportGrid(points, std::vector<float>{1.0f, NAN}, 2.0f), Error);
   EXPECT_THROW(SupportGrid(points, std::vector<float>{1.0f}, 2.0f), Error);
   EXPECT_THROW(SupportGrid(points, std::vector<float>{1.0f, 1.0f}, 0.0f), Error);
+}
+
+// A tile's grid on the whole cloud's layout (spatial/support_layout.hpp): the samples of a box
+// and a halo as wide as the widest support, of widths over 16:1 (five levels), given in the
+// cloud's order, walk every query within the box in the whole grid's order, sample for
+// sample, and so every sum over them rounds alike. A grid of the same samples on a layout of
+// their own walks them otherwise. Samples outside the layout's least width are refused.
+TEST(SupportGrid, ATilesGridOnTheCloudsLayoutWalksQueriesAsTheCloudsGrid) {
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f), w(0.01f, 0.17f);
+  std::vector<vec3> points(20000);
+  std::vector<float> h(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    points[i] = vec3(u(rng), u(rng), 0.3f * u(rng));
+    h[i] = w(rng);
+  }
+  const float kappa = 2;
+  std::vector<int> all(points.size());
+  std::iota(all.begin(), all.end(), 0);
+  const SupportGrid whole(points, h, all, kappa);
+  ASSERT_GE(whole.levels(), 4);
+  SupportTally tally;
+  tally.least = *std::min_element(h.begin(), h.end());
+  for (std::size_t i = 0; i < points.size(); ++i) tally.add(points[i], h[i]);
+  const SupportLayout layout = support_layout(tally, kappa);
+  const Aabb box{vec3(-0.13f, 0.21f, -0.3f), vec3(0.37f, 0.64f, 0.3f)};
+  const float halo = kappa * 0.17f;
+  std::vector<int> tile;  // ascending: the cloud's order
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const vec3 p = glm::clamp(points[i], box.lo, box.hi);
+    if (glm::length(points[i] - p) <= halo) tile.push_back(int(i));
+  }
+  const SupportGrid part(points, h, tile, layout);
+  const SupportGrid own(points, h, tile, kappa);
+  const auto walk = [&](const SupportGrid& grid, vec3 c) {
+    std::vector<int> order;
+    grid.view().for_each_covering(c, [&](vec3, float, int i) { order.push_back(grid.original_index()[std::size_t(i)]); });
+    return order;
+  };
+  std::size_t walked = 0, otherwise = 0;
+  for (int q = 0; q < 300; ++q) {
+    const vec3 c = box.lo + (box.hi - box.lo) * (0.5f + 0.5f * vec3(u(rng), u(rng), u(rng)));
+    const std::vector<int> expected = walk(whole, c);
+    EXPECT_EQ(walk(part, c), expected) << q;
+    otherwise += walk(own, c) != expected;
+    walked += expected.size();
+  }
+  EXPECT_GT(walked, 300u * 20);
+  EXPECT_GT(otherwise, 100u) << "a grid of its own walks as the whole cloud's: the test tells nothing";
+  std::vector<float> narrower = h;
+  narrower[std::size_t(tile[0])] = 0.5f * tally.least;
+  EXPECT_THROW(SupportGrid(points, narrower, tile, layout), Error);
 }
 
 }  // namespace

@@ -75,7 +75,12 @@ TEST(TileWork, ARequestCutShortOrOfNoStepIsAnError) {
   const std::vector<vec3> unit = {{0, 0, 0}, {0.01f, 0, 0}, {0, 0.01f, 0}, {0.01f, 0.01f, 0.001f}};
   const std::vector<float> h(unit.size(), 0.01f);
   const std::vector<int> samples = {0, 1, 2, 3};
-  const UnitTile tile{unit, h, samples, 2};
+  SupportTally tally;
+  tally.least = 0.01f;
+  for (const vec3& p : unit) tally.add(p, 0.01f);
+  const SupportLayout layout = support_layout(tally, 2);
+  const UnitTile tile{unit, h, samples, 2, {}, {}, {}, &layout};
+  EXPECT_THROW(outliers_request(UnitTile{unit, h, samples, 2}, 2), Error) << "no layout";
   const std::vector<std::byte> outliers = outliers_request(tile, 2);
   const std::vector<std::byte> projection = projection_request(tile, 2, ProjectionParams::from_h(0.01f), Backend::cpu);
   const std::vector<vec3> normals(unit.size(), vec3(0, 0, 1));
@@ -85,7 +90,7 @@ TEST(TileWork, ARequestCutShortOrOfNoStepIsAnError) {
   EXPECT_EQ(outliers_result(tile_work(TileStep::outliers, outliers)).distance.size(), 2u);
   // Merged samples: a cube's first point out of the set is refused, not followed.
   const std::vector<int> into = {0, 0, 2, 9};
-  const UnitTile merged{unit, h, samples, 2, unit, into};
+  const UnitTile merged{unit, h, samples, 2, unit, into, {}, &layout};
   EXPECT_THROW(tile_work(TileStep::outliers, outliers_request(merged, 2)), Error);
   EXPECT_EQ(projection_result(tile_work(TileStep::projection, projection)).projected.size(), 2u);
   EXPECT_EQ(orientation_result(tile_work(TileStep::orientation, orientation), 4).parts.of_point.size(), 4u);

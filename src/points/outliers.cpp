@@ -106,10 +106,11 @@ SupportGrid grid_of_samples(std::span<const vec3> points, std::span<const float>
     const std::span<const int> original = grid->original_index();
     const auto kept = std::size_t(std::count(keep.begin(), keep.end(), char(1)));
     if (kept == keep.size()) break;
-    std::vector<int> input_index;  // the kept, in the old grid's order: ties go as they went
+    std::vector<int> input_index;  // the kept, in the cloud's order: ties within a cell go by it, as in tiles
     input_index.reserve(kept);
     for (std::size_t k = 0; k < keep.size(); ++k)
       if (keep[k]) input_index.push_back(original[k]);
+    std::sort(input_index.begin(), input_index.end());
     report.set_aside += std::int64_t(keep.size() - kept);
     grid.reset();  // before the next is built: two grids at once were the phase's peak (issue 28)
     grid = std::make_unique<SupportGrid>(points, h, input_index, kappa);

@@ -127,8 +127,15 @@ CloudProjection project_cloud(PointCloud input, const ProjectionParams& params, 
   out.cloud.scalars = std::move(input.scalars);
   std::vector<vec3>& positions = out.cloud.positions;
   positions = std::move(input.positions);
-  for (vec3& p : positions) p = frame.to_unit(p);
+  // The widths of the points as read, then taken to the unit frame, as tile by tile
+  // (tiles/support.hpp), so that both get them to the last bit.
   SupportWidths widths;
+  {
+    ScopedPhase phase(stats, "support widths", params.support == Support::global);  // else its Progress shows it
+    widths = support_widths(positions, params);
+  }
+  for (float& w : widths.h) w = float(double(w) / frame.scale);
+  for (vec3& p : positions) p = frame.to_unit(p);
   NormalsUsed normals_used = NormalsUsed::none;
   OutlierReport outliers;
   std::size_t normals_turned = 0, file_normals_off = 0;
@@ -136,10 +143,6 @@ CloudProjection project_cloud(PointCloud input, const ProjectionParams& params, 
   bool orient_after = false;  // MLS's projections without them: orient_normals_consistently
   std::vector<int> sample_of;  // where samples were merged: orient_through_samples
   {  // what the projection needs, freed before the orientation
-    {
-      ScopedPhase phase(stats, "support widths", params.support == Support::global);  // else its Progress shows it
-      widths = support_widths(positions, unit_params);
-    }
     ScopedPhase phase(stats, "spatial index");
     SupportGrid grid =
         grid_of_samples(positions, widths.h, widths.merged, unit_params.rho / unit_params.h, params.outliers, backend, stats, outliers);
@@ -239,9 +242,9 @@ CloudProjection project_cloud(PointCloud input, const ProjectionParams& params, 
       project(other.data(), file_hints ? other_hint.data() : nullptr, other_count, other_index, false);
     }
   }
-  out.widths.least = float(widths.least * frame.scale);
-  out.widths.median = float(widths.median * frame.scale);
-  out.widths.largest = float(widths.largest * frame.scale);
+  out.widths.least = widths.least;  // as read
+  out.widths.median = widths.median;
+  out.widths.largest = widths.largest;
   out.widths.merged_count = widths.merged_count;
   for (const ProjectionStatus status : out.status) out.counts.add(status);
   out.normals = normals_used;

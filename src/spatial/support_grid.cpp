@@ -10,59 +10,97 @@
 
 namespace pss {
 
+namespace {
+
+void check_widths(std::span<const vec3> points, std::span<const float> h, float kappa) {
+  if (h.size() != points.size()) throw Error("support grid: one width per point is needed");
+  if (!(kappa > 0) || !std::isfinite(kappa)) throw Error("support grid: rho/h must be a positive number");
+}
+
+}  // namespace
+
 SupportGrid::SupportGrid(std::span<const vec3> points, std::span<const float> h, float kappa, long long max_cells) {
-  build(points, h, points.size(), [](std::size_t i) { return i; }, kappa, max_cells);
+  check_widths(points, h, kappa);
+  const auto index = [](std::size_t i) { return i; };
+  build(points, h, points.size(), index, support_layout(tally(points, h, points.size(), index), kappa, max_cells), false);
 }
 
 SupportGrid::SupportGrid(std::span<const vec3> points, std::span<const float> h, std::span<const int> subset,
                          float kappa, long long max_cells) {
+  check_widths(points, h, kappa);
+  check_subset(points, subset);
+  const auto index = [&](std::size_t s) { return std::size_t(subset[s]); };
+  build(points, h, subset.size(), index, support_layout(tally(points, h, subset.size(), index), kappa, max_cells), false);
+}
+
+SupportGrid::SupportGrid(std::span<const vec3> points, std::span<const float> h, std::span<const int> subset,
+                         const SupportLayout& layout) {
+  check_widths(points, h, layout.kappa);
+  check_subset(points, subset);
+  for (const int i : subset)
+    if (!(h[std::size_t(i)] >= layout.least) || !std::isfinite(h[std::size_t(i)]))
+      throw Error("support grid: a width lies outside the layout's");
+  build(points, h, subset.size(), [&](std::size_t s) { return std::size_t(subset[s]); }, layout, true);
+}
+
+void SupportGrid::check_subset(std::span<const vec3> points, std::span<const int> subset) {
   for (int i : subset)
     if (i < 0 || std::size_t(i) >= points.size()) throw Error("support grid: a subset index is out of range");
-  build(points, h, subset.size(), [&](std::size_t s) { return std::size_t(subset[s]); }, kappa, max_cells);
+}
+
+template <class Index>
+SupportTally SupportGrid::tally(std::span<const vec3> points, std::span<const float> h, std::size_t count, Index index) {
+  SupportTally t;
+  t.least = kInfinity;
+  for (std::size_t s = 0; s < count; ++s) {
+    const float w = h[index(s)];
+    if (!(w > 0) || !std::isfinite(w)) throw Error("support grid: every width h must be a positive number");
+    t.least = std::min(t.least, w);
+  }
+  for (std::size_t s = 0; s < count; ++s) t.add(points[index(s)], h[index(s)]);
+  return t;
 }
 
 template <class Index>
 void SupportGrid::build(std::span<const vec3> points, std::span<const float> h, std::size_t count, Index index,
-                        float kappa, long long max_cells) {
-  if (h.size() != points.size()) throw Error("support grid: one width per point is needed");
-  if (!(kappa > 0) || !std::isfinite(kappa)) throw Error("support grid: rho/h must be a positive number");
-  float least = kInfinity;
-  for (std::size_t s = 0; s < count; ++s) {
-    const float w = h[index(s)];
-    if (!(w > 0) || !std::isfinite(w)) throw Error("support grid: every width h must be a positive number");
-    least = std::min(least, w);
-  }
-  // Level l holds widths in [2^l, 2^(l+1))·least; the last level takes every wider one.
-  constexpr int L = SupportGridView::kMaxLevels;
-  auto level_of = [&](float w) { return std::clamp(int(std::floor(std::log2(double(w) / double(least)))), 0, L - 1); };
+                        const SupportLayout& layout, bool part) {
+  // Each level's cells: the layout's lattice whole, or where `part`, the part of it that
+  // the samples here occupy (a tile's grid of the whole cloud's cells).
+  kappa_ = layout.kappa;
+  std::array<int, kSupportLevels> level_at{};  // the level's index in levels_; -1 for an empty one
+  std::array<ivec3, kSupportLevels> lo, hi;
+  lo.fill(ivec3(std::numeric_limits<int>::max()));
+  hi.fill(ivec3(std::numeric_limits<int>::min()));
   std::vector<unsigned char> level(count);
-  std::array<Aabb, L> box;
-  std::array<float, L> widest{};
-  std::array<long long, L> members{};
   for (std::size_t s = 0; s < count; ++s) {
     const std::size_t i = index(s);
-    const int l = level_of(h[i]);
+    const int l = support_level(h[i], layout.least);
     level[s] = (unsigned char)l;
-    box[l].grow(points[i]);
-    widest[l] = std::max(widest[l], h[i]);
-    ++members[l];
+    if (!part) continue;
+    const ivec3 c = layout.shape[std::size_t(l)].cell_of(points[i]);
+    lo[std::size_t(l)] = glm::min(lo[std::size_t(l)], c);
+    hi[std::size_t(l)] = glm::max(hi[std::size_t(l)], c);
   }
-  // Each level a uniform grid; one counting sort over every level's cells, one after another,
-  // sorts the samples by level, then by cell, then by their order here.
-  kappa_ = kappa;
-  std::array<int, L> level_at{};  // the level's index in levels_; -1 for an empty one
   std::size_t cells = 0;
-  for (int l = 0; l < L; ++l) {
+  for (std::size_t l = 0; l < kSupportLevels; ++l) {
     level_at[l] = -1;
-    if (members[l] == 0 && !(count == 0 && l == 0)) continue;  // an empty cloud keeps one empty level
-    const float radius = widest[l] > 0 ? kappa * widest[l] : 1.0f;
-    // Far more cells than samples is memory for nothing: a level of few wide samples (the
-    // sparse part of a cloud, a box stretched by a stray point) gets cells to match.
-    const GridView shape = grid_shape(box[l], 0.5f * radius, std::min(std::max(32 * members[l], 4096ll), max_cells));
+    if (!(layout.radius[l] > 0)) continue;
+    GridView shape = layout.shape[l];
+    if (part) {
+      if (lo[l].x > hi[l].x) continue;  // no sample of the set on this level
+      shape.first = lo[l];
+      shape.dims = hi[l] - lo[l] + 1;
+    }
     level_at[l] = int(levels_.size());
-    levels_.push_back({shape, radius});
+    levels_.push_back({shape, layout.radius[l]});
     level_offset_.push_back(int(cells));
     cells += std::size_t(shape.dims.x) * shape.dims.y * shape.dims.z;
+  }
+  if (levels_.empty()) {  // a set of no samples: one empty level
+    levels_.push_back({layout.shape[0], 1.0f});
+    level_offset_.push_back(0);
+    cells = 1;
+    levels_[0].grid.dims = ivec3(1);
   }
   if (cells >= std::size_t(std::numeric_limits<int>::max())) throw Error("support grid: too many cells");
   {

@@ -29,6 +29,7 @@ struct UnitSet {
   std::vector<vec3> sample_at;  // where samples were merged: UnitTile's
   std::vector<int> into;
   std::vector<vec3> normals;  // the samples' oriented ones, for APSS and RIMLS: UnitTile's
+  const SupportLayout* layout = nullptr;  // UnitTile's
 };
 
 // The set's merged samples, as in core (merged_samples.hpp): each cube's points summed in the
@@ -76,7 +77,43 @@ UnitSet load_unit(const TiledCloud& cloud, int tile, double halo, const UnitFram
   if (!merge.empty()) merge_in_set(s, merge);
   for (std::size_t i = 0; i < m; ++i)
     if (kept[std::size_t(s.points.index[i])] && (s.into.empty() || s.into[i] == int(i))) s.samples.push_back(int(i));
+  // In the cloud's order, as in core: ties within a grid's cell go by it (support_grid.hpp).
+  const auto in_cloud_order = [&](int a, int b) { return s.points.index[std::size_t(a)] < s.points.index[std::size_t(b)]; };
+  std::sort(s.samples.begin(), s.samples.end(), in_cloud_order);
   return s;
+}
+
+// The places the grid is built of: where samples merged, each cube's first point at its mean.
+const std::vector<vec3>& grid_places(const UnitSet& s) { return s.sample_at.empty() ? s.unit : s.sample_at; }
+
+// The whole cloud's layout of the samples `kept` (spatial/support_layout.hpp), the same as the
+// in-core grid of those samples finds: tallied over each tile's own samples at their places
+// in the grid (a merged one at its cube's mean, whole with merge_halo's halo; without merged
+// samples no halo is read), their least width first.
+SupportLayout layout_in_tiles(const TiledCloud& cloud, const UnitFrame& frame, const std::vector<float>& h,
+                              const std::vector<char>& kept, std::span<const char> merge, float kappa, double halo) {
+  const std::vector<int> tiles = cloud.tiles_with_points();
+  const double read_halo = merge.empty() ? 0.0 : halo;
+  const auto own_samples_of = [&](int t, const auto& f) {
+    const UnitSet set = load_unit(cloud, t, world_halo(read_halo, frame), frame, h, kept, merge);
+    for (const int i : set.samples)
+      if (std::size_t(i) < set.points.own) f(grid_places(set)[std::size_t(i)], set.h[std::size_t(i)]);
+  };
+  SupportTally tally;
+  tally.least = kInfinity;
+  if (merge.empty()) {
+    for (std::size_t i = 0; i < h.size(); ++i)
+      if (kept[i]) tally.least = std::min(tally.least, h[i]);
+  } else {
+    for (const int t : tiles) own_samples_of(t, [&](vec3, float w) { tally.least = std::min(tally.least, w); });
+  }
+  for (const int t : tiles) {
+    SupportTally own;
+    own.least = tally.least;
+    own_samples_of(t, [&](vec3 p, float w) { own.add(p, w); });
+    tally.add(own);
+  }
+  return support_layout(tally, kappa);
 }
 
 // The point whose sample each own point of the set joined (Projected::sample).
@@ -90,7 +127,7 @@ std::vector<std::uint64_t> own_samples(const UnitSet& s, const std::vector<char>
 }
 
 UnitTile unit_tile(const UnitSet& set) {
-  return {set.unit, set.h, set.samples, set.points.own, set.sample_at, set.into, set.normals};
+  return {set.unit, set.h, set.samples, set.points.own, set.sample_at, set.into, set.normals, set.layout};
 }
 
 // The unit halo that holds every sample within `reach` of a tile and, where samples merge,
@@ -107,13 +144,16 @@ double merge_halo(double reach, std::span<const float> h, std::span<const char> 
 // The outliers' passes (points/outliers.hpp): each sample's distance in its tile, then the
 // threshold over the whole cloud's, weighing merged samples by their masses as in core; whether
 // each point is kept as a sample (for a merged point, its cube's first point's: load_unit).
+// Each pass's grids take the layout of the samples it starts with, as in core; `layout`
+// comes back that of the samples kept.
 std::vector<char> samples_kept(const TiledCloud& cloud, const UnitFrame& frame, const std::vector<float>& h,
                                std::span<const char> merge, float kappa, double halo, TileFarm& farm,
-                               OutlierReport& report) {
+                               OutlierReport& report, SupportLayout& layout) {
   const std::uint64_t n = cloud.size();
   const std::vector<int> tiles = cloud.tiles_with_points();
   std::vector<char> kept(std::size_t(n), 1);
   for (int pass = 0; pass < kOutlierPasses; ++pass) {
+    if (pass > 0) layout = layout_in_tiles(cloud, frame, h, kept, merge, kappa, halo);
     std::vector<float> distance(std::size_t(n), std::numeric_limits<float>::quiet_NaN());
     std::vector<float> mass(merge.empty() ? 0 : std::size_t(n), 0.0f);
     std::vector<float> held(std::size_t(n), std::numeric_limits<float>::quiet_NaN());
@@ -121,7 +161,8 @@ std::vector<char> samples_kept(const TiledCloud& cloud, const UnitFrame& frame, 
     farm.run(
         TileStep::outliers, tiles,
         [&](int t) {
-          const UnitSet set = load_unit(cloud, t, world_halo(halo, frame), frame, h, kept, merge);
+          UnitSet set = load_unit(cloud, t, world_halo(halo, frame), frame, h, kept, merge);
+          set.layout = &layout;
           return TileRequest{outliers_request(unit_tile(set), kappa), own_points_notes(set.points)};
         },
         [&](int, std::span<const std::byte> result, std::span<const std::byte> notes, int) {
@@ -148,6 +189,7 @@ std::vector<char> samples_kept(const TiledCloud& cloud, const UnitFrame& frame, 
       }
     report.set_aside += set_aside;
     if (set_aside == 0) break;
+    if (pass + 1 == kOutlierPasses) layout = layout_in_tiles(cloud, frame, h, kept, merge, kappa, halo);
   }
   return kept;
 }
@@ -165,7 +207,12 @@ struct UnitSets {
   std::span<const char> merge;
   double reach;  // unit: the widest ρ_i
   double halo;   // unit: merge_halo's
-  UnitSet load(int tile) const { return load_unit(cloud, tile, world_halo(halo, frame), frame, h, kept, merge); }
+  const SupportLayout& layout;  // of the samples kept
+  UnitSet load(int tile) const {
+    UnitSet set = load_unit(cloud, tile, world_halo(halo, frame), frame, h, kept, merge);
+    set.layout = &layout;
+    return set;
+  }
 };
 
 // APSS's and RIMLS's samples' normals (points/sample_normals.hpp) tile by tile, as in core:
@@ -277,14 +324,19 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
   const double halo = merge_halo(reach, h, merge);
 
   std::vector<char> kept(std::size_t(n), 1);
+  SupportLayout layout;  // of the samples, as the in-core grid's (spatial/support_layout.hpp)
+  {
+    ScopedPhase phase(stats, "support layout");
+    layout = layout_in_tiles(cloud, frame_, h, kept, merge, kappa, halo);
+  }
   if (params.outliers == OutlierPolicy::set_aside) {
     ScopedPhase phase(stats, "outliers", false);  // its Progress shows it
-    kept = samples_kept(cloud, frame_, h, merge, kappa, halo, farm, outliers_);
+    kept = samples_kept(cloud, frame_, h, merge, kappa, halo, farm, outliers_, layout);
   }
 
   // APSS and RIMLS fit the samples' normals, estimated and oriented first, as in core; their
   // projections' normals follow those, so they need no orientation of their own.
-  const UnitSets sets{cloud, frame_, h, kept, merge, reach, halo};  // N(r) of each point
+  const UnitSets sets{cloud, frame_, h, kept, merge, reach, halo, layout};  // N(r) of each point
   const bool fits_normals = params.surface != SurfaceOperator::mls;
   OrientedInTiles samples;
   if (fits_normals) {

@@ -32,7 +32,8 @@ std::vector<std::uint64_t> own_points(std::span<const std::byte> notes) {
 namespace {
 
 void put_tile(ByteWriter& out, const UnitTile& tile, float kappa) {
-  out.put(kappa);
+  if (tile.layout == nullptr || tile.layout->kappa != kappa) throw Error("a tile's work needs the cloud's layout");
+  out.put(*tile.layout);
   out.put(std::uint64_t(tile.own));
   out.put_array(tile.unit);
   out.put_array(tile.h);
@@ -43,7 +44,7 @@ void put_tile(ByteWriter& out, const UnitTile& tile, float kappa) {
 }
 
 struct TileArrays {
-  float kappa;
+  SupportLayout layout;
   std::size_t own;
   std::vector<vec3> unit;
   std::vector<float> h;
@@ -54,7 +55,7 @@ struct TileArrays {
 };
 
 TileArrays get_tile(ByteReader& in) {
-  TileArrays t{in.get<float>(),        std::size_t(in.get<std::uint64_t>()), in.get_array<vec3>(), in.get_array<float>(),
+  TileArrays t{in.get<SupportLayout>(), std::size_t(in.get<std::uint64_t>()), in.get_array<vec3>(), in.get_array<float>(),
                in.get_array<int>(),    in.get_array<vec3>(),                 in.get_array<int>(),
                in.get_array<vec3>()};
   // SupportGrid refuses a sample outside the set; set_members trusts its cubes' first points.
@@ -69,7 +70,7 @@ TileArrays get_tile(ByteReader& in) {
 // The grid of the tile's samples, merged ones at their cubes' means with their masses, with
 // their normals where the surface fits them.
 SupportGrid grid_of_tile(const TileArrays& t) {
-  SupportGrid grid(t.sample_at.empty() ? t.unit : t.sample_at, t.h, t.samples, t.kappa);
+  SupportGrid grid(t.sample_at.empty() ? t.unit : t.sample_at, t.h, t.samples, t.layout);
   grid.set_members(t.into);
   if (!t.normals.empty()) grid.set_normals(gathered<vec3>(t.normals, grid.original_index()));
   return grid;

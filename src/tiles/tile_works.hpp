@@ -13,6 +13,7 @@
 #include "pss/points/orient_normals.hpp"
 #include "pss/points/project_points.hpp"
 #include "pss/points/support_steps.hpp"
+#include "pss/spatial/support_layout.hpp"
 
 namespace pss {
 
@@ -34,6 +35,9 @@ struct UnitTile {
   // The samples' oriented normals that APSS and RIMLS fit (points/sample_normals.hpp), as
   // long as `unit` (a point that is no sample: any), or empty for MLS.
   std::span<const vec3> normals;
+  // The whole cloud's cells (spatial/support_layout.hpp), which the tile's grid takes a part
+  // of, so that its sums run as in core; `samples` ascending in the cloud's order.
+  const SupportLayout* layout = nullptr;
 };
 
 // The outliers' distance (points/outliers.hpp) of each own sample of the tile.

@@ -10,6 +10,7 @@
 #include <span>
 #include <vector>
 
+#include "pss/spatial/support_layout.hpp"
 #include "pss/spatial/uniform_grid.hpp"
 
 namespace pss {
@@ -25,7 +26,7 @@ struct SupportLevel {
 // the backend's memory), so that the view stays a few words however many levels there are
 // (a kernel's by-value views that a thread takes the address of are copied to its stack).
 struct SupportGridView {
-  static constexpr int kMaxLevels = 8;
+  static constexpr int kMaxLevels = kSupportLevels;
 
   const vec3* points = nullptr;   // sorted by level, then by cell
   const float* inv_h2 = nullptr;  // 1/h_i² of each sorted sample
@@ -84,6 +85,13 @@ class SupportGrid {
   // original_index() counts in `points`.
   SupportGrid(std::span<const vec3> points, std::span<const float> h, std::span<const int> subset, float kappa,
               long long max_cells = 1ll << 25);
+  // The same on a given layout (a tile's samples on the whole cloud's, support_layout.hpp):
+  // each level the part of the layout's lattice its samples occupy; every width at least the
+  // layout's least. A query that every sample covering it is among these (a tile's halo)
+  // walks them in the whole cloud's grid's order, where ties within a cell go by their order
+  // in `subset` there as here.
+  SupportGrid(std::span<const vec3> points, std::span<const float> h, std::span<const int> subset,
+              const SupportLayout& layout);
 
   SupportGrid(const SupportGrid&) = delete;  // the levels point into the arrays
   SupportGrid& operator=(const SupportGrid&) = delete;
@@ -120,9 +128,12 @@ class SupportGrid {
   std::vector<int> cell_order(std::span<const vec3> points) const;
 
  private:
+  static void check_subset(std::span<const vec3> points, std::span<const int> subset);
   template <class Index>
-  void build(std::span<const vec3> points, std::span<const float> h, std::size_t count, Index index, float kappa,
-             long long max_cells);
+  static SupportTally tally(std::span<const vec3> points, std::span<const float> h, std::size_t count, Index index);
+  template <class Index>
+  void build(std::span<const vec3> points, std::span<const float> h, std::size_t count, Index index,
+             const SupportLayout& layout, bool part);
 
   std::vector<vec3> sorted_;
   std::vector<float> inv_h2_;

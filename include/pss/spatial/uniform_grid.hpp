@@ -17,11 +17,15 @@ struct GridView {
   vec3 origin{0.0f};
   float inv_cell = 1.0f;
   ivec3 dims{1};
+  // The grid's first cell on a lattice of cells from `origin` (a part of a larger grid: a
+  // tile's of the whole cloud's, spatial/support_layout.hpp); cells are counted from it, so
+  // a point falls in the cell it falls in on the whole lattice, rounded alike.
+  ivec3 first{0};
 
   PSS_HOST_DEVICE ivec3 cell_of(vec3 p) const {
     const vec3 c = (p - origin) * inv_cell;
-    return ivec3(clamp(int(floor(c.x)), 0, dims.x - 1), clamp(int(floor(c.y)), 0, dims.y - 1),
-                 clamp(int(floor(c.z)), 0, dims.z - 1));
+    return ivec3(clamp(int(floor(c.x)) - first.x, 0, dims.x - 1), clamp(int(floor(c.y)) - first.y, 0, dims.y - 1),
+                 clamp(int(floor(c.z)) - first.z, 0, dims.z - 1));
   }
 
   // The cell's index in cell_start: rows along x, then y, then z.

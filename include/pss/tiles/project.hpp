@@ -1,12 +1,13 @@
 // `pss project` tile by tile (issue 28): a cloud on disk (TiledCloud) projected onto its PSS
-// within a memory budget, with project_cloud's result (points/project_cloud.hpp) to the
-// rounding of sums taken in another order. Each step runs over the tiles, each tile with a
-// halo as wide as the step reads: the widths (tiles/support.hpp), the outliers' passes, for
-// APSS and RIMLS the samples' normals and their orientation, the projections, and for MLS the
-// orientation of their normals; the tiles agree on the normals' signs where their halos
-// overlap (tiles/orient.hpp). Every step's tiles may be spread over processes
-// (tiles/farm.hpp). The results wait in scratch files and come back in
-// the cloud's order, a window at a time.
+// within a memory budget, with project_cloud's result (points/project_cloud.hpp) to the last
+// bit: every tile's grid takes the whole cloud's cells (spatial/support_layout.hpp), so its
+// sums run in the in-core order; only strays' normals' signs may differ. Each step runs over
+// the tiles, each tile with a halo as wide as the step reads: the widths (tiles/support.hpp),
+// the outliers' passes, for APSS and RIMLS the samples' normals and their orientation, the
+// projections, and for MLS the orientation of their normals; the tiles agree on the normals'
+// signs where their halos overlap (tiles/orient.hpp). Every step's tiles may be spread over
+// processes (tiles/farm.hpp). The results wait in scratch files and come back in the cloud's
+// order, a window at a time.
 #pragma once
 
 #include <cstdint>
