@@ -331,11 +331,28 @@ TEST_F(PlyTest, NormalsAreNormalisedAndZeroOnesKept) {
   EXPECT_NEAR(cloud.normals[2].y, 0.8f, 1e-7f);
 }
 
-TEST_F(PlyTest, OneNonFiniteNormalDropsAllNormals) {
+// A non-finite normal (PCL writes NaN where it fitted none) has no direction, as a zero one:
+// the file's normals are then left out and estimated, and the summaries say so.
+TEST_F(PlyTest, ANonFiniteNormalHasNoDirection) {
   const PointCloud cloud =
-      pss::read_ply(write("n.ply", ply_with_normals("0 0 0 0 0 1\n1 1 1 nan 0 1\n", 2)));
-  EXPECT_EQ(cloud.size(), 2u);
-  EXPECT_FALSE(cloud.has_normals());
+      pss::read_ply(write("n.ply", ply_with_normals("0 0 0 0 0 1\n1 1 1 nan 0 1\n2 2 2 0 inf 0\n", 3)));
+  ASSERT_EQ(cloud.normals.size(), 3u);
+  EXPECT_EQ(cloud.normals[0], vec3(0, 0, 1));
+  EXPECT_EQ(cloud.normals[1], vec3(0.0f));
+  EXPECT_EQ(cloud.normals[2], vec3(0.0f));
+}
+
+// PCL's PLY writer names the normals normal_x normal_y normal_z: they are the normals, not
+// scalars carried through.
+TEST_F(PlyTest, PclsNormalNamesAreNormals) {
+  const PointCloud cloud = pss::read_ply(write(
+      "n.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
+               "property float normal_x\nproperty float normal_y\nproperty float normal_z\nproperty float curvature\n"
+               "end_header\n1 2 3 0 0.6 0.8 0.01\n"));
+  ASSERT_TRUE(cloud.has_normals());
+  EXPECT_EQ(cloud.normals.at(0), vec3(0, 0.6f, 0.8f));
+  ASSERT_EQ(cloud.scalars.size(), 1u);
+  EXPECT_EQ(cloud.scalars[0].name, "curvature");
 }
 
 TEST_F(PlyTest, IncompleteNormalsAreIgnored) {

@@ -88,6 +88,19 @@ TEST_F(TiledCloudTest, TheScratchFileGoesWithTheTilesAndACloudWithoutNormalsHasN
     EXPECT_EQ(entry.path().filename().string().find(".pss-scratch"), std::string::npos) << entry.path();
 }
 
+// Normals of which one has no direction (zero, or NaN as PCL writes where it fitted none) are
+// left out in core (all estimated, points/sample_normals.hpp): tiles take the cloud as
+// having none.
+TEST_F(TiledCloudTest, NormalsOneOfWhichHasNoDirectionAreNone) {
+  for (const char* odd : {"0 0 0", "nan 0 1", "0 inf 0"}) {
+    SCOPED_TRACE(odd);
+    const std::string file =
+        write("n.xyz", std::string("0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 ") + odd + "\n1 1 1 0 0 1\n");
+    EXPECT_FALSE(TiledCloud(file, dir_, 1, 1024).has_normals());
+  }
+  EXPECT_TRUE(TiledCloud(write("d.xyz", "0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 2\n"), dir_, 1, 1024).has_normals());
+}
+
 // Tiles for one point each of 20,000 filling a cube would be 142³: their number is capped.
 TEST_F(TiledCloudTest, TheTilesNumberAtMost65536) {
   std::string text;

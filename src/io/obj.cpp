@@ -75,7 +75,7 @@ PointCloud read_obj(const std::filesystem::path& path) {
       if (words.size() != 4) throw fail("expected 'vn x y z', found " + std::to_string(words.size() - 1) + " numbers");
       double n[3];
       numbers(n);
-      normals.emplace_back(glm::dvec3(n[0], n[1], n[2]));  // a non-finite one drops them all (tidy_normals)
+      normals.emplace_back(glm::dvec3(n[0], n[1], n[2]));  // a non-finite one has no direction (tidy_normals)
     } else if (words[0] == "f") {
       cloud.mesh_vertices = true;
       for (std::size_t i = 1; i < words.size(); ++i) {

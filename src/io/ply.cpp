@@ -269,9 +269,11 @@ constexpr int kNormal = 3, kColor = 6, kSlots = 9;
 // should not make every output record carry them.
 constexpr std::size_t kMaxScalars = 64;
 
+// Also PCL's normal_x normal_y normal_z, and MeshLab's older diffuse_red ...
 bool names_slot(std::string_view name, int k) {
-  return name == kVertexNames[k] ||
-         (k >= kColor && name.starts_with("diffuse_") && name.substr(8) == kVertexNames[k]);
+  if (name == kVertexNames[k]) return true;
+  if (k >= kColor) return name.starts_with("diffuse_") && name.substr(8) == kVertexNames[k];
+  return k >= kNormal && name.starts_with("normal_") && name.size() == 8 && name[7] == "xyz"[k - kNormal];
 }
 
 // Which slot each vertex property fills (-1: skipped). Normals and colours count only when

@@ -62,12 +62,7 @@ void write_point_cloud(const std::filesystem::path& path, const PointCloud& clou
 }
 
 void tidy_normals(PointCloud& cloud) {
-  if (!std::all_of(cloud.normals.begin(), cloud.normals.end(),
-                   [](vec3 n) { return is_finite(n); })) {
-    cloud.normals.clear();
-    return;
-  }
-  for (vec3& n : cloud.normals) n = tidy_normal(n);
+  for (vec3& n : cloud.normals) n = is_finite(n) ? tidy_normal(n) : vec3(0.0f);
 }
 
 vec3 tidy_normal(vec3 n) {

@@ -37,10 +37,11 @@ double distance_to_box(vec3 p, const Aabb& box) {
 
 TiledCloud::TiledCloud(const std::filesystem::path& input, const std::filesystem::path& folder,
                        std::uint64_t points_per_tile, std::size_t buffer_bytes) {
-  // Pass 1: the count, the box, whether the normals are usable (tidy_normals).
+  // Pass 1: the count, the box, whether the normals are usable: every one with a direction
+  // (in core, one without makes all left out and estimated: sample_normals.hpp).
   glm::dvec3 lo(0.0), hi(0.0);
   BulkSample sample;  // the in-core reader's (cloud.hpp: bulk_origin)
-  bool any_normals = false, finite_normals = true;
+  bool any_normals = false, directed_normals = true;
   {
     const auto stream = open_point_stream(input);
     // A text file declares no count: its first reading shows none.
@@ -58,13 +59,13 @@ TiledCloud::TiledCloud(const std::filesystem::path& input, const std::filesystem
       }
       any_normals = any_normals || !part.normals.empty();
       colors_ = colors_ || !part.colors.empty();
-      for (const vec3& n : part.normals) finite_normals = finite_normals && is_finite(n);
+      for (const vec3& n : part.normals) directed_normals = directed_normals && is_finite(n) && n != vec3(0.0f);
       part.clear();
     }
   }
   origin_ = bulk_origin(sample, lo, hi);
 
-  normals_ = any_normals && finite_normals;
+  normals_ = any_normals && directed_normals;
   // Rounding to float keeps order: the box of the rounded positions is the rounded box.
   bounds_.lo = vec3(lo - origin_);
   bounds_.hi = vec3(hi - origin_);

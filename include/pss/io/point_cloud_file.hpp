@@ -23,8 +23,9 @@ void write_point_cloud(const std::filesystem::path& path, const PointCloud& clou
                        std::span<const PlyIntProperty> extra = {});
 
 // The readers' common normal policy. Normals become unit length; zero ones stay zero (no
-// direction to recover, and dropping one would misalign the arrays). One non-finite normal
-// drops them all: a cloud has usable normals throughout or none.
+// direction to recover, and dropping one would misalign the arrays), and non-finite ones
+// (PCL writes NaN where it fitted none) become zero: the file's normals are then left out
+// and estimated, and the summaries say why (points/sample_normals.hpp: file_normals).
 void tidy_normals(PointCloud& cloud);
 // One finite normal as tidy_normals leaves it.
 vec3 tidy_normal(vec3 n);
