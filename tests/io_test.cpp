@@ -500,11 +500,41 @@ TEST_F(XyzTest, SeparatorsCommentsAndBlankLines) {
 }
 
 TEST_F(XyzTest, SixColumnsGiveUnitNormals) {
-  const PointCloud cloud = pss::read_xyz(write("p.xyz", "1 2 3 0 0 5\n4 5 6 0 1 0"));
+  const PointCloud cloud = pss::read_xyz(write("p.xyz", "1 2 3 0 0 5\n4 5 6 0 0.5 0"));
   ASSERT_EQ(cloud.normals.size(), 2u);
   EXPECT_EQ(cloud.normals[0], vec3(0, 0, 1));
   EXPECT_EQ(cloud.normals[1], vec3(0, 1, 0));
   EXPECT_EQ(cloud.positions[1], vec3(4, 5, 6));
+}
+
+// x y z r g b, as many tools export a coloured scan, and nine columns with normals before or
+// after the colour: a triple is a colour where, over the first rows, it holds integers from
+// 0 to 255, some above 1, not all of one length (normals scaled by a constant, "0 0 5", are
+// normals; unit ones never exceed 1).
+TEST_F(XyzTest, ColoursBesideOrInsteadOfNormals) {
+  const PointCloud rgb = pss::read_xyz(write("c.xyz", "1 2 3 255 0 10\n4 5 6 0 128 7\n"));
+  EXPECT_FALSE(rgb.has_normals());
+  ASSERT_EQ(rgb.colors.size(), 2u);
+  EXPECT_EQ(rgb.colors[0], pss::Rgb8(255, 0, 10));
+  EXPECT_EQ(rgb.colors[1], pss::Rgb8(0, 128, 7));
+  const PointCloud scaled = pss::read_xyz(write("s.xyz", "1 2 3 0 0 5\n4 5 6 0 5 0\n"));
+  EXPECT_TRUE(scaled.colors.empty());
+  EXPECT_EQ(scaled.normals.at(1), vec3(0, 1, 0));
+  for (const char* text : {"1 2 3 9 8 7 0 0 1\n4 5 6 1 2 3 0 1 0\n", "1 2 3 0 0 1 9 8 7\n4 5 6 0 1 0 1 2 3\n"}) {
+    const PointCloud both = pss::read_xyz(write("b.xyz", text));
+    ASSERT_EQ(both.colors.size(), 2u) << text;
+    EXPECT_EQ(both.colors[1], pss::Rgb8(1, 2, 3)) << text;
+    EXPECT_EQ(both.normals.at(1), vec3(0, 1, 0)) << text;
+    EXPECT_EQ(both.positions.at(1), vec3(4, 5, 6)) << text;
+  }
+  // Decided by the first 4,096 rows whatever a reader asks for first: a channel that is no
+  // integer after them is an error naming its line.
+  std::string many;
+  for (int i = 0; i < 5000; ++i) many += std::to_string(i) + " 0 0 " + std::to_string(i % 200) + " 3 4\n";
+  many += "1 1 1 2.5 3 4\n";
+  const fs::path path = write("m.xyz", many);
+  expect_file_error([&] { pss::read_xyz(path); }, path,
+                    "line 5001: columns 4-6 are a colour (r g b) on the lines before, but here not integers from 0 to 255");
 }
 
 TEST_F(XyzTest, Errors) {
@@ -512,8 +542,9 @@ TEST_F(XyzTest, Errors) {
   expect_file_error([&] { pss::read_xyz(missing); }, missing, "cannot open: No such file or directory");
   const std::pair<std::string, std::string> cases[] = {
       {"1 2 3\n4 5 6 0 0 1\n", "line 2: found 6 numbers, but line 1 has 3"},
-      {"# c\n1 2 3 4\n", "line 2: expected 3 or 6 numbers (x y z [nx ny nz]), found 4"},
-      {"1 2 3 4 5 6 7\n", "line 1: more than 6 numbers"},
+      {"# c\n1 2 3 4\n", "line 2: expected 3, 6 or 9 numbers (x y z [nx ny nz] [r g b]), found 4"},
+      {"1 2 3 4 5 6 7 8 9 10\n", "line 1: more than 9 numbers"},
+      {"1 2 3 0.1 0.2 0.3 0 0 1\n", "9 numbers a line, but neither of columns 4-6 and 7-9 hold a colour"},
       {"1 2 3\n1 x 3\n", "line 2: malformed number 'x'"},
       {"1 2 3\n\n1 inf 3\n", "line 3: non-finite coordinate"},
       {"# only a comment\n\n", "no points"},

@@ -98,7 +98,7 @@ TEST_F(TiledCloudTest, NormalsOneOfWhichHasNoDirectionAreNone) {
         write("n.xyz", std::string("0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 ") + odd + "\n1 1 1 0 0 1\n");
     EXPECT_FALSE(TiledCloud(file, dir_, 1, 1024).has_normals());
   }
-  EXPECT_TRUE(TiledCloud(write("d.xyz", "0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 2\n"), dir_, 1, 1024).has_normals());
+  EXPECT_TRUE(TiledCloud(write("d.xyz", "0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 2.5\n"), dir_, 1, 1024).has_normals());
 }
 
 // Tiles for one point each of 20,000 filling a cube would be 142³: their number is capped.

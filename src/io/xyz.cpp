@@ -1,5 +1,6 @@
 #include "pss/io/xyz.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -7,8 +8,10 @@
 #include <string>
 #include <string_view>
 #include <utility>
+#include <vector>
 
 #include "pss/core/error.hpp"
+#include "pss/core/memory.hpp"
 #include "pss/io/point_cloud_file.hpp"
 #include "pss/io/point_cloud_writer.hpp"
 #include "file_window.hpp"
@@ -44,6 +47,28 @@ bool next_line(io::FileWindow& file, std::string_view& line) {
   }
 }
 
+// Whether a column triple holds colours over the rows: integers from 0 to 255, some above 1
+// (no unit normal's), not all of one length (a normal scaled by a constant, "0 0 5", is).
+bool is_channel(double v) { return v >= 0 && v <= 255 && v == std::floor(v); }
+template <class Rows>
+bool holds_colours(const Rows& rows, int first) {
+  bool above_one = false, one_length = true;
+  double length = -1;
+  for (const auto& row : rows) {
+    const double* v = row.v + first;
+    if (!is_channel(v[0]) || !is_channel(v[1]) || !is_channel(v[2])) return false;
+    above_one = above_one || std::max({v[0], v[1], v[2]}) > 1;
+    const double l = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if (length < 0) length = l;
+    one_length = one_length && std::abs(l - length) <= 1e-3 * length;
+  }
+  return above_one && !one_length;
+}
+
+// What the columns after x y z hold: nothing, nx ny nz, r g b, or both in either order;
+// decided by the first part's rows (holds_colours), then fixed.
+enum class Extra { undecided, none, normals, colours, colours_normals, normals_colours };
+
 // The points of an XYZ file, a line at a time.
 class XyzStream final : public PointStream {
  public:
@@ -52,15 +77,58 @@ class XyzStream final : public PointStream {
   std::uint64_t declared_count() const override { return 0; }
 
   std::size_t read(PointPart& part, std::size_t most) override {
+    // What the columns hold is decided by the first rows, however many a caller asks for first.
+    if (extra_ == Extra::undecided) {
+      for (Row row; pending_.size() < kDecidingRows && next_row(row);) pending_.push_back(row);
+      decide(pending_);
+    }
+    const int colour = extra_ == Extra::colours || extra_ == Extra::colours_normals ? 3
+                       : extra_ == Extra::normals_colours                          ? 6
+                                                                                   : 0;
+    const int normal = extra_ == Extra::normals || extra_ == Extra::normals_colours ? 3
+                       : extra_ == Extra::colours_normals                           ? 6
+                                                                                    : 0;
     std::size_t added = 0;
-    for (std::string_view line; added < most && next_line(file_, line);) {
+    for (Row row; added < most; ++added) {
+      if (next_pending_ < pending_.size())
+        row = pending_[next_pending_++];
+      else if (!next_row(row))
+        break;
+      const double* v = row.v;
+      part.world.emplace_back(v[0], v[1], v[2]);
+      if (colour > 0) {
+        if (!is_channel(v[colour]) || !is_channel(v[colour + 1]) || !is_channel(v[colour + 2]))
+          throw file_error(path_, "line " + std::to_string(row.line) + ": columns " + std::to_string(colour + 1) + "-" +
+                                      std::to_string(colour + 3) +
+                                      " are a colour (r g b) on the lines before, but here not integers from 0 to 255");
+        part.colors.emplace_back(std::uint8_t(v[colour]), std::uint8_t(v[colour + 1]), std::uint8_t(v[colour + 2]));
+      }
+      if (normal > 0) part.normals.emplace_back(v[normal], v[normal + 1], v[normal + 2]);
+    }
+    if (next_pending_ == pending_.size()) release(pending_), next_pending_ = 0;
+    points_ += added;
+    if (added == 0 && points_ == 0) throw file_error(path_, "no points");
+    return added;
+  }
+
+ private:
+  static constexpr std::size_t kDecidingRows = 4096;
+  struct Row {
+    double v[9];  // read in double: a georeferenced cloud's digits (cloud.hpp)
+    int line;
+  };
+
+  // The next point line's numbers; false at the end of the file.
+  bool next_row(Row& row) {
+    for (std::string_view line; next_line(file_, line);) {
       ++line_number_;
       const auto fail = [&](const std::string& problem) {
         return file_error(path_, "line " + std::to_string(line_number_) + ": " + problem);
       };
       if (line.size() > kLongestLine)
         throw fail("longer than " + std::to_string(kLongestLine) + " characters: not a file of points");
-      double v[6];  // read in double: a georeferenced cloud's digits (cloud.hpp)
+      double* v = row.v;
+      row.line = line_number_;
       std::size_t count = 0;
       for (std::size_t i = 0; i < line.size();) {
         if (is_separator(line[i])) {
@@ -72,7 +140,7 @@ class XyzStream final : public PointStream {
         while (j < line.size() && !is_separator(line[j])) ++j;
         std::string_view token = line.substr(i, j - i);
         i = j;
-        if (count == 6) throw fail("more than 6 numbers");
+        if (count == 9) throw fail("more than 9 numbers");
         if (token.size() > 1 && token[0] == '+') token.remove_prefix(1);  // from_chars rejects '+'
         const auto [stop, ec] = std::from_chars(token.data(), token.data() + token.size(), v[count]);
         if (ec == std::errc::result_out_of_range || (std::isinf(float(v[count])) && !std::isinf(v[count])))
@@ -83,8 +151,8 @@ class XyzStream final : public PointStream {
       }
       if (count == 0) continue;  // blank or comment
       if (columns_ == 0) {
-        if (count != 3 && count != 6)
-          throw fail("expected 3 or 6 numbers (x y z [nx ny nz]), found " + std::to_string(count));
+        if (count != 3 && count != 6 && count != 9)
+          throw fail("expected 3, 6 or 9 numbers (x y z [nx ny nz] [r g b]), found " + std::to_string(count));
         columns_ = count;
         first_point_line_ = line_number_;
       } else if (count != columns_) {
@@ -92,19 +160,33 @@ class XyzStream final : public PointStream {
                    " has " + std::to_string(columns_));
       }
       if (!is_finite(vec3(glm::dvec3(v[0], v[1], v[2])))) throw fail("non-finite coordinate");
-      part.world.emplace_back(v[0], v[1], v[2]);
-      if (columns_ == 6) part.normals.emplace_back(v[3], v[4], v[5]);
-      ++added;
+      return true;
     }
-    points_ += added;
-    if (added == 0 && points_ == 0) throw file_error(path_, "no points");
-    return added;
+    return false;
+  }
+
+  void decide(const std::vector<Row>& rows) {
+    if (columns_ <= 3) {
+      extra_ = Extra::none;
+    } else if (columns_ == 6) {
+      extra_ = holds_colours(rows, 3) ? Extra::colours : Extra::normals;
+    } else {
+      const bool first = holds_colours(rows, 3), second = holds_colours(rows, 6);
+      if (first == second)
+        throw file_error(path_, "9 numbers a line, but " + std::string(first ? "both" : "neither") +
+                                    " of columns 4-6 and 7-9 hold a colour (r g b, integers from 0 to 255) beside "
+                                    "a normal (nx ny nz)");
+      extra_ = first ? Extra::colours_normals : Extra::normals_colours;
+    }
   }
 
  private:
   std::filesystem::path path_;
   io::FileWindow file_;
   std::size_t columns_ = 0;  // fixed by the first point line
+  Extra extra_ = Extra::undecided;
+  std::vector<Row> pending_;  // the rows read to decide, not yet given
+  std::size_t next_pending_ = 0;
   int first_point_line_ = 0, line_number_ = 0;
   std::uint64_t points_ = 0;
 };
