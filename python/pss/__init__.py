@@ -117,7 +117,7 @@ def estimate_h(points):
 
 
 def project(points, h=None, *, normals=None, surface="rimls", outliers="set-aside", method="mls", rho=None, support=None,
-            iterations=None, backend="auto"):
+            iterations=None, backend="auto", full_output=False):
     """Move every point onto the point set surface, as `pss project`.
 
     points: (N, 3). h: the Gaussian width (default: estimate_h(points)); rho: the
@@ -139,14 +139,19 @@ def project(points, h=None, *, normals=None, surface="rimls", outliers="set-asid
     above), (N, 3) float32 unit normals, and (N,)
     int32 status: 0 converged, 1 not converged within `iterations`, 2 too few neighbours
     within rho (point and normal unchanged), 3 degenerate normal (neighbours on a line).
+    With full_output=True a fourth, the stats dict: the parameters used ('params': h, rho,
+    support, surface, normals 'file'/'estimated'/'none'), 'status' counts, 'outliers_set_aside',
+    'points_merged', 'normals_turned', 'file_normals_off' and the phases' times, as
+    `pss project --stats` writes them.
     """
     return _pss.project(points, {"normals": normals, "surface": surface, "outliers": outliers, "h": h, "method": method,
                                  "rho": rho,
-                                 "support": support, "iterations": iterations, "backend": backend})
+                                 "support": support, "iterations": iterations, "backend": backend,
+                                 "full_output": full_output})
 
 
 def mesh(points, h=None, *, normals=None, surface="rimls", outliers="set-aside", rho=None, support=None, cell=None,
-         borders="auto", iterations=None, crease_angle=30, backend="auto"):
+         borders="auto", iterations=None, crease_angle=30, backend="auto", full_output=False):
     """A triangle mesh of the point set surface, as `pss mesh`: marching tetrahedra over the
     cubes near the points, every vertex on the surface with its normal.
 
@@ -162,10 +167,13 @@ def mesh(points, h=None, *, normals=None, surface="rimls", outliers="set-aside",
     Returns (vertices, normals, faces): (V, 3) float32 (float64 for points far from zero,
     see above), (V, 3) float32 unit normals of the surface, and (T, 3) int32 vertex indices,
     counter-clockwise seen from outside. Closed where the surface is closed, manifold always.
+    With full_output=True a fourth, the stats dict: project's, with the cell, the mesh's shape
+    ('mesh': vertices, triangles, components, boundary_edges, euler_characteristic, watertight,
+    manifold) and 'turned_outward', as `pss mesh --stats` writes them.
     """
     return _pss.mesh(points, {"normals": normals, "surface": surface, "outliers": outliers, "h": h, "rho": rho,
                               "support": support, "cell": cell, "borders": borders, "iterations": iterations,
-                              "crease_angle": crease_angle, "backend": backend})
+                              "crease_angle": crease_angle, "backend": backend, "full_output": full_output})
 
 
 def render(points, h=None, *, normals=None, colors=None, surface="rimls", outliers="set-aside", rho=None, support=None,

@@ -94,24 +94,58 @@ struct CloudSurfaceArgs {
   }
 };
 
+namespace {
+
+// What project's and mesh's stats share with `pss project --stats` and `pss mesh --stats`:
+// the surface's parameters, and what was done to the samples and the file's normals.
+void record_cloud_surface(Stats& stats, const ProjectionParams& params, const SupportWidths& widths,
+                          NormalsUsed normals, std::size_t normals_turned, std::size_t file_normals_off,
+                          const OutlierReport& outliers, Backend backend) {
+  auto& v = stats.values();
+  v["params"] = {{"h", params.h},
+                 {"rho", params.rho},
+                 {"support", support_name(params.support)},
+                 {"surface", surface_name(params.surface)},
+                 {"normals", normals_used_name(normals)},
+                 {"outliers", params.outliers == OutlierPolicy::keep ? "keep" : "set-aside"},
+                 {"h_least", widths.least},
+                 {"h_largest", widths.largest},
+                 {"max_mls_iterations", params.max_mls_iterations}};
+  v["outliers_set_aside"] = outliers.set_aside;
+  v["points_merged"] = widths.merged_count;
+  v["normals_turned"] = normals_turned;
+  v["file_normals_off"] = file_normals_off;
+  v["backend"] = backend_name(backend);
+}
+
+}  // namespace
+
 py::tuple project(const py::handle& points, const py::dict& o) {
   PointCloud cloud = cloud_of(points, option(o, "normals"));
   const PlaneFitMethod plane = choice(o, "method", {"mls", "wls"}) == "wls" ? PlaneFitMethod::wls : PlaneFitMethod::mls;
   const CloudSurfaceArgs args(o);
   const Backend backend = backend_of(o);
+  const bool full_output = flag(o, "full_output");
+  Stats stats;
   CloudProjection result = run_interruptibly([&] {
-    Stats stats;
     const ProjectionParams params = args.params(cloud, plane);
     CloudProjection projection = project_cloud(std::move(cloud), params, backend, stats);  // no second copy
     check_some_projected(projection.counts, params);
+    record_cloud_surface(stats, params, projection.widths, projection.normals, projection.normals_turned,
+                         projection.file_normals_off, projection.outliers, backend);
+    const StatusCounts& c = projection.counts;
+    stats.values()["status"] = {{"converged", c.converged}, {"not_converged", c.not_converged},
+                                {"too_few_neighbours", c.too_few_neighbours}, {"degenerate_normal", c.degenerate_normal}};
     return projection;
   });
   std::vector<std::int32_t> status(result.status.size());
   for (std::size_t i = 0; i < status.size(); ++i) status[i] = std::int32_t(result.status[i]);
   const auto n = py::ssize_t(status.size());
-  return py::make_tuple(world_numpy(std::move(result.cloud.positions), result.cloud.origin, {n, 3}),
-                        to_numpy(std::move(result.cloud.normals)),
-                        to_numpy<std::int32_t>(std::move(status), {n}));
+  py::object positions = world_numpy(std::move(result.cloud.positions), result.cloud.origin, {n, 3});
+  py::object normals = to_numpy(std::move(result.cloud.normals));
+  py::object statuses = to_numpy<std::int32_t>(std::move(status), {n});
+  if (!full_output) return py::make_tuple(positions, normals, statuses);
+  return py::make_tuple(positions, normals, statuses, stats_dict(stats));
 }
 
 py::tuple mesh(const py::handle& points, const py::dict& o) {
@@ -121,20 +155,39 @@ py::tuple mesh(const py::handle& points, const py::dict& o) {
   const auto crease_angle = float(number_in(o, "crease_angle", 0, 180, true));
   const std::optional<BorderMode> borders = border_choice_of(choice(o, "borders", {"auto", "clip", "extend"}));
   const Backend backend = backend_of(o);
+  const bool full_output = flag(o, "full_output");
+  Stats stats;
   CloudMesh result = run_interruptibly([&] {
     if (cloud.size() < 3) throw Error("points: a mesh needs at least 3 (got " + std::to_string(cloud.size()) + ")");
-    Stats stats;
     MeshParams params;
     params.projection = args.params(cloud, PlaneFitMethod::mls);
     params.projection.borders = borders_for(borders, cloud);
     if (cell) params.cell = *cell;
     params.crease_angle = crease_angle;
-    return mesh_cloud(cloud, params, backend, stats);
+    CloudMesh made = mesh_cloud(cloud, params, backend, stats);
+    record_cloud_surface(stats, params.projection, made.widths, made.normals, made.normals_turned,
+                         made.file_normals_off, made.outliers, backend);
+    auto& p = stats.values()["params"];
+    p["cell"] = made.cell;
+    p["crease_angle"] = params.crease_angle;
+    p["borders"] = border_name(params.projection.borders);
+    const MeshTopology shape = topology(made.mesh);
+    stats.values()["mesh"] = {{"vertices", shape.vertices},
+                              {"triangles", shape.triangles},
+                              {"components", shape.components},
+                              {"boundary_edges", shape.boundary_edges},
+                              {"euler_characteristic", shape.euler_characteristic()},
+                              {"watertight", shape.watertight()},
+                              {"manifold", shape.manifold()}};
+    stats.values()["turned_outward"] = made.turned_outward;
+    return made;
   });
   const auto v = py::ssize_t(result.mesh.positions.size()), t = py::ssize_t(result.mesh.triangles.size());
-  return py::make_tuple(world_numpy(std::move(result.mesh.positions), cloud.origin, {v, 3}),
-                        to_numpy(std::move(result.mesh.normals)),
-                        to_numpy<std::int32_t>(std::move(result.mesh.triangles), {t, 3}));
+  py::object vertices = world_numpy(std::move(result.mesh.positions), cloud.origin, {v, 3});
+  py::object normals = to_numpy(std::move(result.mesh.normals));
+  py::object faces = to_numpy<std::int32_t>(std::move(result.mesh.triangles), {t, 3});
+  if (!full_output) return py::make_tuple(vertices, normals, faces);
+  return py::make_tuple(vertices, normals, faces, stats_dict(stats));
 }
 
 py::object render(const py::handle& points, const py::dict& o) {

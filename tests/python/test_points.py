@@ -333,3 +333,21 @@ def test_a_cloud_far_from_zero_keeps_its_digits(tmp_path):
     assert hit.dtype == np.float64 and len(hit) > 1000
     assert np.abs(np.linalg.norm(hit - centre, axis=1) - radius).max() < 1e-3
     assert np.allclose(stats["origin"], centre, atol=8)  # the centre to a multiple of 16 m ≥ its extent
+
+
+def test_project_and_mesh_give_their_stats_with_full_output():
+    points = unit_sphere()
+    projected, normals, status, stats = pss.project(points, surface="apss", full_output=True)
+    assert stats["params"]["surface"] == "apss" and stats["params"]["normals"] == "estimated"
+    assert sum(stats["status"].values()) == len(points)
+    assert stats["status"]["converged"] == int((status == 0).sum())
+    assert stats["normals_turned"] == 0 and stats["file_normals_off"] == 0
+    one_way = np.tile([0.0, 0.0, 1.0], (len(points), 1))
+    _, _, _, stats = pss.project(points, normals=one_way, surface="rimls", full_output=True)
+    assert stats["file_normals_off"] > len(points) / 2 and stats["params"]["normals"] == "estimated"
+    vertices, _, faces, stats = pss.mesh(points, full_output=True)
+    shape = stats["mesh"]
+    assert shape["vertices"] == len(vertices) and shape["triangles"] == len(faces)
+    assert shape["watertight"] and shape["components"] == 1 and shape["euler_characteristic"] == 2
+    assert stats["params"]["cell"] > 0 and stats["params"]["surface"] == "rimls"
+    assert len(pss.project(points)) == 3 and len(pss.mesh(points)) == 3
