@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <random>
 #include <string>
 #include <utility>
 
@@ -142,6 +143,27 @@ TEST_F(SurfaceCli, InfoSaysWhetherTheFilesNormalsAgree) {
   ASSERT_EQ(std::sscanf(one_way.c_str(), "normals         the file's: those of %llu of 6000 samples lie more than 45 "
                                          "degrees off their neighbours' plane", &off), 1) << one_way;
   EXPECT_NEAR(double(off), 0.707 * 6000, 200);  // where |x| < cos 45°
+  // With strays about the sphere, whose normals point anywhere: info counts as render, which
+  // sets them aside before the turn.
+  {
+    std::ofstream out(path("strays.xyz"), std::ios::app);
+    out << std::ifstream(flipped).rdbuf();
+    std::mt19937 rng(4);
+    std::uniform_real_distribution<float> u(-1.5f, 1.5f);
+    for (int i = 0; i < 40;) {
+      const vec3 p(u(rng), u(rng), u(rng));
+      if (std::abs(glm::length(p) - 1) < 0.15f) continue;
+      out << p.x << ' ' << p.y << ' ' << p.z << ' ' << (i % 2 ? 1 : -1) << " 0 0\n";
+      ++i;
+    }
+  }
+  const test::CliResult rendered = test::run_pss("render " + path("strays.xyz") + " --size 32x32 -o " + path("s.png") +
+                                                 " --stats " + path("s.json"));
+  ASSERT_EQ(rendered.exit_code, 0) << rendered.err;
+  ASSERT_GT(read_json(path("s.json"))["outliers_set_aside"].get<int>(), 20);
+  EXPECT_EQ(info(path("strays.xyz")), "normals         the file's: render and project turn " +
+                                          std::to_string(read_json(path("s.json"))["normals_turned"].get<int>()) +
+                                          " of 6040 (a part faced inward, or was flipped against the rest)");
   std::ofstream(path("zero.xyz")) << "0 0 0 0 0 1\n1 0 0 0 0 0\n0 1 0 0 0 1\n1 1 0 0 0 1\n0.5 0.5 0.1 0 0 1\n";
   EXPECT_EQ(info(path("zero.xyz")), "normals         the file's: one or more has no direction (render and project estimate them)");
   EXPECT_EQ(info(sphere(path("plain.xyz"), "none")), "");

@@ -15,6 +15,7 @@
 #include "pss/io/point_stream.hpp"
 #include "pss/io/tiled_cloud.hpp"
 #include "pss/io/volume_file.hpp"
+#include "pss/points/outliers.hpp"
 #include "pss/points/sample_normals.hpp"
 #include "pss/points/spacing.hpp"
 #include "pss/points/support.hpp"
@@ -51,11 +52,13 @@ std::string ordinal(int k) {
   return std::to_string(k) + suffix;
 }
 
-// Whether the file's normals follow the points and face one way, as render and project would
-// find (all points as samples here: those set aside as outliers are counted too).
+// Whether the file's normals follow the points and face one way, as render would find with
+// its defaults (its grid of the samples, merged and outliers set aside, on the points as read).
 void print_file_normals(const PointCloud& cloud, const SupportWidths& widths, const ProjectionParams& params) {
-  const SupportGrid grid(cloud.positions, widths.h, params.rho / params.h);
   Stats stats;
+  OutlierReport outliers;
+  const SupportGrid grid = grid_of_samples(cloud.positions, widths.h, widths.merged, params.rho / params.h,
+                                           params.outliers, Backend::cpu, stats, outliers);
   const FileNormals file = file_normals(grid, cloud.normals, params, stats);
   if (file.off_the_points > 0)
     std::printf("normals         the file's: those of %zu of %zu samples lie more than 45 degrees off their neighbours' "
