@@ -304,5 +304,23 @@ TEST_F(SurfaceCli, FileNormalsThatDoNotFollowThePointsAreLeftOut) {
     EXPECT_EQ(read_json(path("s.json"))["file_normals_off"], 0);
   }
 }
+
+// An OBJ whose normals come through its faces' v//vn: a vertex no face names has none, and the
+// summary says that this too leaves them all out.
+TEST_F(SurfaceCli, AnObjVertexNoFaceGivesANormalIsSaidToLeaveThemOut) {
+  test::SampleOptions o;
+  o.count = 3001;
+  const std::vector<vec3> points = test::sample(test::Sphere{}, o).positions;
+  std::ofstream out(path("s.obj"));
+  for (const vec3& p : points) out << "v " << p.x << ' ' << p.y << ' ' << p.z << "\nvn " << p.x << ' ' << p.y << ' ' << p.z << '\n';
+  for (int i = 1; i + 2 <= 3000; i += 3) out << "f " << i << "//" << i << ' ' << i + 1 << "//" << i + 1 << ' ' << i + 2 << "//" << i + 2 << '\n';
+  out.close();
+  const test::CliResult r = test::run_pss("render " + path("s.obj") + " --size 32x32 -o " + path("s.png"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("left out the file's normals: 1 of 3001 have no direction (zero, not finite, or in an OBJ a "
+                       "vertex no face gives a normal)"),
+            std::string::npos)
+      << r.out;
+}
 }  // namespace
 }  // namespace pss

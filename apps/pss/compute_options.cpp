@@ -183,8 +183,9 @@ std::size_t file_normals_without_direction(const PointCloud& cloud, const Surfac
 
 void print_file_normals_left_out(std::size_t without_direction, std::size_t points) {
   if (without_direction > 0)
-    std::printf("left out the file's normals: %zu of %zu have no direction (zero or not finite), so all were "
-                "estimated from the points\n", without_direction, points);
+    std::printf("left out the file's normals: %zu of %zu have no direction (zero, not finite, or in an OBJ a vertex "
+                "no face gives a normal), so all were estimated from the points\n",
+                without_direction, points);
 }
 
 void add_cloud_surface_flags(CLI::App& command, CloudSurfaceFlags& flags) {
