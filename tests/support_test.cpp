@@ -262,7 +262,8 @@ TEST(SupportGrid, RefusesWidthsThatAreNotPositiveOrMiscounted) {
 // and a halo as wide as the widest support, of widths over 16:1 (five levels), given in the
 // cloud's order, walk every query within the box in the whole grid's order, sample for
 // sample, and so every sum over them rounds alike. A grid of the same samples on a layout of
-// their own walks them otherwise. Samples outside the layout's least width are refused.
+// their own walks them otherwise. Samples narrower than the layout's least width, or on a
+// level it has not, are refused.
 TEST(SupportGrid, ATilesGridOnTheCloudsLayoutWalksQueriesAsTheCloudsGrid) {
   std::mt19937 rng(12);
   std::uniform_real_distribution<float> u(-1.0f, 1.0f), w(0.01f, 0.17f);
@@ -308,6 +309,9 @@ TEST(SupportGrid, ATilesGridOnTheCloudsLayoutWalksQueriesAsTheCloudsGrid) {
   std::vector<float> narrower = h;
   narrower[std::size_t(tile[0])] = 0.5f * tally.least;
   EXPECT_THROW(SupportGrid(points, narrower, tile, layout), Error);
+  std::vector<float> wider = h;  // on a level no sample of the layout's is
+  wider[std::size_t(tile[0])] = 8 * 0.17f;
+  EXPECT_THROW(SupportGrid(points, wider, tile, layout), Error);
 }
 
 }  // namespace

@@ -77,6 +77,7 @@ void SupportGrid::build(std::span<const vec3> points, std::span<const float> h, 
     const int l = support_level(h[i], layout.least);
     level[s] = (unsigned char)l;
     if (!part) continue;
+    if (!(layout.radius[std::size_t(l)] > 0)) throw Error("support grid: a sample on a level the layout has not");
     const ivec3 c = layout.shape[std::size_t(l)].cell_of(points[i]);
     lo[std::size_t(l)] = glm::min(lo[std::size_t(l)], c);
     hi[std::size_t(l)] = glm::max(hi[std::size_t(l)], c);
