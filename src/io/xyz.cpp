@@ -47,9 +47,10 @@ bool next_line(io::FileWindow& file, std::string_view& line) {
   }
 }
 
+bool is_channel(double v) { return v >= 0 && v <= 255 && v == std::floor(v); }
+
 // Whether a column triple holds colours over the rows: integers from 0 to 255, some above 1
 // (no unit normal's), not all of one length (a normal scaled by a constant, "0 0 5", is).
-bool is_channel(double v) { return v >= 0 && v <= 255 && v == std::floor(v); }
 template <class Rows>
 bool holds_colours(const Rows& rows, int first) {
   bool above_one = false, one_length = true;
@@ -66,7 +67,7 @@ bool holds_colours(const Rows& rows, int first) {
 }
 
 // What the columns after x y z hold: nothing, nx ny nz, r g b, or both in either order;
-// decided by the first part's rows (holds_colours), then fixed.
+// decided by the first kDecidingRows rows (holds_colours), then fixed.
 enum class Extra { undecided, none, normals, colours, colours_normals, normals_colours };
 
 // The points of an XYZ file, a line at a time.
