@@ -80,9 +80,9 @@ TEST(TileWork, ARequestCutShortOrOfNoStepIsAnError) {
   for (const vec3& p : unit) tally.add(p, 0.01f);
   const SupportLayout layout = support_layout(tally, 2);
   const UnitTile tile{unit, h, samples, 2, {}, {}, {}, &layout};
-  EXPECT_THROW(outliers_request(UnitTile{unit, h, samples, 2}, 2), Error) << "no layout";
-  const std::vector<std::byte> outliers = outliers_request(tile, 2);
-  const std::vector<std::byte> projection = projection_request(tile, 2, ProjectionParams::from_h(0.01f), Backend::cpu);
+  EXPECT_THROW(outliers_request(UnitTile{unit, h, samples, 2}), Error) << "no layout";
+  const std::vector<std::byte> outliers = outliers_request(tile);
+  const std::vector<std::byte> projection = projection_request(tile, ProjectionParams::from_h(0.01f), Backend::cpu);
   const std::vector<vec3> normals(unit.size(), vec3(0, 0, 1));
   const std::vector<float> radius(unit.size(), 0.02f);
   const std::vector<std::uint64_t> id = {5, 6, 7, 8};
@@ -91,7 +91,7 @@ TEST(TileWork, ARequestCutShortOrOfNoStepIsAnError) {
   // Merged samples: a cube's first point out of the set is refused, not followed.
   const std::vector<int> into = {0, 0, 2, 9};
   const UnitTile merged{unit, h, samples, 2, unit, into, {}, &layout};
-  EXPECT_THROW(tile_work(TileStep::outliers, outliers_request(merged, 2)), Error);
+  EXPECT_THROW(tile_work(TileStep::outliers, outliers_request(merged)), Error);
   EXPECT_EQ(projection_result(tile_work(TileStep::projection, projection)).projected.size(), 2u);
   EXPECT_EQ(orientation_result(tile_work(TileStep::orientation, orientation), 4).parts.of_point.size(), 4u);
   EXPECT_THROW(orientation_result(tile_work(TileStep::orientation, orientation), 5), Error);
@@ -117,14 +117,15 @@ TEST(TileWork, ARequestCutShortOrOfNoStepIsAnError) {
     }
   EXPECT_THROW(tile_work(TileStep(99), projection), Error);
   // An array's length past the request's end fails before anything that long is made.
-  std::vector<std::byte> lying(outliers.begin(), outliers.begin() + 12);
+  const std::size_t head = sizeof(SupportLayout) + sizeof(std::uint64_t);  // the layout and the own count
+  std::vector<std::byte> lying(outliers.begin(), outliers.begin() + std::ptrdiff_t(head));
   const std::uint64_t huge = std::uint64_t(1) << 61;
   lying.resize(lying.size() + sizeof huge);
-  std::memcpy(lying.data() + 12, &huge, sizeof huge);
+  std::memcpy(lying.data() + head, &huge, sizeof huge);
   EXPECT_THROW(tile_work(TileStep::outliers, lying), Error);
   // A sample that is not in the tile.
   const std::vector<int> beyond = {0, 4};
-  EXPECT_THROW(tile_work(TileStep::outliers, outliers_request({unit, h, beyond, 2}, 2)), Error);
+  EXPECT_THROW(tile_work(TileStep::outliers, outliers_request({unit, h, beyond, 2, {}, {}, {}, &layout})), Error);
 }
 
 }  // namespace

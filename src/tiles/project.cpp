@@ -153,7 +153,6 @@ std::vector<char> samples_kept(const TiledCloud& cloud, const UnitFrame& frame, 
   const std::vector<int> tiles = cloud.tiles_with_points();
   std::vector<char> kept(std::size_t(n), 1);
   for (int pass = 0; pass < kOutlierPasses; ++pass) {
-    if (pass > 0) layout = layout_in_tiles(cloud, frame, h, kept, merge, kappa, halo);
     std::vector<float> distance(std::size_t(n), std::numeric_limits<float>::quiet_NaN());
     std::vector<float> mass(merge.empty() ? 0 : std::size_t(n), 0.0f);
     std::vector<float> held(std::size_t(n), std::numeric_limits<float>::quiet_NaN());
@@ -163,7 +162,7 @@ std::vector<char> samples_kept(const TiledCloud& cloud, const UnitFrame& frame, 
         [&](int t) {
           UnitSet set = load_unit(cloud, t, world_halo(halo, frame), frame, h, kept, merge);
           set.layout = &layout;
-          return TileRequest{outliers_request(unit_tile(set), kappa), own_points_notes(set.points)};
+          return TileRequest{outliers_request(unit_tile(set)), own_points_notes(set.points)};
         },
         [&](int, std::span<const std::byte> result, std::span<const std::byte> notes, int) {
           const TileOutliers d = outliers_result(result);
@@ -189,7 +188,7 @@ std::vector<char> samples_kept(const TiledCloud& cloud, const UnitFrame& frame, 
       }
     report.set_aside += set_aside;
     if (set_aside == 0) break;
-    if (pass + 1 == kOutlierPasses) layout = layout_in_tiles(cloud, frame, h, kept, merge, kappa, halo);
+    layout = layout_in_tiles(cloud, frame, h, kept, merge, kappa, halo);  // the next pass's grids, or the samples'
   }
   return kept;
 }
@@ -234,7 +233,7 @@ OrientedInTiles sample_normals_in_tiles(const UnitSets& sets, float kappa, const
           notes.put_array(std::span(set.points.index).first(set.points.own));
           notes.put_array(std::span<const vec3>(set.unit).first(set.points.own));
           notes.put_array(std::span<const vec3>(set.sample_at.empty() ? set.unit : set.sample_at).first(set.points.own));
-          return TileRequest{sample_normals_request(unit_tile(set), kappa, unit_params, backend), notes.take()};
+          return TileRequest{sample_normals_request(unit_tile(set), unit_params, backend), notes.take()};
         },
         [&](int t, std::span<const std::byte> result, std::span<const std::byte> notes, int) {
           const TileSampleNormals done = sample_normals_result(result);
@@ -369,7 +368,7 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
           notes.put_array(std::span<const std::uint64_t>(set.points.index).first(set.points.own));
           notes.put_array(std::span<const vec3>(set.unit).first(set.points.own));
           notes.put_array(std::span<const std::uint64_t>(own_samples(set, kept)));
-          return TileRequest{projection_request(unit_tile(set), kappa, unit_params, backend), notes.take()};
+          return TileRequest{projection_request(unit_tile(set), unit_params, backend), notes.take()};
         },
         [&](int t, std::span<const std::byte> result, std::span<const std::byte> notes, int rank) {
           const TileProjections done = projection_result(result);

@@ -31,8 +31,8 @@ std::vector<std::uint64_t> own_points(std::span<const std::byte> notes) {
 
 namespace {
 
-void put_tile(ByteWriter& out, const UnitTile& tile, float kappa) {
-  if (tile.layout == nullptr || tile.layout->kappa != kappa) throw Error("a tile's work needs the cloud's layout");
+void put_tile(ByteWriter& out, const UnitTile& tile) {
+  if (tile.layout == nullptr) throw Error("a tile's work needs the cloud's layout");
   out.put(*tile.layout);
   out.put(std::uint64_t(tile.own));
   out.put_array(tile.unit);
@@ -90,9 +90,9 @@ std::vector<ProjectedPoint> project_on(const SupportGrid& grid, std::span<const 
 
 }  // namespace
 
-std::vector<std::byte> outliers_request(const UnitTile& tile, float kappa) {
+std::vector<std::byte> outliers_request(const UnitTile& tile) {
   ByteWriter out;
-  put_tile(out, tile, kappa);
+  put_tile(out, tile);
   return out.take();
 }
 
@@ -132,10 +132,10 @@ TileOutliers outliers_result(std::span<const std::byte> result) {
   return o;
 }
 
-std::vector<std::byte> projection_request(const UnitTile& tile, float kappa, const ProjectionParams& unit_params,
+std::vector<std::byte> projection_request(const UnitTile& tile, const ProjectionParams& unit_params,
                                           Backend backend) {
   ByteWriter out;
-  put_tile(out, tile, kappa);
+  put_tile(out, tile);
   out.put(unit_params);
   out.put(backend);
   return out.take();
@@ -192,9 +192,9 @@ TileProjections projection_result(std::span<const std::byte> result) {
   return p;
 }
 
-std::vector<std::byte> sample_normals_request(const UnitTile& tile, float kappa, const ProjectionParams& unit_params,
+std::vector<std::byte> sample_normals_request(const UnitTile& tile, const ProjectionParams& unit_params,
                                               Backend backend) {
-  return projection_request(tile, kappa, sample_plane_params(unit_params), backend);
+  return projection_request(tile, sample_plane_params(unit_params), backend);
 }
 
 // At the samples' places in the grid (a merged one at its cube's mean), in its order.

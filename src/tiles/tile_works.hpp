@@ -41,7 +41,7 @@ struct UnitTile {
 };
 
 // The outliers' distance (points/outliers.hpp) of each own sample of the tile.
-std::vector<std::byte> outliers_request(const UnitTile& tile, float kappa);
+std::vector<std::byte> outliers_request(const UnitTile& tile);
 std::vector<std::byte> work_outliers(std::span<const std::byte> request);
 struct TileOutliers {
   std::vector<float> distance;  // each own point's, NaN where it is no sample
@@ -51,7 +51,7 @@ struct TileOutliers {
 TileOutliers outliers_result(std::span<const std::byte> result);
 
 // The projection of each own point (at `unit`) of the tile onto the MLS surface of its samples.
-std::vector<std::byte> projection_request(const UnitTile& tile, float kappa, const ProjectionParams& unit_params,
+std::vector<std::byte> projection_request(const UnitTile& tile, const ProjectionParams& unit_params,
                                           Backend backend);
 std::vector<std::byte> work_projection(std::span<const std::byte> request);
 struct TileProjections {
@@ -62,7 +62,7 @@ TileProjections projection_result(std::span<const std::byte> result);
 
 // The unoriented normal of each own sample of the tile, as in core (points/sample_normals.hpp):
 // its WLS plane's at the sample's place.
-std::vector<std::byte> sample_normals_request(const UnitTile& tile, float kappa, const ProjectionParams& unit_params,
+std::vector<std::byte> sample_normals_request(const UnitTile& tile, const ProjectionParams& unit_params,
                                               Backend backend);
 std::vector<std::byte> work_sample_normals(std::span<const std::byte> request);
 struct TileSampleNormals {
