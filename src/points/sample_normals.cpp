@@ -5,9 +5,8 @@
 
 #include "pss/backend/mirror.hpp"
 #include "pss/backend/parallel_for.hpp"
-#include "pss/fit/inverse_power.hpp"
-#include "pss/fit/moments.hpp"
 #include "pss/points/orient_normals.hpp"
+#include "pss/points/outliers.hpp"
 #include "pss/points/project_points.hpp"
 #include "pss/points/turn_flipped_normals.hpp"
 #include "pss/spatial/grid_mirror.hpp"
@@ -24,21 +23,14 @@ constexpr float kFollowsCos = 0.70710678f;
 constexpr std::size_t kOffShareDenominator = 3;
 
 // How many of the grid's samples (of those with 3 neighbours or more) have their normal
-// more than 45° off the plane of their neighbours within the samples' supports, weighed as
-// the fits weigh them (the outliers' plane: points/outliers.hpp).
+// more than 45° off the plane of their neighbours (the outliers' plane: points/outliers.hpp).
 std::size_t normals_off_the_points(const SupportGrid& grid, std::span<const vec3> normals) {
   const SupportGridView view = grid.view();
   std::atomic<std::size_t> off{0};
   cpu::parallel_for(std::int64_t(normals.size()), [&](std::int64_t k) {
-    const int i = int(k);
-    const vec3 p = view.points[i];
-    WeightedMoments m(p);
-    view.for_each_covering(p, [&](vec3 q, float d2, int j) {
-      if (j != i) m.add(q, view.mass_of(j) * gaussian_weight(d2, view.inv_h2[j]));
-    });
-    if (m.count < 3 || !(m.weight_sum > 0)) return;
-    const vec3 plane = smallest_eigenvector(m.covariance_about_mean(), vec3(0.0f)).vector;
-    if (std::abs(glm::dot(plane, normals[std::size_t(i)])) < kFollowsCos) off.fetch_add(1, std::memory_order_relaxed);
+    const NeighboursPlane plane = neighbours_plane(view, int(k));
+    if (plane.fitted && std::abs(glm::dot(plane.normal, normals[std::size_t(k)])) < kFollowsCos)
+      off.fetch_add(1, std::memory_order_relaxed);
   });
   return off.load();
 }

@@ -38,31 +38,44 @@ inline constexpr int kOutlierPasses = 2;  // grid_of_samples
 // (supports of about 60) the share is under 3 and changes nothing (docs/paper-notes.md).
 inline constexpr float kOutlierHeldShare = 1.0f / 32;
 
+// The plane of sorted sample i's neighbours (the samples whose supports hold it, itself left
+// out), weighted as the fits weigh them: through their weighted mean, its normal of either
+// side; not fitted with fewer than 3 of them. held: their masses added up
+// (SupportGridView::mass_of).
+struct NeighboursPlane {
+  vec3 mean{0.0f}, normal{0.0f};
+  float held = 0;
+  bool fitted = false;
+};
+PSS_HOST_DEVICE inline NeighboursPlane neighbours_plane(const SupportGridView& grid, int i) {
+  const vec3 p = grid.points[i];
+  WeightedMoments m(p);
+  NeighboursPlane plane;
+  grid.for_each_covering(p, [&](vec3 q, float d2, int j) {
+    if (j == i) return;
+    m.add(q, grid.mass_of(j) * gaussian_weight(d2, grid.inv_h2[j]));
+    plane.held += grid.mass_of(j);
+  });
+  if (m.count < 3 || !(m.weight_sum > 0)) return plane;
+  plane.mean = m.mean();
+  plane.normal = smallest_eigenvector(m.covariance_about_mean(), vec3(0.0f)).vector;  // no hint: any side
+  plane.fitted = true;
+  return plane;
+}
+
 // The distance of sorted sample i to its neighbours' plane, over its h_i; infinity with
 // fewer than 3 neighbours: alone, or in a cluster too small to be a surface, it still enters
 // the fits of points between it and others (a floating flake, a bump). held[i]: the masses
-// of its neighbours added up (SupportGridView::mass_of).
+// of its neighbours added up.
 struct OutlierDistanceKernel {
   SupportGridView grid;
   float* out;
   float* held;
   PSS_HOST_DEVICE void operator()(std::int64_t k) const {
     const int i = int(k);
-    const vec3 p = grid.points[i];
-    WeightedMoments m(p);
-    float mass = 0;
-    grid.for_each_covering(p, [&](vec3 q, float d2, int j) {
-      if (j == i) return;
-      m.add(q, grid.mass_of(j) * gaussian_weight(d2, grid.inv_h2[j]));
-      mass += grid.mass_of(j);
-    });
-    held[i] = mass;
-    if (m.count < 3 || !(m.weight_sum > 0)) {
-      out[i] = kInfinity;
-      return;
-    }
-    const vec3 n = smallest_eigenvector(m.covariance_about_mean(), vec3(0.0f)).vector;  // no hint: any side
-    out[i] = abs(glm::dot(p - m.mean(), n)) * sqrt(grid.inv_h2[i]);
+    const NeighboursPlane plane = neighbours_plane(grid, i);
+    held[i] = plane.held;
+    out[i] = plane.fitted ? abs(glm::dot(grid.points[i] - plane.mean, plane.normal)) * sqrt(grid.inv_h2[i]) : kInfinity;
   }
 };
 
