@@ -13,6 +13,7 @@
 #include "pss/io/output_file.hpp"
 #include "pss/io/point_cloud_file.hpp"
 #include "pss/mesh/mesh_cloud.hpp"
+#include "pss/mesh/mesh_stats.hpp"
 #include "pss/mesh/mesh_volume.hpp"
 #include "pss/points/border_choice.hpp"
 #include "volume_options.hpp"
@@ -87,31 +88,6 @@ MeshTopology write_and_summarise(const MeshOptions& o, const TriangleMesh& mesh,
               shape.watertight() ? "watertight" : shape.manifold() ? "manifold with boundaries" : "NOT manifold",
               (long long)shape.boundary_edges, (long long)shape.euler_characteristic());
   return shape;
-}
-
-// What --stats records of every mesh: its shape and its band.
-void record_mesh(Stats& stats, const MeshTopology& shape, const MarchCounts& counts) {
-  auto& v = stats.values();
-  v["mesh"] = {{"vertices", shape.vertices},
-               {"triangles", shape.triangles},
-               {"edges", shape.edges},
-               {"components", shape.components},
-               {"boundary_edges", shape.boundary_edges},
-               {"non_manifold_edges", shape.non_manifold_edges},
-               {"non_manifold_vertices", shape.non_manifold_vertices},
-               {"euler_characteristic", shape.euler_characteristic()},
-               {"watertight", shape.watertight()},
-               {"manifold", shape.manifold()}};
-  v["band"] = {{"corners", counts.corners},
-               {"cubes_visited", counts.cubes_visited},
-               {"cubes_meshed", counts.cubes_crossed},
-               {"cubes_refused", counts.cubes_refused},
-               {"crease_vertices", counts.crease_vertices},
-               {"crease_flips", counts.crease_flips},
-               {"pinched_triangles", counts.pinched_triangles},
-               {"normals_turned", counts.normals_turned},
-               {"unsupported_parts", counts.unsupported_parts},
-               {"closed_parts_turned", counts.closed_parts_turned}};
 }
 
 void run_cloud_mesh(const MeshOptions& o, Stats& stats, std::chrono::steady_clock::time_point start) {

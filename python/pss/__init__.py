@@ -168,8 +168,9 @@ def mesh(points, h=None, *, normals=None, surface="rimls", outliers="set-aside",
     see above), (V, 3) float32 unit normals of the surface, and (T, 3) int32 vertex indices,
     counter-clockwise seen from outside. Closed where the surface is closed, manifold always.
     With full_output=True a fourth, the stats dict: project's, with the cell, the mesh's shape
-    ('mesh': vertices, triangles, components, boundary_edges, euler_characteristic, watertight,
-    manifold) and 'turned_outward', as `pss mesh --stats` writes them.
+    ('mesh': vertices, triangles, edges, components, boundary_edges, non-manifold edges and
+    vertices, euler_characteristic, watertight, manifold), the march's counts ('band') and
+    'turned_outward', as `pss mesh --stats` writes them.
     """
     return _pss.mesh(points, {"normals": normals, "surface": surface, "outliers": outliers, "h": h, "rho": rho,
                               "support": support, "cell": cell, "borders": borders, "iterations": iterations,

@@ -10,6 +10,7 @@
 #include "pss/core/error.hpp"
 #include "pss/io/point_cloud_file.hpp"
 #include "pss/mesh/mesh_cloud.hpp"
+#include "pss/mesh/mesh_stats.hpp"
 #include "pss/points/project_cloud.hpp"
 #include "pss/points/render_cloud.hpp"
 #include "pss/points/spacing.hpp"
@@ -171,14 +172,7 @@ py::tuple mesh(const py::handle& points, const py::dict& o) {
     p["cell"] = made.cell;
     p["crease_angle"] = params.crease_angle;
     p["borders"] = border_name(params.projection.borders);
-    const MeshTopology shape = topology(made.mesh);
-    stats.values()["mesh"] = {{"vertices", shape.vertices},
-                              {"triangles", shape.triangles},
-                              {"components", shape.components},
-                              {"boundary_edges", shape.boundary_edges},
-                              {"euler_characteristic", shape.euler_characteristic()},
-                              {"watertight", shape.watertight()},
-                              {"manifold", shape.manifold()}};
+    record_mesh(stats, topology(made.mesh), made.counts);
     stats.values()["turned_outward"] = made.turned_outward;
     return made;
   });

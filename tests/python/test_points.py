@@ -349,5 +349,6 @@ def test_project_and_mesh_give_their_stats_with_full_output():
     shape = stats["mesh"]
     assert shape["vertices"] == len(vertices) and shape["triangles"] == len(faces)
     assert shape["watertight"] and shape["components"] == 1 and shape["euler_characteristic"] == 2
+    assert shape["non_manifold_edges"] == 0 and stats["band"]["cubes_meshed"] > 0
     assert stats["params"]["cell"] > 0 and stats["params"]["surface"] == "rimls"
     assert len(pss.project(points)) == 3 and len(pss.mesh(points)) == 3

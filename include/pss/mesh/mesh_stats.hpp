@@ -1,0 +1,15 @@
+// What --stats (and the Python module's full_output) records of every mesh: its shape and
+// its band (issue 27).
+#pragma once
+
+#include "pss/core/stats.hpp"
+#include "pss/mesh/marching_tetrahedra.hpp"
+#include "pss/mesh/triangle_mesh.hpp"
+
+namespace pss {
+
+// "mesh": the shape's counts and whether it is watertight and manifold; "band": the march's
+// counts (corners, cubes visited, meshed and refused, the crease, pinch and turn steps').
+void record_mesh(Stats& stats, const MeshTopology& shape, const MarchCounts& counts);
+
+}  // namespace pss
