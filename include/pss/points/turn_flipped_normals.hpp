@@ -7,11 +7,13 @@
 // 2. between two patches, neighbours whose normals are opposed (n_i·n_j < −0.7) are evidence
 //    of a flip when they lie side by side, in each other's tangent plane (a seam through one
 //    sheet), and evidence against it when stacked (the two faces of a thin wall, a slot, a
-//    knife edge: the offset along the normals is most of their distance);
+//    knife edge: the offset along the normals is most of their distance); stacked pairs that
+//    face alike tell nothing (a flipped face of a thin part, or layers: the ground under roofs);
 // 3. patches with more seam than wall evidence between them are linked as flipped against
 //    each other, strongest evidence first; each group of linked patches keeps the side that
 //    makes it face outward (facing_vote.hpp: the divergence theorem's sign over the group),
-//    or where that has no say, the side with more samples, and turns the other.
+//    or where that has no say and the two sides face opposite ways, the side with more
+//    samples, and turns the other.
 // Creases (normals 90° apart) link nothing, so a CAD part's exact normals are left as they
 // are; an orientation that crosses them (orient_normals.hpp) would have to guess.
 #pragma once
