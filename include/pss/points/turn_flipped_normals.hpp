@@ -10,10 +10,11 @@
 //    knife edge: the offset along the normals is most of their distance); stacked pairs that
 //    face alike tell nothing (a flipped face of a thin part, or layers: the ground under roofs);
 // 3. patches with more seam than wall evidence between them are linked as flipped against
-//    each other, strongest evidence first; each group of linked patches keeps the side that
-//    makes it face outward (facing_vote.hpp: the divergence theorem's sign over the group),
-//    or where that has no say and the two sides face opposite ways, the side with more
-//    samples, and turns the other.
+//    each other, strongest evidence first; each group of linked patches whose two sides both
+//    hold a patch of 8 samples or more (a file facing one way throughout has none) keeps the
+//    side that makes it face outward (facing_vote.hpp: the divergence theorem's sign over the
+//    group), or where that has no say and the two sides face opposite ways, the side with
+//    more samples, and turns the other; smaller patches face as the surfaces they lie on.
 // Creases (normals 90° apart) link nothing, so a CAD part's exact normals are left as they
 // are; an orientation that crosses them (orient_normals.hpp) would have to guess.
 #pragma once
