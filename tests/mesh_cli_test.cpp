@@ -33,6 +33,39 @@ std::string number(float v) {
   return text;
 }
 
+// The vertices of a binary little-endian PLY of float x y z and faces of 3 int indices (the
+// dragon's, as VCG writes it), each with the area-weighted normal of its faces.
+struct ScanMesh {
+  std::vector<glm::dvec3> positions, normals;
+};
+ScanMesh read_scan_mesh(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::size_t vertices = 0, faces = 0;
+  for (std::string line; std::getline(in, line) && line != "end_header";) {
+    if (line.rfind("element vertex ", 0) == 0) vertices = std::stoul(line.substr(15));
+    if (line.rfind("element face ", 0) == 0) faces = std::stoul(line.substr(13));
+  }
+  ScanMesh m;
+  for (std::size_t i = 0; i < vertices; ++i) {
+    float p[3];
+    in.read(reinterpret_cast<char*>(p), sizeof p);
+    m.positions.push_back(glm::dvec3(p[0], p[1], p[2]));
+  }
+  m.normals.assign(vertices, glm::dvec3(0.0));
+  for (std::size_t f = 0; f < faces; ++f) {
+    unsigned char count = 0;
+    std::int32_t v[3];
+    in.read(reinterpret_cast<char*>(&count), 1);
+    in.read(reinterpret_cast<char*>(v), sizeof v);
+    EXPECT_EQ(count, 3);
+    const glm::dvec3 a = m.positions[std::size_t(v[0])], b = m.positions[std::size_t(v[1])],
+                     c = m.positions[std::size_t(v[2])];
+    for (const int k : v) m.normals[std::size_t(k)] += glm::cross(b - a, c - a);
+  }
+  EXPECT_TRUE(in.good()) << path;
+  return m;
+}
+
 class MeshCli : public test::CliTest {
  protected:
   // A unit sphere's samples, and its mesh by `pss mesh ... flags`; the mesh read back.
@@ -278,18 +311,32 @@ TEST_F(MeshCli, BordersClipOrExtendTheOpenEdge) {
   EXPECT_GT(reach[1], 1.12f);
 }
 
-// The dragon's vertices, their normals estimated: the orientation's guess comes out inward
-// (its highest sample lies on a thin horn), and the mesh is turned to face out, as the
-// dragon's own faces do.
-TEST_F(MeshCli, AMeshOfEstimatedNormalsFacesOut) {
+// The dragon's vertices, their normals estimated: the orientation's tree crossed a fold whose
+// plane fits straddle both walls, and the dragon's head and front (41 % of the mesh's area)
+// faced inward, the mesh holed where the two halves met (4,056 boundary edges), and turned
+// "outward" whole by its volume; the seams' turn mends most of it (8 %). Truth: the normals
+// of the scan's own faces at its vertex nearest each of every 16th vertex of the mesh.
+TEST_F(MeshCli, AMeshOfEstimatedNormalsFacesAsTheScansFaces) {
   const std::string dragon = PSS_SOURCE_DIR "/../shared/data/dragon_21790.ply";
   if (!std::filesystem::exists(dragon)) GTEST_SKIP() << "no " << dragon;
-  const test::CliResult r = mesh(dragon, "d.ply", "--stats " + path("d.json"));
+  const test::CliResult r = mesh(dragon, "d.ply");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const TriangleMesh m = test::read_mesh(path("d.ply"));
   EXPECT_GT(enclosed_volume(m), 0);
-  EXPECT_EQ(stats("d.json")["turned_outward"], true);
-  EXPECT_NE(r.out.find("the mesh was turned to face outward"), std::string::npos) << r.out;
+  const ScanMesh scan = read_scan_mesh(dragon);
+  std::size_t tried = 0, against = 0;
+  for (std::size_t v = 0; v < m.positions.size(); v += 16) {
+    const glm::dvec3 p = m.origin + glm::dvec3(m.positions[v]);
+    std::size_t nearest = 0;
+    double best = kInfinity;
+    for (std::size_t k = 0; k < scan.positions.size(); ++k) {
+      const glm::dvec3 e = scan.positions[k] - p;
+      if (glm::dot(e, e) < best && glm::dot(scan.normals[k], scan.normals[k]) > 0) best = glm::dot(e, e), nearest = k;
+    }
+    ++tried;
+    against += glm::dot(scan.normals[nearest], glm::dvec3(m.normals[v])) < 0;
+  }
+  EXPECT_LT(double(against), 0.12 * double(tried)) << against << " of " << tried;
 }
 
 // cube.pwn, a CAD block with slots and a bore, its file's normals between two faces' on the

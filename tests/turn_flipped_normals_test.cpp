@@ -212,6 +212,34 @@ TEST(TurnFlippedNormals, AFlippedNormalOnACreaseIsTurnedAsTheFacesBesideIt) {
   EXPECT_EQ(a.against, 0u) << a.with << " with the truth, " << a.against << " against";
 }
 
+// A ring standing up (a torus about the y axis, R = 1, r = 0.2), its normals flipped on the
+// larger part (x > −0.2): the heights' vote has no say on it (Σ (z − z_lowest) n_z is 0.20 of
+// its magnitudes: the top arc's underside faces down), nor do the sides' normals (a closed
+// surface's two parts sum to opposite vectors, so one flipped sums alike with the other), and
+// the smaller side would turn the right one. The volume it encloses says which side is out.
+TEST(TurnFlippedNormals, AClosedSurfaceWhoseHeightsHaveNoSayFacesOutAsItEncloses) {
+  test::SampleOptions o;
+  o.count = 6000;
+  const test::Torus ring{1.0f, 0.2f};
+  const PointCloud c = test::sample(ring, o);
+  Sampled s;
+  for (const vec3& p : c.positions) {
+    s.points.push_back(vec3(p.x, p.z, p.y));  // about y: standing up
+    const vec3 n = ring.normal(p);
+    s.truth.push_back(vec3(n.x, n.z, n.y));
+  }
+  std::vector<vec3> normals = s.truth;
+  std::size_t flipped = 0;
+  for (std::size_t i = 0; i < normals.size(); ++i)
+    if (s.points[i].x > -0.2f) {
+      normals[i] = -normals[i];
+      ++flipped;
+    }
+  ASSERT_GT(flipped, normals.size() / 2);
+  EXPECT_EQ(turn(s.points, normals, 0.09f), flipped);
+  EXPECT_EQ(agreement(normals, s.truth).against, 0u);
+}
+
 // Single normals flipped here and there (1 %), as a careless estimator leaves them.
 TEST(TurnFlippedNormals, ScatteredFlippedNormalsAreTurned) {
   const Sampled s = sphere(4000);

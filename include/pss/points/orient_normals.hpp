@@ -5,9 +5,9 @@
 // vote (facing_vote.hpp), the highest point's +z where they have no say. The graph links p_i to
 // every p_j within radius[j] of it: with the samples' supports ρ_j, the samples of p_i's own
 // neighbourhood N(p_i), so that a sparse part, whose samples lie farther apart, stays
-// connected. The seams' turn that a file's normals go through (turn_flipped_normals.hpp) is
-// not applied to the tree's signs: it turned an aerial scan's roofs and ground downward
-// (docs/paper-notes.md).
+// connected. The seams' turn that a file's normals go through (turn_flipped_normals.hpp)
+// follows where the samples' estimated normals are oriented (sample_normals.hpp), not here:
+// MLS's projections' normals and the tiles' go without it (docs/paper-notes.md).
 #pragma once
 
 #include <cstdint>

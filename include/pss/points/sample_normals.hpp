@@ -1,6 +1,7 @@
 // The samples' oriented unit normals that APSS and RIMLS fit (issue 26): the file's when it
 // has them, else estimated from the points (each sample's WLS plane, paper Eq. 1, at
-// itself) and oriented consistently (orient_normals.hpp).
+// itself), oriented consistently (orient_normals.hpp) and their seams turned
+// (turn_flipped_normals.hpp: where the tree crossed a fold).
 #pragma once
 
 #include <cmath>
