@@ -463,6 +463,14 @@ TEST_F(MeshCli, BadInputGetsOneLineAndNoOutput) {
   for (int i = 0; i < 100; ++i) line += std::to_string(0.01 * i) + " " + std::to_string(0.02 * i) + " 0\n";
   write("line.xyz", line);
   expect_clean_failure("mesh " + path("line.xyz") + " -o " + path("m.ply"), "the points lie on a line", path("m.ply"));
+  // Coincident points: the spacing's estimate asks for --h, and with it a disc of h's width came out.
+  std::string same;
+  for (int i = 0; i < 100; ++i) same += "1 2 3\n";
+  write("same.xyz", same);
+  expect_clean_failure("mesh " + path("same.xyz") + " -o " + path("m.ply") + " --h 0.1", "the points all coincide",
+                       path("m.ply"));
+  write("one.xyz", "1 2 3\n");
+  expect_clean_failure("mesh " + path("one.xyz") + " -o " + path("m.ply"), "has 1 point:", path("m.ply"));
   write("empty.xyz", "");
   expect_clean_failure("mesh " + path("empty.xyz") + " -o " + path("m.ply"), "empty.xyz", path("m.ply"));
   expect_clean_failure("mesh " + path("missing.xyz") + " -o " + path("m.ply"), "missing.xyz", path("m.ply"));

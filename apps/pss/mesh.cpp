@@ -94,7 +94,8 @@ void run_cloud_mesh(const MeshOptions& o, Stats& stats, std::chrono::steady_cloc
   const Backend backend = start_compute(o.compute);
   const PointCloud cloud = read_cloud(o.input, stats);
   if (cloud.size() < 3)
-    throw file_error(o.input, "has " + std::to_string(cloud.size()) + " points: a mesh needs at least 3");
+    throw file_error(o.input, "has " + std::to_string(cloud.size()) + (cloud.size() == 1 ? " point" : " points") +
+                                  ": a mesh needs at least 3");
   check_mesh_origin(o.output, cloud.origin);  // before the work, not after
   MeshParams params;
   params.projection = projection_params(o.surface, cloud, o.input, PlaneFitMethod::mls, stats);

@@ -33,8 +33,11 @@ double expected_band_cubes(std::span<const float> widths, float cell) {
 
 // Points on a line (or all but coincident) define no surface: MLS would fit a tube of its
 // weights' width around them. Refused where every point lies within 10⁻⁶ of the cloud's
-// extent of the line through its mean along its principal axis.
+// extent of the line through its mean along its principal axis, and where all coincide (with
+// --h, which the spacing's estimate asks for then, a disc of h's width came out).
 void check_not_a_line(std::span<const vec3> points) {
+  if (std::all_of(points.begin(), points.end(), [&](vec3 p) { return p == points[0]; }))
+    throw Error("the points all coincide: they define no surface to mesh");
   glm::dvec3 mean(0.0);
   for (const vec3& p : points) mean += glm::dvec3(p) / double(points.size());
   double c[3][3] = {};
@@ -48,7 +51,7 @@ void check_not_a_line(std::span<const vec3> points) {
     glm::dvec3 next(0.0);
     for (int i = 0; i < 3; ++i) next[i] = c[i][0] * axis[0] + c[i][1] * axis[1] + c[i][2] * axis[2];
     const double length = glm::length(next);
-    if (!(length > 0)) return;  // all coincident: the spacing's estimate says so
+    if (!(length > 0)) throw Error("the points all coincide: they define no surface to mesh");
     axis = next / length;
   }
   double along = 0, off = 0;
