@@ -126,31 +126,6 @@ TEST_F(TiledProjectTest, ApssAndRimlsFitTheSamplesNormalsInTilesAsInCore) {
   }
 }
 
-// A sphere with a band gone (−0.7 < z < −0.4): its cap below the gap is a part of its own,
-// an open surface facing down, which its own vote turned up (inward, its 2,994 normals of a
-// sphere of 20,000); the parts together enclose the sphere, and the cap faces as it closes
-// it: every normal outward, in core and tile by tile (points/facing_vote.hpp's
-// close_the_parts), under MLS (the projections' normals) and RIMLS (the samples').
-TEST_F(TiledProjectTest, ACapApartFromTheRestFacesAsItClosesTheSphereInTilesAsInCore) {
-  test::SampleOptions o;
-  o.count = 20000;
-  std::vector<vec3> points;
-  for (const vec3& p : test::sample(test::Sphere{}, o).positions)
-    if (!(p.z > -0.7f && p.z < -0.4f)) points.push_back(p);
-  const std::string file = write("capped.xyz", test::xyz_text(points));
-  for (const SurfaceOperator surface : {SurfaceOperator::mls, SurfaceOperator::rimls}) {
-    SCOPED_TRACE(int(surface));
-    const auto [params, in_core] = projected_in_core(file, surface);
-    std::size_t inward = 0;
-    for (std::size_t i = 0; i < points.size(); ++i) inward += glm::dot(in_core.cloud.normals[i], points[i]) < 0;
-    EXPECT_EQ(inward, 0u) << "of " << points.size();
-    const Compared c = compare(in_core, file, dir_, params, 1500, 7001);
-    EXPECT_GT(c.tiles, 8u);
-    EXPECT_EQ(c.apart, 0u);
-    EXPECT_EQ(c.facing_apart, 0u) << "of " << points.size() << " normals face otherwise than in core";
-  }
-}
-
 // A noisy sphere with a fifth as many strays about it: the second outliers' pass keeps the
 // first's threshold, as in core, though the strays set aside moved the distances' median. The
 // strays' own projections are no surface's (most stop at the iteration cap, within the

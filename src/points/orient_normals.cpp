@@ -79,9 +79,8 @@ OrientedParts orient_sorted(const SupportGrid& grid, std::span<vec3> sorted, Ran
 
 // Turns each part whose converged points vote that it faces inward (facing_vote.hpp); the
 // supports ρ are the grid's κ·h_i (its widths where κ = 1, as the tiles' grids are built).
-template <class Status, class Rank>
-void face_as_voted(const SupportGrid& grid, std::span<vec3> sorted, const OrientedParts& parts, Status status,
-                   Rank rank) {
+template <class Status>
+void face_as_voted(const SupportGrid& grid, std::span<vec3> sorted, const OrientedParts& parts, Status status) {
   const std::span<const vec3> at = grid.sorted_points();
   const std::span<const float> inv_h2 = grid.inv_h2();
   const float kappa2 = grid.kappa() * grid.kappa();
@@ -90,7 +89,6 @@ void face_as_voted(const SupportGrid& grid, std::span<vec3> sorted, const Orient
     votes[std::size_t(parts.of_point[k])].add(at[k], sorted[k], inv_h2[k] / kappa2, status(k));
   std::vector<char> turns(votes.size());
   for (std::size_t p = 0; p < votes.size(); ++p) turns[p] = votes[p].sign() < 0;
-  close_the_parts(std::span<const FacingVote>(votes), [&](std::size_t p) { return rank(parts.root[p]); }, turns);
   release(votes);
   for (std::size_t k = 0; k < sorted.size(); ++k)
     if (turns[std::size_t(parts.of_point[k])]) sorted[k] = -sorted[k];
@@ -122,8 +120,7 @@ void orient_normals_consistently(std::span<const vec3> points, std::span<vec3> n
   const std::span<const int> original = grid.original_index();
   Progress progress("orient normals", std::int64_t(points.size()));
   const OrientedParts parts = orient_sorted(grid, sorted, [&](int k) { return original[std::size_t(k)]; }, &progress);
-  face_as_voted(grid, sorted, parts, [&](std::size_t k) { return status[std::size_t(original[k])]; },
-                [&](int k) { return original[std::size_t(k)]; });
+  face_as_voted(grid, sorted, parts, [&](std::size_t k) { return status[std::size_t(original[k])]; });
   for (std::size_t k = 0; k < sorted.size(); ++k) normals[std::size_t(original[k])] = sorted[k];
 }
 
@@ -135,8 +132,7 @@ void orient_grid_normals(const SupportGrid& grid, std::span<vec3> sorted_normals
   Progress progress("orient normals", std::int64_t(original.size()));
   const OrientedParts parts =
       orient_sorted(grid, sorted_normals, [&](int k) { return original[std::size_t(k)]; }, &progress);
-  face_as_voted(grid, sorted_normals, parts, [&](std::size_t k) { return sorted_status[k]; },
-                [&](int k) { return original[std::size_t(k)]; });
+  face_as_voted(grid, sorted_normals, parts, [&](std::size_t k) { return sorted_status[k]; });
 }
 
 OrientedParts orient_normals_in_parts(std::span<const vec3> points, std::span<vec3> normals,
@@ -173,8 +169,7 @@ void orient_normals_consistently(std::vector<vec3>& points, std::vector<vec3>& n
   {
     Progress progress("orient normals", std::int64_t(original.size()));
     const OrientedParts parts = orient_sorted(grid, sorted, [&](int k) { return original[std::size_t(k)]; }, &progress);
-    face_as_voted(grid, sorted, parts, [&](std::size_t k) { return status[std::size_t(original[k])]; },
-                  [&](int k) { return original[std::size_t(k)]; });
+    face_as_voted(grid, sorted, parts, [&](std::size_t k) { return status[std::size_t(original[k])]; });
   }
   const std::size_t n = original.size();
   normals.resize(n);

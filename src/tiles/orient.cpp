@@ -80,7 +80,6 @@ std::vector<char> PieceSigns::turns() const {
   }
   std::vector<char> inward(n);  // by each part's root
   for (std::uint32_t r = 0; r < n; ++r) inward[r] = facing[r].sign() < 0;
-  close_the_parts(std::span<const FacingVote>(facing), [&](std::size_t r) { return roots_[top[r]].index; }, inward);
   for (std::uint32_t p = 0; p < n; ++p) turn[p] ^= inward[find(p)];
   return turn;
 }

@@ -7,8 +7,7 @@
 // forest of the votes, as Prim's tree takes the cheapest edges first); each part keeps the
 // sign of its piece grown from its highest point, and the others follow it. Then, as in core,
 // the part faces the way its converged points vote: each piece's vote, over its tile's own
-// points, added with the piece's sign, and parts that together enclose a volume take the
-// sides that close it (points/facing_vote.hpp, close_the_parts).
+// points, added with the piece's sign (points/facing_vote.hpp).
 #pragma once
 
 #include <cstdint>
