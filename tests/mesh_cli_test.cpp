@@ -314,7 +314,7 @@ TEST_F(MeshCli, BordersClipOrExtendTheOpenEdge) {
 // The dragon's vertices, their normals estimated: the orientation's tree crossed a fold whose
 // plane fits straddle both walls, and the dragon's head and front (41 % of the mesh's area)
 // faced inward, the mesh holed where the two halves met (4,056 boundary edges), and turned
-// "outward" whole by its volume; the seams' turn mends most of it (8 %). Truth: the normals
+// "outward" whole by its volume; the seams' turn mends most of it (9 %). Truth: the normals
 // of the scan's own faces at its vertex nearest each of every 16th vertex of the mesh.
 TEST_F(MeshCli, AMeshOfEstimatedNormalsFacesAsTheScansFaces) {
   const std::string dragon = PSS_SOURCE_DIR "/../shared/data/dragon_21790.ply";

@@ -98,6 +98,18 @@ TEST_F(TiledProjectTest, ATorusAndASphereApartProjectInTilesAsInCore) {
   params.support = Support::adaptive;
   Stats stats;
   const CloudProjection in_core = project_cloud(std::move(cloud), params, Backend::cpu, stats);
+  // Both face outward in core: two closed parts apart, each as its own points vote (a rule
+  // that gave the smaller a side by the normals' sum of both turned the sphere inward).
+  const test::Torus torus;
+  const test::Sphere sphere{vec3(3, 0, 0.5f), 0.5f};
+  std::size_t on_surface = 0, inward = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const vec3 p = in_core.cloud.positions[i], n = in_core.cloud.normals[i];
+    if (std::abs(sphere.distance(p)) < 0.01f) ++on_surface, inward += glm::dot(n, sphere.normal(p)) < 0;
+    else if (std::abs(torus.distance(p)) < 0.01f) ++on_surface, inward += glm::dot(n, torus.normal(p)) < 0;
+  }
+  EXPECT_GT(on_surface, 22000u);
+  EXPECT_EQ(inward, 0u);
   for (const std::uint64_t per_tile : {600u, 2500u}) {
     SCOPED_TRACE(per_tile);
     const Compared c = compare(in_core, file, dir_, params, per_tile, 7001);

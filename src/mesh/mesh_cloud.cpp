@@ -124,7 +124,7 @@ CloudMesh mesh_cloud(const PointCloud& cloud, const MeshParams& params, Backend 
   out.mesh.origin = cloud.origin;
   // Which side is out is a guess where the normals were estimated, and where the file's
   // disagreed among themselves (some turned: the side kept is a vote's). A file that faces
-  // one way throughout keeps its side (a room's scan faces into the room). The closed
+  // one way throughout, none turned, keeps its side (a room's scan faces into the room). The closed
   // parts' volume tells it where they are most of the mesh; where most is open (an aerial
   // scan's ground and roofs), a few closed blobs would decide by chance, and the guess (the
   // highest sample facing up) stands.

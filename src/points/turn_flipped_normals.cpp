@@ -277,9 +277,10 @@ std::size_t turn_flipped_normals(const SupportGrid& grid, std::span<vec3> normal
   });
   ParityUnionFind flips(count);
   for (const Link& l : links) flips.link(l.a, l.b, l.odd);
-  // Each group of linked patches with samples on both sides turns one side: the one that
-  // faces inward as the whole group votes with the other's sign (facing_vote.hpp), or where
-  // the vote has no say (an open surface seen edge-on), the smaller side, if the two sides
+  // Each group of linked patches whose sides both hold a patch that weighs (below) turns one
+  // side: the one that faces inward as the whole group votes with the other's sign
+  // (facing_vote.hpp), or where that vote has no say, as the volume the group encloses says
+  // (Enclosure, above), or where neither has (an open surface seen edge-on), the smaller side, if the two sides
   // face opposite ways (their normals' sums): a sheet half flipped. Where they face alike the
   // links do not show a flip, and nothing turns. A file's majority is no guide: cube.pwn's
   // normals, each signed positive along its axis, point inward on the three faces that hold

@@ -216,7 +216,9 @@ struct UnitSets {
 
 // APSS's and RIMLS's samples' normals (points/sample_normals.hpp) tile by tile, as in core:
 // each own sample's WLS plane at its place (a merged one at its cube's mean), then oriented
-// over the tiles as the projections' normals are, linked within the samples' ρ_i.
+// over the tiles as the projections' normals are, linked within the samples' ρ_i. Not yet as
+// in core: the seams' turn after the orientation (turn_flipped_normals.hpp), so where it
+// turns any sample's normal in core, the tiles' differ there (docs/architecture.md).
 OrientedInTiles sample_normals_in_tiles(const UnitSets& sets, float kappa, const ProjectionParams& unit_params,
                                         Backend backend, std::size_t window_points, const std::filesystem::path& folder,
                                         std::size_t buffer_bytes, TileFarm& farm) {
