@@ -191,7 +191,7 @@ Lattice lattice_over(vec3 lo, vec3 hi, double margin, double cell, const char* w
 }
 
 TriangleMesh march_tetrahedra(const Lattice& lattice, std::span<const vec3> seeds, const ImplicitSurface& implicit,
-                              float max_slope, float crease_angle, MarchCounts& counts) {
+                              float max_slope, float crease_angle, MarchCounts& counts, std::int64_t expected_corners) {
   counts = {};
   Corners corners;
   std::vector<std::uint64_t> visited, frontier;
@@ -202,8 +202,10 @@ TriangleMesh march_tetrahedra(const Lattice& lattice, std::span<const vec3> seed
   for (const vec3& s : seeds) consider(frontier, lattice.cube_of(s));
   frontier = unique_sorted(std::move(frontier));
 
-  // One phase for the band's corners, wave after wave: the first wave holds most of them.
+  // One phase for the band's corners, wave after wave, its total the estimate until the waves
+  // pass it.
   std::optional<Progress> progress;
+  std::int64_t planned = 0, seen = 0;
   while (!frontier.empty()) {
     visited = merged(visited, frontier);
     counts.cubes_visited += std::int64_t(frontier.size());
@@ -216,10 +218,14 @@ TriangleMesh march_tetrahedra(const Lattice& lattice, std::span<const vec3> seed
     std::vector<vec3> positions(fresh.size());
     for (std::size_t i = 0; i < fresh.size(); ++i) positions[i] = lattice.position(Lattice::corner(fresh[i]));
     std::vector<CornerSample> samples(fresh.size());
-    if (!progress)
-      progress.emplace("mesh corners", std::int64_t(fresh.size()));
-    else
-      progress->add_total(std::int64_t(fresh.size()));
+    seen += std::int64_t(fresh.size());
+    if (!progress) {
+      planned = std::max(seen, expected_corners);
+      progress.emplace("mesh corners", planned);
+    } else if (seen > planned) {
+      progress->add_total(seen - planned);
+      planned = seen;
+    }
     implicit.sample(positions, samples, *progress);
     counts.corners += std::int64_t(fresh.size());
     corners.merge(fresh, samples);

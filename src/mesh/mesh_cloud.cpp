@@ -101,7 +101,8 @@ CloudMesh mesh_cloud(const PointCloud& cloud, const MeshParams& params, Backend 
   // A default cell comes from h, which the message then names.
   const Lattice lattice = lattice_over(box.lo, box.hi, std::max(2.0 * double(out.cell), reach), double(out.cell),
                                        params.cell > 0 ? "the cell size" : "the cell size (h/2, from h)");
-  check_band(expected_band_cubes(out.widths.h, out.cell), out.cell, "cloud");
+  const double band_cubes = expected_band_cubes(out.widths.h, out.cell);
+  check_band(band_cubes, out.cell, "cloud");
   SupportGrid grid = grid_of_samples(cloud.positions, out.widths.h, out.widths.merged, projection.rho / projection.h,
                                      projection.outliers, backend, stats, out.outliers);
   out.widths.h = {};
@@ -118,7 +119,7 @@ CloudMesh mesh_cloud(const PointCloud& cloud, const MeshParams& params, Backend 
   {
     ScopedPhase phase(stats, "mesh", false);  // its kernels show their progress
     out.mesh = march_tetrahedra(lattice, grid.sorted_points(), implicit, mesh_detail::kMaxSlope,
-                                params.crease_angle, out.counts);
+                                params.crease_angle, out.counts, std::int64_t(kCornersPerBandCube * band_cubes));
   }
   out.counts.unsupported_parts = mesh_detail::remove_unsupported_parts(out.mesh, grid);
   out.mesh.origin = cloud.origin;

@@ -44,7 +44,8 @@ VolumeMesh mesh_volume(const PreparedVolume& volume, float cell, Backend backend
   const Lattice lattice = lattice_over(box.lo, box.hi, 2.0 * double(out.cell), double(out.cell), "the cell size");
   // About one crossed cell per voxel² of surface, and one cube per cell² of it.
   const double ratio = double(voxel) / double(out.cell);
-  check_band(double(volume.cells.crossed_count) * ratio * ratio, double(out.cell), "volume");
+  const double band_cubes = double(volume.cells.crossed_count) * ratio * ratio;
+  check_band(band_cubes, double(out.cell), "volume");
   const std::vector<vec3> seeds = crossed_cell_centres(volume);
 
   const SceneMirror scene(backend, volume);
@@ -52,7 +53,8 @@ VolumeMesh mesh_volume(const PreparedVolume& volume, float cell, Backend backend
       mesh_detail::implicit_surface(backend, VolumeImplicit{scene.scene(), out.cell}, out.cell, stats);
   {
     ScopedPhase phase(stats, "mesh", false);  // its kernels show their progress
-    out.mesh = march_tetrahedra(lattice, seeds, implicit, mesh_detail::kMaxSlope, kNoCreases, out.counts);
+    out.mesh = march_tetrahedra(lattice, seeds, implicit, mesh_detail::kMaxSlope, kNoCreases, out.counts,
+                                std::int64_t(kCornersPerBandCube * band_cubes));
   }
   if (out.mesh.triangles.empty())
     throw Error(volume.cells.crossed_count == 0
