@@ -280,11 +280,11 @@ std::size_t turn_flipped_normals(const SupportGrid& grid, std::span<vec3> normal
   // Each group of linked patches whose sides both hold a patch that weighs (below) turns one
   // side: the one that faces inward as the whole group votes with the other's sign
   // (facing_vote.hpp), or where that vote has no say, as the volume the group encloses says
-  // (Enclosure, above), or where neither has (an open surface seen edge-on), the smaller side, if the two sides
-  // face opposite ways (their normals' sums): a sheet half flipped. Where they face alike the
-  // links do not show a flip, and nothing turns. A file's majority is no guide: cube.pwn's
-  // normals, each signed positive along its axis, point inward on the three faces that hold
-  // more samples, and the majority turned the whole part inward.
+  // (Enclosure, above), or where neither has (an open surface seen edge-on), the smaller
+  // side, if the two sides face opposite ways (their normals' sums): a sheet half flipped.
+  // Where they face alike the links do not show a flip, and nothing turns. A file's majority
+  // is no guide: cube.pwn's normals, each signed positive along its axis, point inward on the
+  // three faces that hold more samples, and the majority turned the whole part inward.
   std::vector<int> group(count), side(count);
   for (int k = 0; k < patches; ++k) group[std::size_t(k)] = flips.find(k, side[std::size_t(k)]);
   std::vector<std::int64_t> odd(count, 0), even(count, 0);
