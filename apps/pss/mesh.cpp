@@ -122,21 +122,8 @@ void run_cloud_mesh(const MeshOptions& o, Stats& stats, std::chrono::steady_cloc
                 "was turned to face outward\n");
 
   if (!o.compute.stats_path.empty()) {
-    auto& v = stats.values();
     record_cloud_run(stats, "mesh", o.input, o.output, cloud, backend);
-    v["params"] = {{"h", params.projection.h}, {"rho", params.projection.rho}, {"cell", result.cell},
-                   {"crease_angle", params.crease_angle},
-                   {"support", support_name(params.projection.support)},
-                   {"surface", surface_name(params.projection.surface)}, {"normals", normals_used_name(result.normals)},
-                   {"outliers", o.surface.surface.outliers}, {"borders", border_name(params.projection.borders)},
-                   {"h_least", result.widths.least}, {"h_largest", result.widths.largest},
-                   {"max_mls_iterations", params.projection.max_mls_iterations}};
-    record_mesh(stats, shape, result.counts);
-    v["outliers_set_aside"] = result.outliers.set_aside;
-    v["points_merged"] = result.widths.merged_count;
-    v["normals_turned"] = result.normals_turned;
-    v["file_normals_off"] = result.file_normals_off;
-    v["turned_outward"] = result.turned_outward;
+    record_cloud_mesh(stats, result, params, shape);
   }
 }
 

@@ -20,6 +20,7 @@
 #include "pss/io/point_stream.hpp"
 #include "pss/io/tiled_cloud.hpp"
 #include "pss/points/project_cloud.hpp"
+#include "pss/points/surface_stats.hpp"
 #include "pss/tiles/memory_plan.hpp"
 #include "pss/tiles/project.hpp"
 #include "pss/tiles/spacing.hpp"
@@ -207,18 +208,11 @@ void run_project(const ProjectOptions& o) {
   if (!o.compute.stats_path.empty()) {
     auto& v = stats.values();
     record_cloud_run(stats, "project", o.input, o.output, run.points, run.origin, backend);
-    v["params"] = {{"h", params.h}, {"rho", params.rho}, {"plane_fit", o.method},
-                   {"support", support_name(params.support)},
-                   {"surface", surface_name(params.surface)}, {"normals", normals_used_name(run.normals)},
-                   {"outliers", o.surface.surface.outliers},
-                   {"h_least", run.widths.least}, {"h_largest", run.widths.largest},
-                   {"max_mls_iterations", params.max_mls_iterations}, {"t_tolerance", params.t_tolerance}};
-    v["status"] = {{"converged", c.converged}, {"not_converged", c.not_converged},
-                   {"too_few_neighbours", c.too_few_neighbours}, {"degenerate_normal", c.degenerate_normal}};
-    v["outliers_set_aside"] = run.set_aside;
-    v["points_merged"] = run.widths.merged_count;
-    v["normals_turned"] = run.normals_turned;
-    v["file_normals_off"] = run.file_normals_off;
+    record_cloud_surface(stats, params, run.widths, run.normals, run.normals_turned, run.file_normals_off,
+                         run.set_aside);
+    v["params"]["plane_fit"] = o.method;
+    v["params"]["t_tolerance"] = params.t_tolerance;
+    record_status_counts(stats, c);
     v["points_per_second"] = double(run.points) / projection_s;
     v["memory"] = {{"budget", plan.budget}, {"tiled", plan.tiled}};
     if (plan.tiled) v["memory"]["points_per_tile"] = plan.points_per_tile;

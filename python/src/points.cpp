@@ -13,6 +13,7 @@
 #include "pss/mesh/mesh_stats.hpp"
 #include "pss/points/project_cloud.hpp"
 #include "pss/points/render_cloud.hpp"
+#include "pss/points/surface_stats.hpp"
 #include "pss/points/spacing.hpp"
 
 namespace pss::python {
@@ -95,32 +96,6 @@ struct CloudSurfaceArgs {
   }
 };
 
-namespace {
-
-// What project's and mesh's stats share with `pss project --stats` and `pss mesh --stats`:
-// the surface's parameters, and what was done to the samples and the file's normals.
-void record_cloud_surface(Stats& stats, const ProjectionParams& params, const SupportWidths& widths,
-                          NormalsUsed normals, std::size_t normals_turned, std::size_t file_normals_off,
-                          const OutlierReport& outliers, Backend backend) {
-  auto& v = stats.values();
-  v["params"] = {{"h", params.h},
-                 {"rho", params.rho},
-                 {"support", support_name(params.support)},
-                 {"surface", surface_name(params.surface)},
-                 {"normals", normals_used_name(normals)},
-                 {"outliers", params.outliers == OutlierPolicy::keep ? "keep" : "set-aside"},
-                 {"h_least", widths.least},
-                 {"h_largest", widths.largest},
-                 {"max_mls_iterations", params.max_mls_iterations}};
-  v["outliers_set_aside"] = outliers.set_aside;
-  v["points_merged"] = widths.merged_count;
-  v["normals_turned"] = normals_turned;
-  v["file_normals_off"] = file_normals_off;
-  v["backend"] = backend_name(backend);
-}
-
-}  // namespace
-
 py::tuple project(const py::handle& points, const py::dict& o) {
   PointCloud cloud = cloud_of(points, option(o, "normals"));
   const PlaneFitMethod plane = choice(o, "method", {"mls", "wls"}) == "wls" ? PlaneFitMethod::wls : PlaneFitMethod::mls;
@@ -133,10 +108,9 @@ py::tuple project(const py::handle& points, const py::dict& o) {
     CloudProjection projection = project_cloud(std::move(cloud), params, backend, stats);  // no second copy
     check_some_projected(projection.counts, params);
     record_cloud_surface(stats, params, projection.widths, projection.normals, projection.normals_turned,
-                         projection.file_normals_off, projection.outliers, backend);
-    const StatusCounts& c = projection.counts;
-    stats.values()["status"] = {{"converged", c.converged}, {"not_converged", c.not_converged},
-                                {"too_few_neighbours", c.too_few_neighbours}, {"degenerate_normal", c.degenerate_normal}};
+                         projection.file_normals_off, projection.outliers.set_aside);
+    record_status_counts(stats, projection.counts);
+    stats.values()["backend"] = backend_name(backend);
     return projection;
   });
   std::vector<std::int32_t> status(result.status.size());
@@ -166,14 +140,8 @@ py::tuple mesh(const py::handle& points, const py::dict& o) {
     if (cell) params.cell = *cell;
     params.crease_angle = crease_angle;
     CloudMesh made = mesh_cloud(cloud, params, backend, stats);
-    record_cloud_surface(stats, params.projection, made.widths, made.normals, made.normals_turned,
-                         made.file_normals_off, made.outliers, backend);
-    auto& p = stats.values()["params"];
-    p["cell"] = made.cell;
-    p["crease_angle"] = params.crease_angle;
-    p["borders"] = border_name(params.projection.borders);
-    record_mesh(stats, topology(made.mesh), made.counts);
-    stats.values()["turned_outward"] = made.turned_outward;
+    record_cloud_mesh(stats, made, params, topology(made.mesh));
+    stats.values()["backend"] = backend_name(backend);
     return made;
   });
   const auto v = py::ssize_t(result.mesh.positions.size()), t = py::ssize_t(result.mesh.triangles.size());

@@ -1,5 +1,7 @@
 #include "pss/mesh/mesh_stats.hpp"
 
+#include "pss/points/surface_stats.hpp"
+
 namespace pss {
 
 void record_mesh(Stats& stats, const MeshTopology& shape, const MarchCounts& counts) {
@@ -24,6 +26,17 @@ void record_mesh(Stats& stats, const MeshTopology& shape, const MarchCounts& cou
                {"normals_turned", counts.normals_turned},
                {"unsupported_parts", counts.unsupported_parts},
                {"closed_parts_turned", counts.closed_parts_turned}};
+}
+
+void record_cloud_mesh(Stats& stats, const CloudMesh& made, const MeshParams& params, const MeshTopology& shape) {
+  record_cloud_surface(stats, params.projection, made.widths, made.normals, made.normals_turned, made.file_normals_off,
+                       made.outliers.set_aside);
+  auto& p = stats.values()["params"];
+  p["cell"] = made.cell;
+  p["crease_angle"] = params.crease_angle;
+  p["borders"] = border_name(params.projection.borders);
+  record_mesh(stats, shape, made.counts);
+  stats.values()["turned_outward"] = made.turned_outward;
 }
 
 }  // namespace pss

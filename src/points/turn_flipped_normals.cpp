@@ -126,10 +126,9 @@ class Enclosure {
 // through the sample, and so has no say.
 std::vector<char> stragglers_to_turn(const SupportGridView& view, std::span<const vec3> points,
                                      std::span<const float> inv_h2, std::span<const vec3> normals,
-                                     std::span<const int> patch, std::size_t patches) {
-  std::vector<std::size_t> size(patches, 0);
-  for (const int p : patch) ++size[std::size_t(p)];
-  const auto settled = [&](int p) { return size[std::size_t(p)] >= kFewestPerPatch; };
+                                     std::span<const int> patch, std::span<const std::size_t> patch_size) {
+  const std::size_t patches = patch_size.size();
+  const auto settled = [&](int p) { return patch_size[std::size_t(p)] >= kFewestPerPatch; };
   std::vector<double> say(patches, 0.0);  // per straggling patch: + keep, − turn
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (settled(patch[i])) continue;
@@ -198,6 +197,8 @@ std::size_t turn_flipped_normals(const SupportGrid& grid, std::span<vec3> normal
   // Normals so scattered that they form no patches of a few samples weigh nothing against
   // each other (and would make the tallies below as large as the neighbourhoods).
   if (std::size_t(patches) > n / kFewestPerPatch) return 0;
+  std::vector<std::size_t> patch_size(std::size_t(patches), 0);
+  for (const int p : patch) ++patch_size[std::size_t(p)];
   // The evidence between patches, each pair seen from both its samples (each thread its own
   // tally, summed after: sums, so the same for any thread count). From sample i: where its
   // opposed and agreeing neighbours lie in its tangent plane, the means of their unit
@@ -262,7 +263,7 @@ std::size_t turn_flipped_normals(const SupportGrid& grid, std::span<vec3> normal
   const auto count = std::size_t(patches);
   // The stragglers' turn after the groups', counted once where it turns a normal back.
   const auto turn_stragglers = [&](std::span<const char> turned_by_groups) {
-    const std::vector<char> turn = stragglers_to_turn(view, points, inv_h2, normals, patch, count);
+    const std::vector<char> turn = stragglers_to_turn(view, points, inv_h2, normals, patch, patch_size);
     std::size_t turned = 0;
     for (std::size_t i = 0; i < n; ++i) {
       const auto p = std::size_t(patch[i]);
@@ -294,8 +295,6 @@ std::size_t turn_flipped_normals(const SupportGrid& grid, std::span<vec3> normal
   // stragglers' turn settles those. Its vote would turn a file that faces one way throughout
   // on a few samples' say: hippo1 with every normal inward had 5,064 of its 6,104 turned
   // outward, its head left inward.
-  std::vector<std::size_t> patch_size(count, 0);
-  for (const int p : patch) ++patch_size[std::size_t(p)];
   std::vector<char> odd_weighs(count, 0), even_weighs(count, 0);
   for (std::size_t p = 0; p < count; ++p)
     if (patch_size[p] >= kFewestPerPatch) (side[p] ? odd_weighs : even_weighs)[std::size_t(group[p])] = 1;

@@ -4,6 +4,7 @@
 
 #include "pss/core/stats.hpp"
 #include "pss/mesh/marching_tetrahedra.hpp"
+#include "pss/mesh/mesh_cloud.hpp"
 #include "pss/mesh/triangle_mesh.hpp"
 
 namespace pss {
@@ -11,5 +12,9 @@ namespace pss {
 // "mesh": the shape's counts and whether it is watertight and manifold; "band": the march's
 // counts (corners, cubes visited, meshed and refused, the crease, pinch and turn steps').
 void record_mesh(Stats& stats, const MeshTopology& shape, const MarchCounts& counts);
+
+// All of a cloud's mesh: its surface (points/surface_stats.hpp) with the cell, crease angle
+// and borders among the parameters, record_mesh, and "turned_outward".
+void record_cloud_mesh(Stats& stats, const CloudMesh& made, const MeshParams& params, const MeshTopology& shape);
 
 }  // namespace pss
