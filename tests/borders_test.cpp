@@ -14,12 +14,17 @@
 namespace pss {
 namespace {
 
-// A neighbourhood of given points, as samples_surround reads one (neighbourhood.hpp).
+// A neighbourhood of given points, as samples_surround reads one (neighbourhood.hpp), each of
+// width h (by default wider than the sets below: only the hull decides).
 struct Points {
   std::vector<vec3> p;
+  std::vector<float> h = {};
   template <class F>
   void for_each(F&& f) const {
-    for (const vec3& q : p) f(q, 1.0f, 1.0f, 1.0f);
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const float width = i < h.size() ? h[i] : 100.0f;
+      f(p[i], 1.0f, 1.0f / (width * width), 1.0f);
+    }
   }
 };
 
@@ -75,6 +80,17 @@ TEST(Borders, NoSamplesOrOnlyTheNormalsLineSurroundNothing) {
   // Samples all on one side, and one straight above x (another sheet): still a border.
   EXPECT_FALSE(samples_surround(Points{{vec3(-1, 0.2f, 0), vec3(-1, -0.2f, 0), vec3(0, 0, 0.5f)}}, vec3(0.0f),
                                 vec3(0, 0, 1)));
+}
+
+// Surrounded, but farther than its width from every sample, a point is no surface (a hole
+// the supports of its rim span): each sample by its own width.
+TEST(Borders, APointBeyondEverySamplesWidthIsNoSurface) {
+  const std::vector<vec3> ring = {vec3(1.2f, 0, 0), vec3(-0.6f, 1.04f, 0), vec3(-0.6f, -1.04f, 0)};
+  const vec3 up(0, 0, 1), x(0.0f);
+  EXPECT_FALSE(samples_surround(Points{ring, {1.0f, 1.0f, 1.0f}}, x, up));
+  EXPECT_TRUE(samples_surround(Points{ring, {1.25f, 1.25f, 1.25f}}, x, up));
+  EXPECT_TRUE(samples_surround(Points{ring, {1.0f, 1.0f, 1.25f}}, x, up));  // one within its width
+  EXPECT_FALSE(samples_surround(Points{ring, {1.0f, 1.0f, 1.15f}}, x, up));
 }
 
 // An open square rendered: clipped, no hit lies past its samples by more than the bins'

@@ -612,6 +612,33 @@ TEST(MeshCloud, AnOpenSheetEndsAtItsSamples) {
   EXPECT_GT(reach_extended, 1.0f + 2 * extended.cell);
 }
 
+// A hole in a sheet whose rim's supports span it (1.6 h across, under ρ = 2h) stays open when
+// clipped: its middle lies among the samples, but farther than their widths from any (the
+// bunny's base: lids across its holes' narrows, pierced at fine cells). No vertex of the
+// annulus lies farther than h from the samples.
+TEST(MeshCloud, AHoleTheSupportsSpanStaysOpen) {
+  test::SampleOptions o;
+  o.count = 4000;
+  const PointCloud square = test::sample_plane(1.0f, o);
+  const float h = test::suggested_h(square);
+  PointCloud holed;
+  for (const vec3& p : square.positions)
+    if (glm::length(vec2(p)) > 1.6f * h) holed.positions.push_back(p);
+  const CloudMesh m = mesh_of(holed);
+  ASSERT_NEAR(test::suggested_h(holed), h, 0.05f * h);
+  const MeshTopology t = topology(m.mesh);
+  EXPECT_TRUE(t.manifold());
+  EXPECT_EQ(t.components, 1);
+  EXPECT_EQ(t.euler_characteristic(), 0);  // an annulus; a lid made it a disc
+  float farthest = 0;
+  for (const vec3& v : m.mesh.positions) {
+    float nearest = kInfinity;
+    for (const vec3& p : holed.positions) nearest = std::min(nearest, glm::length(v - p));
+    farthest = std::max(farthest, nearest);
+  }
+  EXPECT_LT(farthest, 1.05f * h);
+}
+
 // Where a file's normals were turned (a flipped part of a sheet), which side is out is a
 // guess, and the closed parts' volume decides it only where they are most of the mesh: a
 // small blob facing inward above a large open sheet turns itself outward (its depth), not the
