@@ -204,6 +204,25 @@ TEST_F(CliProject, EmptyCloud) {
   expect_clean_failure("project " + empty + " -o " + path("out.ply"), empty, path("out.ply"));
 }
 
+// Points that all coincide define no surface, even with --h (which the spacing's estimate
+// cannot give them): every projection "converged" with a made-up normal, and render drew a
+// disc. A cluster of coincident points beside one far point spans no plane either: its fits
+// have no normal (a zero covariance), so nothing is projected.
+TEST_F(CliProject, CoincidentPointsDefineNoSurface) {
+  std::string same, cluster;
+  for (int i = 0; i < 100; ++i) same += "0.5 0.25 -1\n";
+  cluster = same + "5 5 5\n";
+  write("same.xyz", same);
+  write("cluster.xyz", cluster);
+  for (const char* command : {"project", "render"}) {
+    const std::string out = path(std::string("out.") + (command == std::string("render") ? "png" : "ply"));
+    expect_clean_failure(std::string(command) + " " + path("same.xyz") + " --h 0.1 -o " + out,
+                         "the points all coincide", out);
+  }
+  expect_clean_failure("project " + path("cluster.xyz") + " --h 0.1 -o " + path("out.ply"),
+                       "lie on a line or coincide", path("out.ply"));
+}
+
 TEST_F(CliProject, AbsurdParameters) {
   write_ply(path("sphere.ply"), test::sample(test::Sphere{}, {}));
   const std::string in = path("sphere.ply"), out = path("out.ply");

@@ -11,10 +11,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "pss/core/error.hpp"
+#include "pss/points/local_polynomials.hpp"
 #include "pss/points/project_cloud.hpp"
 #include "pss/points/surface_projection.hpp"
+#include "pss/spatial/support_grid.hpp"
 #include "support/render_truth.hpp"
 #include "support/shapes.hpp"
 
@@ -362,6 +365,19 @@ TEST(Projection, RejectsInvalidParameters) {
   EXPECT_THROW(project_cloud(cloud, ProjectionParams::from_h(0.0f), Backend::cpu, stats), Error);
   EXPECT_THROW(project_cloud(cloud, ProjectionParams::from_h(NAN), Backend::cpu, stats), Error);
   EXPECT_THROW(project_cloud(cloud, ProjectionParams::from_h(-1.0f), Backend::cpu, stats), Error);
+}
+
+// Samples that coincide have no spread, so no normal: a zero covariance, which the eigen
+// solver calls invalid, is a degenerate normal for the projection and for the ray tracer's
+// local polynomials alike (it was "converged", with the start vector for a normal).
+TEST(Projection, CoincidentSamplesHaveNoNormal) {
+  const std::vector<vec3> points(10, vec3(0.5f, 0.25f, -1.0f));
+  const std::vector<float> widths(points.size(), 0.1f);
+  const SupportGrid grid(points, widths, 2.0f);
+  const ProjectionParams params = ProjectionParams::from_h(0.1f);
+  const Projection p = project_onto_surface(grid.view(), vec3(0.5f, 0.25f, -1.0f), params, vec3(0, 0, 1));
+  EXPECT_EQ(p.status, ProjectionStatus::degenerate_normal);
+  EXPECT_EQ(fit_local_polynomial(grid.view(), 0, vec3(0.0f), 1.0f).status, LocalFitStatus::degenerate_normal);
 }
 
 }  // namespace

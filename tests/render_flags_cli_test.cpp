@@ -117,6 +117,19 @@ TEST_F(RenderFlags, SurfaceParametersTakeEffect) {
   EXPECT_LT(defaults["local_polynomials"].get<std::int64_t>(), 1000);
 }
 
+// A ball wider than the support: the polynomials' far reaches made hits up to 5 units off a
+// unit sphere (--b 10), every one a capped candidate. Refused, naming b and rho; b = rho renders.
+TEST_F(RenderFlags, ABallWiderThanTheSupportIsRefused) {
+  const std::string common = sphere_render("16x16");
+  const test::CliResult wide = test::run_pss(common + path("wide.json") + " --h 0.1 --b 0.21");
+  EXPECT_NE(wide.exit_code, 0);
+  EXPECT_FALSE(std::filesystem::exists(path("o.png")));
+  EXPECT_NE(wide.err.find("the ball radius b = 0.21 is larger than rho = 0.2"), std::string::npos) << wide.err;
+  EXPECT_EQ(test::line_count(wide.err), 1) << wide.err;
+  EXPECT_EQ(test::run_pss(common + path("edge.json") + " --h 0.1 --b 0.2").exit_code, 0);
+  EXPECT_TRUE(std::filesystem::exists(path("o.png")));
+}
+
 // --candidates caps the ball intersections a ray tries: with one, the rays whose first
 // candidate is rejected (those that graze the sphere's silhouette) end as misses.
 TEST_F(RenderFlags, CandidatesCapTheBallsARayTries) {

@@ -152,7 +152,7 @@ void add_render_command(CLI::App& app, Action action) {
       ->check(finite_positive());
   add_support_option(*command, o->support);
   add_surface_options(*command, o->surface);
-  command->add_option("--b", o->b, "ball radius b around each sample's local polynomial (default h)")
+  command->add_option("--b", o->b, "ball radius b around each sample's local polynomial (default h, at most rho)")
       ->check(finite_positive());
   command->add_option("--ball-spacing", o->ball_spacing,
                       "keep a local polynomial only where none kept within this distance passes within 0.05 h of its "

@@ -187,8 +187,8 @@ def render(points, h=None, *, normals=None, colors=None, surface="rimls", outlie
 
     Surface: h (default: estimated from the spacing), rho (default 2h), support ('adaptive' or
     'global', as for project), b: the radius of the balls around the local polynomials
-    (default h), epsilon: a hit's tolerance (default 1e-3 h),
-    ball_spacing (default b/2; 0 keeps one polynomial per sample, as the paper),
+    (default h, at most rho), epsilon: a hit's tolerance (default 1e-3 h),
+    ball_spacing (0 to b, default b/2; 0 keeps one polynomial per sample, as the paper),
     iterations: projections per ray candidate, 1 to 32 or 'auto' (default 2, the paper's),
     candidates: ball intersections a ray tries before it is a miss, 1 to 1024 (default 32),
     secondary: 'full' or 'paper' (the paper's rough secondary hits); normals: optional hints.

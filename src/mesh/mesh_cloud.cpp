@@ -33,11 +33,9 @@ double expected_band_cubes(std::span<const float> widths, float cell) {
 
 // Points on a line (or all but coincident) define no surface: MLS would fit a tube of its
 // weights' width around them. Refused where every point lies within 10⁻⁶ of the cloud's
-// extent of the line through its mean along its principal axis, and where all coincide (with
-// --h, which the spacing's estimate asks for then, a disc of h's width came out).
+// extent of the line through its mean along its principal axis (check_neighbourhood refuses
+// points that all coincide).
 void check_not_a_line(std::span<const vec3> points) {
-  if (std::all_of(points.begin(), points.end(), [&](vec3 p) { return p == points[0]; }))
-    throw Error("the points all coincide: they define no surface to mesh");
   glm::dvec3 mean(0.0);
   for (const vec3& p : points) mean += glm::dvec3(p) / double(points.size());
   double c[3][3] = {};
@@ -73,7 +71,7 @@ CloudMesh mesh_cloud(const PointCloud& cloud, const MeshParams& params, Backend 
   if (cloud.size() < 3)
     throw Error("a mesh needs at least 3 points (the cloud has " + std::to_string(cloud.size()) + ")");
   const Aabb box = cloud.bounds();
-  check_neighbourhood(projection, double(glm::length(box.extent())));
+  check_neighbourhood(projection, double(glm::length(box.extent())), cloud.size());
   CloudMesh out;
   if (!(params.cell >= 0) || !std::isfinite(params.cell))
     throw Error("the cell size must be a positive number (got " + std::to_string(params.cell) + ")");

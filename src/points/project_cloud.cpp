@@ -38,7 +38,10 @@ ProjectionParams in_unit_frame(const ProjectionParams& params, double scale) {
   return unit;
 }
 
-void check_neighbourhood(const ProjectionParams& p, double diagonal) {
+void check_neighbourhood(const ProjectionParams& p, double diagonal, std::uint64_t points) {
+  // With --h a cloud whose points all coincide got a disc rendered, and every point
+  // projected "converged" with a normal of no data's.
+  if (diagonal == 0 && points > 1) throw Error("the points all coincide: they define no surface");
   // A ball wider than the whole cloud holds every point: each projection would fit the
   // entire cloud (quadratic work, a useless global plane) and a uniform grid of cells that
   // wide has nothing to index.
@@ -59,8 +62,8 @@ void check_some_projected(const StatusCounts& c, const ProjectionParams& params)
   // Neighbourhoods on a line (a cloud of one line, or of rows farther apart than h) fit no
   // plane; too few neighbours is an h below the spacing.
   const char* why = c.degenerate_normal > c.too_few_neighbours
-                        ? "the points within reach of each lie on a line, which fits no plane (a larger h may reach "
-                          "across to other lines)"
+                        ? "the points within reach of each lie on a line or coincide, which fits no plane (a larger "
+                          "h may reach across to other lines)"
                         : "h is likely too small for the sample spacing (pss info suggests one)";
   char message[400];
   std::snprintf(message, sizeof message,
@@ -117,7 +120,7 @@ CloudProjection project_cloud(PointCloud input, const ProjectionParams& params, 
   // Projection runs in the cloud's unit frame (unit_frame.hpp): h, ρ and the tolerance are
   // lengths, so they scale with the points; the results are mapped back at the end.
   const UnitFrame frame = unit_frame(input.positions);
-  check_neighbourhood(params, frame.diagonal);
+  check_neighbourhood(params, frame.diagonal, n);
   const ProjectionParams unit_params = in_unit_frame(params, frame.scale);
   CloudProjection out;
   // The projections keep the input's order, so its per-point values stay with them; the

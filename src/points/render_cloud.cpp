@@ -24,9 +24,24 @@ void validate(const RayPssParams& p) {
   validate(p.projection);
   auto positive = [](float v) { return v > 0 && std::isfinite(v); };
   if (!positive(p.ball_radius)) throw Error("ball radius b must be a positive number (got " + std::to_string(p.ball_radius) + ")");
+  // A polynomial fitted over the support ρ says nothing beyond it: with b of several ρ the
+  // rays met the polynomials' far reaches, and every hit was a capped, unconverged candidate
+  // up to 5 units off a unit sphere (--b 10).
+  if (p.ball_radius > p.projection.rho) {
+    char message[300];
+    std::snprintf(message, sizeof message,
+                  "the ball radius b = %g is larger than rho = %g: a sample's polynomial would reach past the samples "
+                  "it was fitted to (b is h by default)",
+                  double(p.ball_radius), double(p.projection.rho));
+    throw Error(message);
+  }
   if (!positive(p.epsilon)) throw Error("epsilon must be a positive number (got " + std::to_string(p.epsilon) + ")");
-  if (!(p.ball_spacing >= 0) || !(p.ball_spacing <= p.ball_radius))
-    throw Error("ball spacing must be a number from 0 to b (got " + std::to_string(p.ball_spacing) + ")");
+  if (!(p.ball_spacing >= 0) || !(p.ball_spacing <= p.ball_radius)) {
+    char message[200];
+    std::snprintf(message, sizeof message, "ball spacing must be a number from 0 to b = %g (got %g)",
+                  double(p.ball_radius), double(p.ball_spacing));
+    throw Error(message);
+  }
   if (!(p.secondary_offset >= 0) || !std::isfinite(p.secondary_offset))
     throw Error("secondary ray offset must be a non-negative number");
   if (p.max_iterations < 1) throw Error("iterations must be at least 1");
@@ -57,7 +72,7 @@ std::vector<LocalFit> fit_all(const SupportGrid& grid, const FileNormals& file, 
 SupportGrid timed_grid(const PointCloud& cloud, const ProjectionParams& projection, Backend backend, Stats& stats,
                        SupportWidths& widths, OutlierReport& outliers) {
   const Aabb box = cloud.bounds();  // its diagonal in double, as the unit frame's
-  check_neighbourhood(projection, glm::length(glm::dvec3(box.hi) - glm::dvec3(box.lo)));
+  check_neighbourhood(projection, glm::length(glm::dvec3(box.hi) - glm::dvec3(box.lo)), cloud.size());
   {
     ScopedPhase phase(stats, "support widths", projection.support == Support::global);  // else its Progress shows it
     widths = support_widths(cloud.positions, projection);

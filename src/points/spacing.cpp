@@ -85,7 +85,7 @@ SpacingEstimate spacing_of(const std::vector<QuerySpacing>& queries, int k, doub
   e.suggested_h = std::max(e.median_kth, kNoiseWidths * e.noise);
   if (!(e.suggested_h > 0))
     throw Error("cannot estimate the sample spacing: the points coincide, or nearly all do beside a few very far from "
-                "the rest (remove those; where all coincide, pass --h explicitly)");
+                "the rest (remove those)");
   return e;
 }
 

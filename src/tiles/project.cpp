@@ -306,7 +306,7 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
                    "out)");
   const std::uint64_t n = cloud.size();
   frame_ = cloud.unit_frame();
-  check_neighbourhood(params, frame_.diagonal);
+  check_neighbourhood(params, frame_.diagonal, n);
   const ProjectionParams unit_params = in_unit_frame(params, frame_.scale);
   const float kappa = unit_params.rho / unit_params.h;
 

@@ -73,7 +73,9 @@ PSS_INLINE LocalFit fit_local_polynomial(const SupportGridView& grid, int i, vec
   const Frame frame = Frame::from_normal(p, eig.vector);
   out.local.normal = frame.n;
   out.local.g = near.polynomial_fit(frame, false, h).solve();
-  out.status = eig.status == EigenStatus::degenerate ? LocalFitStatus::degenerate_normal : LocalFitStatus::ok;
+  out.status = eig.status == EigenStatus::degenerate || eig.status == EigenStatus::invalid
+                   ? LocalFitStatus::degenerate_normal
+                   : LocalFitStatus::ok;
   return out;
 }
 

@@ -2,6 +2,7 @@
 // projection kernel on the chosen backend, and consistently oriented normals.
 #pragma once
 
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -56,7 +57,8 @@ ProjectionParams in_unit_frame(const ProjectionParams& params, double scale);
 void check_some_projected(const StatusCounts& counts, const ProjectionParams& params);
 
 // Throws Error when ρ exceeds the cloud's bounding-box diagonal (every neighbourhood the
-// whole cloud); a diagonal of 0 (coincident points) passes.
-void check_neighbourhood(const ProjectionParams& params, double diagonal);
+// whole cloud), or where it is 0 and the cloud's `points` are more than one (they all
+// coincide; one point has no neighbours, and no surface, which its caller says).
+void check_neighbourhood(const ProjectionParams& params, double diagonal, std::uint64_t points);
 
 }  // namespace pss

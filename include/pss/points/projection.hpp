@@ -228,7 +228,9 @@ PSS_HOST_DEVICE Projection project_mls(const Nb& neighbours, vec3 r, const Proje
       }
     }
   }
-  if (eig.status == EigenStatus::degenerate) status = ProjectionStatus::degenerate_normal;
+  // No spread (samples that coincide: a zero covariance) defines no normal either.
+  if (eig.status == EigenStatus::degenerate || eig.status == EigenStatus::invalid)
+    status = ProjectionStatus::degenerate_normal;
 
   // The polynomial, weighted from r (WLS) or from q (MLS) like the plane, in the frame of
   // H(n, q).
