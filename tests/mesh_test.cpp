@@ -612,7 +612,7 @@ TEST(MeshCloud, AnOpenSheetEndsAtItsSamples) {
   EXPECT_GT(reach_extended, 1.0f + 2 * extended.cell);
 }
 
-// A hole in a sheet whose rim's supports span it (1.6 h across, under ρ = 2h) stays open when
+// A hole in a sheet whose rim's supports span it (radius 1.6 h, under ρ = 2h) stays open when
 // clipped: its middle lies among the samples, but farther than their widths from any (the
 // bunny's base: lids across its holes' narrows, pierced at fine cells). No vertex of the
 // annulus lies farther than h from the samples.
