@@ -44,6 +44,8 @@ def set_progress(mode):
     """Whether the work shows its progress on stderr, as `pss --progress`: 'never' (the
     default: a library call prints nothing), 'auto' (a bar while stderr is a terminal) or
     'always' (and lines a log can read elsewhere)."""
+    if not isinstance(mode, str):
+        raise Error("progress: expected 'auto', 'always' or 'never' (got %r)" % (mode,))
     _pss.set_progress(mode)
 
 def _plain(value):
@@ -193,8 +195,8 @@ def render(points, h=None, *, normals=None, colors=None, surface="rimls", outlie
     candidates: ball intersections a ray tries before it is a miss, 1 to 1024 (default 32),
     secondary: 'full' or 'paper' (the paper's rough secondary hits); normals: optional hints.
     borders: 'extend' (the surface runs on past the last points, as the paper's and as `pss
-    render` does for scans) or 'clip' (it ends at them: what `pss render --borders auto` does
-    for a mesh's vertices, whose faces the points cannot tell).
+    render` does for scans), 'clip' (it ends at them: what `pss render --borders auto` does
+    for a mesh's vertices, whose faces the points cannot tell) or 'auto' (extend, as for mesh).
     surface: 'mls', 'apss' or 'rimls', as for project (the given normals fitted, or estimated);
     outliers: 'set-aside' or 'keep', as for project (full_output's stats: outliers_set_aside).
     Where noise widens the supports their samples are merged (full_output's stats:

@@ -170,7 +170,7 @@ py::object render(const py::handle& points, const py::dict& o) {
   const int candidates = integer_in(o, "candidates", 1, kMaxCandidates);
   const SecondaryMode secondary =
       choice(o, "secondary", {"full", "paper"}) == "paper" ? SecondaryMode::paper : SecondaryMode::full;
-  const BorderMode borders = *border_choice_of(choice(o, "borders", {"extend", "clip"}));
+  const std::optional<BorderMode> chosen_borders = border_choice_of(choice(o, "borders", {"auto", "clip", "extend"}));
   const std::optional<float> spacing = is_given(o, "ball_spacing")
                                            ? std::optional<float>(float(number_in(o, "ball_spacing", 0, 1e30)))
                                            : std::nullopt;
@@ -196,7 +196,7 @@ py::object render(const py::handle& points, const py::dict& o) {
     params.max_iterations = max_iterations;
     params.max_candidates = candidates;
     params.secondary = secondary;
-    params.projection.borders = borders;
+    params.projection.borders = borders_for(chosen_borders, cloud);
     validate(params);
     const PreparedCloud prepared(cloud, params, backend, stats,
                                  cloud.has_colors() ? SurfaceColor::samples : SurfaceColor::albedo);
@@ -212,7 +212,7 @@ py::object render(const py::handle& points, const py::dict& o) {
                                 {"h_least", prepared.widths().least}, {"h_largest", prepared.widths().largest},
                                 {"ball_spacing", params.ball_spacing}, {"epsilon", params.epsilon},
                                 {"iterations", params.max_iterations}, {"max_candidates", params.max_candidates},
-                                {"borders", border_name(borders)}};
+                                {"borders", border_name(params.projection.borders)}};
     return render_cloud(prepared, camera, settings, backend, stats);
   });
   stats.values()["backend"] = backend_name(backend);

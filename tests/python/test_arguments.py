@@ -48,7 +48,7 @@ def test_points_that_are_not_finite_rows_of_three_are_refused(points, message):
     ({"support": "wide"}, r"^support: expected one of 'adaptive', 'global' \(got 'wide'\)$"),
     ({"surface": "rbf"}, r"^surface: expected one of 'mls', 'apss', 'rimls' \(got 'rbf'\)$"),
     ({"outliers": "drop"}, r"^outliers: expected one of 'set-aside', 'keep' \(got 'drop'\)$"),
-    ({"borders": "auto"}, r"^borders: expected one of 'extend', 'clip' \(got 'auto'\)$"),
+    ({"borders": "none"}, r"^borders: expected one of 'auto', 'clip', 'extend' \(got 'none'\)$"),
     ({"backend": "tpu"}, r"^backend: expected one of 'auto', 'cpu', 'cuda' \(got 'tpu'\)$"),
     ({"shadows": 1}, r"^shadows: expected True or False \(got 1\)$"),
     ({"camera": {"eye": [0, 0, 1]}}, r"^camera: camera field \"forward\" is missing$"),
@@ -140,6 +140,13 @@ def test_threads_are_a_count():
     one = pss.render(SOME, size=(16, 16))
     pss.set_threads(0)
     assert np.array_equal(pss.render(SOME, size=(16, 16)), one)
+
+
+def test_progress_is_one_of_three_words():
+    for bad in [None, 3, "loud"]:
+        with pytest.raises(pss.Error, match=r"^progress: expected 'auto', 'always' or 'never'"):
+            pss.set_progress(bad)
+    pss.set_progress("never")
 
 
 def test_a_camera_dict_may_hold_numpy_arrays():

@@ -187,6 +187,9 @@ def test_borders_are_the_cli_s_and_extended_by_default(tmp_path):
     assert counts["extend"] > counts["clip"] + 20  # the band past the square's edge
     _, _, stats = pss.render(square, up=(0, 0, 1), view=(20, 50), size=(48, 48), full_output=True)
     assert stats["hits"] == counts["extend"]
+    # 'auto', as mesh takes it: an array of points is a scan's, extended.
+    _, _, stats = pss.render(square, up=(0, 0, 1), view=(20, 50), size=(48, 48), borders="auto", full_output=True)
+    assert stats["params"]["borders"] == "extend" and stats["hits"] == counts["extend"]
 
 
 def test_project_takes_any_array_like_and_hands_back_arrays_it_does_not_copy(bunny):
