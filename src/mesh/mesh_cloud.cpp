@@ -44,13 +44,17 @@ void check_not_a_line(std::span<const vec3> points) {
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) c[i][j] += d[i] * d[j];
   }
-  glm::dvec3 axis(1.0, 0.7, 0.3);  // power iteration: the principal axis
+  // Power iteration for the principal axis, from the covariance's column of its largest
+  // variance: never orthogonal to its range, which a fixed start can be (a plane whose normal
+  // it is), and never zero where the points do not all coincide.
+  int longest = 0;
+  for (int j = 1; j < 3; ++j)
+    if (c[j][j] > c[longest][longest]) longest = j;
+  glm::dvec3 axis(c[0][longest], c[1][longest], c[2][longest]);
   for (int k = 0; k < 100; ++k) {
     glm::dvec3 next(0.0);
     for (int i = 0; i < 3; ++i) next[i] = c[i][0] * axis[0] + c[i][1] * axis[1] + c[i][2] * axis[2];
-    const double length = glm::length(next);
-    if (!(length > 0)) throw Error("the points all coincide: they define no surface to mesh");
-    axis = next / length;
+    axis = next / glm::length(next);
   }
   double along = 0, off = 0;
   for (const vec3& p : points) {
