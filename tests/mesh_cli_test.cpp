@@ -183,7 +183,7 @@ TEST_F(MeshCli, EveryClosedPartOfAGuessedSideFacesOut) {
 }
 
 TEST_F(MeshCli, TheSummarySaysWhatTheMeshIs) {
-  const test::CliResult r = mesh(sphere(), "m.ply");
+  const test::CliResult r = mesh(sphere(), "m.ply", "--stats " + path("s.json"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const TriangleMesh m = test::read_mesh(path("m.ply"));
   EXPECT_NE(r.out.find(std::to_string(m.positions.size()) + " vertices, " + std::to_string(m.triangles.size()) +
@@ -192,6 +192,11 @@ TEST_F(MeshCli, TheSummarySaysWhatTheMeshIs) {
       << r.out;
   EXPECT_NE(r.out.find("mls surface (estimated normals)"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("borders extend"), std::string::npos) << r.out;  // auto: a scan's points
+  const int collapsed = stats("s.json")["band"]["collapsed_vertices"].get<int>();
+  EXPECT_GT(collapsed, 0);
+  EXPECT_NE(r.out.find(", " + std::to_string(collapsed) + " merged into neighbours to suit the spacing;"),
+            std::string::npos)
+      << r.out;
 }
 
 // Every option reaches the mesh.

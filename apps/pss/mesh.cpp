@@ -107,13 +107,14 @@ void run_cloud_mesh(const MeshOptions& o, Stats& stats, std::chrono::steady_cloc
   const MeshTopology shape =
       write_and_summarise(o, result.mesh, std::to_string(cloud.size()) + " points", backend, stats, start);
   std::printf("%s surface%s, h = %g (%s), rho = %g, borders %s, cell %g; %lld corners evaluated, %lld cubes meshed, "
-              "%lld vertices on creases; %lld outliers set aside, %lld part%s held by fewer than %d samples removed\n",
+              "%lld vertices on creases, %lld merged into neighbours to suit the spacing; %lld outliers set aside, "
+              "%lld part%s held by fewer than %d samples removed\n",
               surface_name(params.projection.surface), normals_text(result.normals), double(params.projection.h),
               support_text(params.projection.support, result.widths).c_str(), double(params.projection.rho),
               border_name(params.projection.borders), double(result.cell), (long long)result.counts.corners,
               (long long)result.counts.cubes_crossed, (long long)result.counts.crease_vertices,
-              (long long)result.outliers.set_aside, (long long)result.counts.unsupported_parts,
-              result.counts.unsupported_parts == 1 ? "" : "s", kMinPartSamples);
+              (long long)result.counts.collapsed_vertices, (long long)result.outliers.set_aside,
+              (long long)result.counts.unsupported_parts, result.counts.unsupported_parts == 1 ? "" : "s", kMinPartSamples);
   print_normals_turned(result.normals_turned, cloud.size());
   print_file_normals_off(result.file_normals_off, cloud.size());
   print_file_normals_left_out(file_normals_without_direction(cloud, o.surface.surface), cloud.size());

@@ -10,7 +10,9 @@
 #include "incidence.hpp"
 #include "unsupported_parts.hpp"
 #include "pss/core/error.hpp"
+#include "pss/backend/cpu/parallel_for.hpp"
 #include "pss/core/text.hpp"
+#include "pss/mesh/coarsen.hpp"
 #include "pss/mesh/cloud_implicit.hpp"
 #include "pss/points/project_cloud.hpp"
 #include "pss/spatial/grid_mirror.hpp"
@@ -63,6 +65,20 @@ void check_not_a_line(std::span<const vec3> points) {
     off = std::max(off, glm::length(d - glm::dot(d, axis) * axis));
   }
   if (off <= 1e-6 * along) throw Error("the points lie on a line: they define no surface to mesh");
+}
+
+// The cube's side that suits each vertex: the one asked for, or kDefaultCellPerH of the
+// width of the nearest sample whose support holds it (the lattice's, the least, where none).
+std::vector<float> vertex_cells(const TriangleMesh& mesh, const SupportGrid& grid, float asked, float least) {
+  std::vector<float> cell(mesh.positions.size(), asked > 0 ? asked : least);
+  if (asked > 0) return cell;
+  const SupportGridView view = grid.view();
+  const std::span<const float> inv_h2 = grid.inv_h2();
+  cpu::parallel_for(std::int64_t(cell.size()), [&](std::int64_t v) {
+    const int i = view.nearest_covering(mesh.positions[std::size_t(v)]);
+    if (i >= 0) cell[std::size_t(v)] = std::max(least, kDefaultCellPerH / std::sqrt(inv_h2[std::size_t(i)]));
+  });
+  return cell;
 }
 
 }  // namespace
@@ -122,6 +138,12 @@ CloudMesh mesh_cloud(const PointCloud& cloud, const MeshParams& params, Backend 
     ScopedPhase phase(stats, "mesh", false);  // its kernels show their progress
     out.mesh = march_tetrahedra(lattice, grid.sorted_points(), implicit, mesh_detail::kMaxSlope,
                                 params.crease_angle, out.counts, std::int64_t(kCornersPerBandCube * band_cubes));
+  }
+  {
+    ScopedPhase phase(stats, "coarsen", true);
+    out.counts.collapsed_vertices =
+        coarsen_mesh(out.mesh, vertex_cells(out.mesh, grid, params.cell, out.cell));
+    out.counts.normals_turned += normals_follow_winding(out.mesh);
   }
   out.counts.unsupported_parts = mesh_detail::remove_unsupported_parts(out.mesh, grid);
   out.mesh.origin = cloud.origin;

@@ -24,6 +24,7 @@ void record_mesh(Stats& stats, const MeshTopology& shape, const MarchCounts& cou
                {"crease_flips", counts.crease_flips},
                {"pinched_triangles", counts.pinched_triangles},
                {"normals_turned", counts.normals_turned},
+               {"collapsed_vertices", counts.collapsed_vertices},
                {"unsupported_parts", counts.unsupported_parts},
                {"closed_parts_turned", counts.closed_parts_turned}};
 }

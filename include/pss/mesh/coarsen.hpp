@@ -1,0 +1,37 @@
+// A marched mesh made as coarse as its data (issue 27). The lattice's cube is one size, the
+// least h_i's, so where a cloud's spacing varies (the locally refined cylinder: 60:1) the
+// sparse parts get triangles far smaller than their samples' spacing (that cylinder's 8,285
+// points made 1.7 M triangles); and marching tetrahedra leaves slivers wherever the surface
+// passes near a corner. Edges shorter than their vertices' share of the local cell collapse,
+// one vertex into the other (a half-edge collapse: every vertex left is one the marching
+// placed on the surface, with its normal), shortest first, while
+// - the topology stays (the link condition of Dey et al. 1999: the two ends share no
+//   neighbour but the edge's opposite corners; a boundary vertex moves only along its
+//   boundary; no tetrahedron folds flat), so a watertight manifold stays one;
+// - the triangles keep to the surface: the planes the removed vertices' triangles had stay
+//   within a share of the cell of the vertex that takes them (Garland & Heckbert's quadrics,
+//   1997, as a root mean square), so creases and curvature stop the coarsening, flat parts
+//   do not;
+// - no triangle turns more than 60° or becomes worse shaped than the worst it replaces.
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include "pss/mesh/triangle_mesh.hpp"
+
+namespace pss {
+
+// An edge shorter than this share of the cell at its ends collapses: marching's triangles
+// have edges from about this share of the cube to √2 of it.
+inline constexpr float kShortEdgeShare = 0.5f;
+// The planes a vertex takes stay within this share of the cell of it (root mean square).
+inline constexpr float kCoarseningError = 0.02f;
+
+// Coarsens `mesh` as above, `cell[v]` the cube's side that suits vertex v (the local
+// spacing's); removes the vertices it collapsed, keeping the others' order. Deterministic
+// (one thread). Returns how many vertices it removed. Throws Error unless there is one
+// positive cell per vertex.
+std::int64_t coarsen_mesh(TriangleMesh& mesh, std::span<const float> cell);
+
+}  // namespace pss

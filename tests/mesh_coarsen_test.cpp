@@ -1,0 +1,286 @@
+// The marched mesh made as coarse as its data (issue 27, coarsen.hpp): on analytic implicits
+// the topology, the vertices (the march's, on the surface), the boundary, the creases and the
+// curvature stay; the triangles grow to the cell asked of each vertex. Then a cloud whose
+// spacing steps 8:1 meshed with triangles that follow it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "pss/core/error.hpp"
+#include "pss/mesh/coarsen.hpp"
+#include "pss/mesh/mesh_cloud.hpp"
+#include "support/analytic_implicit.hpp"
+#include "support/self_intersection.hpp"
+#include "support/shapes.hpp"
+
+namespace pss {
+namespace {
+
+using test::analytic;
+using test::march;
+
+double quality(const TriangleMesh& m, const std::array<int, 3>& t) {  // 1 when equilateral
+  const glm::dvec3 a(m.positions[std::size_t(t[0])]), b(m.positions[std::size_t(t[1])]),
+      c(m.positions[std::size_t(t[2])]);
+  const double edges = glm::dot(b - a, b - a) + glm::dot(c - b, c - b) + glm::dot(a - c, a - c);
+  return 2.0 * std::sqrt(3.0) * glm::length(glm::cross(b - a, c - a)) / edges;
+}
+
+glm::dvec3 centroid(const TriangleMesh& m, const std::array<int, 3>& t) {
+  return (glm::dvec3(m.positions[std::size_t(t[0])]) + glm::dvec3(m.positions[std::size_t(t[1])]) +
+          glm::dvec3(m.positions[std::size_t(t[2])])) /
+         3.0;
+}
+
+double area(const TriangleMesh& m) {
+  double sum = 0;
+  for (const auto& t : m.triangles) {
+    const glm::dvec3 a(m.positions[std::size_t(t[0])]);
+    sum += 0.5 * glm::length(glm::cross(glm::dvec3(m.positions[std::size_t(t[1])]) - a,
+                                        glm::dvec3(m.positions[std::size_t(t[2])]) - a));
+  }
+  return sum;
+}
+
+// The mean length of the edges whose midpoints `where` takes.
+template <class Where>
+double mean_edge(const TriangleMesh& m, Where where) {
+  double sum = 0;
+  int n = 0;
+  for (const auto& t : m.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const vec3 a = m.positions[std::size_t(t[std::size_t(k)])], b = m.positions[std::size_t(t[std::size_t((k + 1) % 3)])];
+      if (!where(0.5f * (a + b))) continue;
+      sum += double(glm::length(a - b));
+      ++n;
+    }
+  return sum / std::max(n, 1);
+}
+
+// A unit sphere off the lattice's symmetry, marched in cubes of `cell`.
+const test::Sphere kSphere{vec3(0.013f, -0.021f, 0.007f), 1.0f};
+TriangleMesh marched_sphere(float cell) {
+  const ImplicitSurface s =
+      analytic([&](vec3 p) { return kSphere.distance(p); }, [&](vec3 p) { return kSphere.normal(p); });
+  const vec3 seed[] = {kSphere.center + vec3(1, 0, 0)};
+  MarchCounts counts;
+  return march(s, vec3(-1.1f), vec3(1.1f), cell, seed, counts);
+}
+
+// At the march's own cell the slivers go (triangles with a vertex near another) and the
+// edges, from near 0 to √3 cells, come to about the cell: every vertex left is one the march
+// placed, the sphere stays one closed surface facing out, no triangle worse shaped than the
+// worst before.
+TEST(Coarsen, AtTheMarchsCellTheSliversGoAndTheSphereStaysClosed) {
+  TriangleMesh m = marched_sphere(0.1f);
+  const TriangleMesh before = m;
+  double worst_before = 1;
+  int slivers_before = 0;
+  for (const auto& t : before.triangles) {
+    worst_before = std::min(worst_before, quality(before, t));
+    slivers_before += quality(before, t) < 0.15;
+  }
+  ASSERT_GT(slivers_before, 20);
+  const auto everywhere = [](vec3) { return true; };
+  const double edge_before = mean_edge(before, everywhere);
+  const std::vector<float> cell(m.positions.size(), 0.1f);
+  const std::int64_t removed = coarsen_mesh(m, cell);
+  EXPECT_EQ(std::int64_t(before.positions.size()) - removed, std::int64_t(m.positions.size()));
+  EXPECT_GT(removed, 0);
+  EXPECT_LT(edge_before, 0.07);
+  EXPECT_GT(mean_edge(m, everywhere), 0.08);
+  EXPECT_LT(mean_edge(m, everywhere), 0.13);
+
+  const MeshTopology t = topology(m);
+  EXPECT_TRUE(t.watertight());
+  EXPECT_EQ(t.components, 1);
+  EXPECT_EQ(t.euler_characteristic(), 2);
+  EXPECT_EQ(t.unreferenced_vertices, 0);
+  EXPECT_EQ(test::crossing_triangle_pairs(m), 0);
+  // The vertices kept are the march's, in its order, with their normals.
+  ASSERT_EQ(m.normals.size(), m.positions.size());
+  std::size_t j = 0;
+  for (std::size_t i = 0; i < m.positions.size(); ++i, ++j) {
+    while (j < before.positions.size() && before.positions[j] != m.positions[i]) ++j;
+    ASSERT_LT(j, before.positions.size()) << "vertex " << i << " is not the march's";
+    EXPECT_EQ(m.normals[i], before.normals[j]);
+  }
+  int slivers = 0;
+  for (const auto& tri : m.triangles) {
+    EXPECT_GE(quality(m, tri), worst_before - 1e-9);
+    slivers += quality(m, tri) < 0.15;
+    EXPECT_GT(glm::dot(glm::cross(m.positions[std::size_t(tri[1])] - m.positions[std::size_t(tri[0])],
+                                  m.positions[std::size_t(tri[2])] - m.positions[std::size_t(tri[0])]),
+                       m.positions[std::size_t(tri[0])] - kSphere.center),
+              0.0f);
+  }
+  EXPECT_LT(slivers, slivers_before / 4);
+}
+
+// A cell far larger than the curvature allows: the triangles stop where their planes would
+// leave the sphere by a share of it; without that test they grow until the sphere is a
+// few dozen faces.
+TEST(Coarsen, CurvatureStopsTheTrianglesGrowth) {
+  TriangleMesh m = marched_sphere(0.05f);
+  const std::size_t before = m.triangles.size();
+  const float cell = 1.0f;
+  coarsen_mesh(m, std::vector<float>(m.positions.size(), cell));
+  double farthest = 0;
+  for (const auto& t : m.triangles)
+    farthest = std::max(farthest, std::abs(glm::length(centroid(m, t) - glm::dvec3(kSphere.center)) - 1.0));
+  EXPECT_LT(farthest, 4 * kCoarseningError * cell);
+  EXPECT_LT(m.triangles.size(), before / 4);
+  const MeshTopology t = topology(m);
+  EXPECT_TRUE(t.watertight());
+  EXPECT_EQ(t.euler_characteristic(), 2);
+  EXPECT_EQ(test::crossing_triangle_pairs(m), 0);
+}
+
+// A box, its edges and corners put on by the march (creases.hpp), at three times the
+// march's cell: the faces coarsen, the edges stay within the share of the cell allowed.
+TEST(Coarsen, ABoxsFacesCoarsenItsEdgesStay) {
+  const vec3 half(0.5f, 0.4f, 0.3f), center(0.011f, -0.017f, 0.006f);
+  const auto distance = [&](vec3 p) {
+    const vec3 q = glm::abs(p - center) - half;
+    return glm::length(glm::max(q, vec3(0))) + std::min(std::max(q.x, std::max(q.y, q.z)), 0.0f);
+  };
+  const auto normal = [&](vec3 p) {  // the nearest face's, outside as inside
+    const vec3 q = glm::abs(p - center) - half, s = glm::sign(p - center);
+    const vec3 outside = glm::max(q, vec3(0));
+    if (glm::length(outside) > 0) return glm::normalize(outside * s);
+    return q.x >= q.y && q.x >= q.z ? vec3(s.x, 0, 0) : q.y >= q.z ? vec3(0, s.y, 0) : vec3(0, 0, s.z);
+  };
+  const vec3 seed[] = {center + vec3(half.x, 0, 0)};
+  MarchCounts counts;
+  TriangleMesh m = march(analytic(distance, normal), vec3(-0.7f), vec3(0.7f), 0.04f, seed, counts);
+  ASSERT_GT(counts.crease_vertices, 50);
+  const double area_before = area(m);
+  const std::size_t before = m.triangles.size();
+  double farthest_before = 0;
+  for (const auto& t : m.triangles) farthest_before = std::max(farthest_before, double(std::abs(distance(vec3(centroid(m, t))))));
+  ASSERT_LT(farthest_before, 1e-5);  // the march's box is the box
+  const float cell = 0.12f;
+  coarsen_mesh(m, std::vector<float>(m.positions.size(), cell));
+  double farthest = 0;
+  for (const auto& t : m.triangles) farthest = std::max(farthest, double(std::abs(distance(vec3(centroid(m, t))))));
+  EXPECT_LT(double(m.triangles.size()), double(before) / 2.5);
+  EXPECT_LT(farthest, 2 * kCoarseningError * cell);
+  EXPECT_NEAR(area(m), area_before, 2e-3 * area_before);
+  const MeshTopology t = topology(m);
+  EXPECT_TRUE(t.watertight());
+  EXPECT_EQ(t.euler_characteristic(), 2);
+}
+
+// An open square sheet marched in cubes of 0.02 whose cell steps 8:1 across x = 0: the
+// triangles come to each side's cell, the outline (boundary) stays, so does the area.
+TEST(Coarsen, TrianglesFollowTheCellAndTheOutlineStays) {
+  const float z = 0.0123f;
+  const auto inside = [](vec3 p) { return std::abs(p.x) < 0.8f && std::abs(p.y) < 0.8f; };
+  const ImplicitSurface sheet = analytic([&](vec3 p) { return p.z - z; }, [](vec3) { return vec3(0, 0, 1); }, inside);
+  const vec3 seed[] = {vec3(0.1f, 0.1f, z)};
+  MarchCounts counts;
+  TriangleMesh m = march(sheet, vec3(-1), vec3(1), 0.02f, seed, counts);
+  std::vector<float> cell(m.positions.size());
+  for (std::size_t v = 0; v < cell.size(); ++v) cell[v] = m.positions[v].x < 0 ? 0.02f : 0.16f;
+  const double area_before = area(m);
+  const MeshTopology shape_before = topology(m);
+  const auto fine = [](vec3 p) { return p.x < -0.2f; };
+  const auto coarse = [](vec3 p) { return p.x > 0.2f; };
+  const auto beside_the_step = [](vec3 p) { return p.x > -0.03f && p.x < 0; };  // fine, by coarse
+  const double fine_before = mean_edge(m, fine), coarse_before = mean_edge(m, coarse);
+  coarsen_mesh(m, cell);
+  EXPECT_LT(fine_before, 0.7 * 0.02);
+  EXPECT_LT(coarse_before, 0.7 * 0.02);
+  EXPECT_NEAR(mean_edge(m, fine), 0.02, 0.005);
+  EXPECT_LT(mean_edge(m, beside_the_step), 0.027);  // an edge is short by the finer cell of its ends
+  EXPECT_NEAR(mean_edge(m, coarse), 0.16, 0.04);
+  EXPECT_NEAR(area(m), area_before, 1e-4 * area_before);
+  for (const vec3& p : m.positions) ASSERT_NEAR(p.z, z, 1e-6f);
+  const MeshTopology t = topology(m);
+  EXPECT_TRUE(t.manifold());
+  EXPECT_EQ(t.components, 1);
+  EXPECT_EQ(t.euler_characteristic(), shape_before.euler_characteristic());
+  EXPECT_LT(t.boundary_edges, shape_before.boundary_edges);
+  EXPECT_EQ(test::crossing_triangle_pairs(m), 0);
+}
+
+// A square of 20 × 20 cells, each split by its rising diagonal, and a cell 10 times its side:
+// the straight stretches of the outline coarsen, the corners stay, so does the area, exactly.
+TEST(Coarsen, ASquaresCornersStay) {
+  TriangleMesh m;
+  const int n = 20;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) m.positions.push_back(vec3(float(i) / n, float(j) / n, 0));
+  const auto at = [&](int i, int j) { return j * (n + 1) + i; };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      m.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      m.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+  EXPECT_GT(coarsen_mesh(m, std::vector<float>(m.positions.size(), 0.5f)), 0);
+  EXPECT_NEAR(area(m), 1.0, 1e-6);
+  const MeshTopology t = topology(m);
+  EXPECT_TRUE(t.manifold());
+  EXPECT_EQ(t.euler_characteristic(), 1);
+  EXPECT_LT(t.boundary_edges, 4 * n);
+}
+
+// A closed tetrahedron, flat and small against its cell: each edge passes the link condition
+// (its ends share just the edge's two opposite corners), but a collapse would fold the rest
+// onto one double-sided triangle. It stays as it is.
+TEST(Coarsen, ATetrahedronDoesNotFoldFlat) {
+  TriangleMesh m;
+  m.positions = {vec3(-1, 0, 0), vec3(1, 0, 0), vec3(0, 1, 0), vec3(0, 1, 0.3f)};
+  m.triangles = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+  ASSERT_TRUE(topology(m).watertight());
+  EXPECT_EQ(coarsen_mesh(m, std::vector<float>(4, 100.0f)), 0);
+  EXPECT_EQ(m.triangles.size(), 4u);
+  EXPECT_TRUE(topology(m).watertight());
+}
+
+TEST(Coarsen, CellsMustBeOneAVertexAndPositive) {
+  TriangleMesh m = marched_sphere(0.2f);
+  EXPECT_THROW(coarsen_mesh(m, std::vector<float>(m.positions.size() - 1, 0.2f)), Error);
+  std::vector<float> cell(m.positions.size(), 0.2f);
+  cell[3] = 0;
+  EXPECT_THROW(coarsen_mesh(m, cell), Error);
+  cell[3] = std::nanf("");
+  EXPECT_THROW(coarsen_mesh(m, cell), Error);
+}
+
+// A plane sampled 8 times more sparsely for x > 0 (jittered grids): the adaptive widths
+// follow the spacing (support.hpp), the mesh's triangles follow them; a --cell asked for
+// holds everywhere.
+TEST(MeshCloud, TheTrianglesFollowTheSpacing) {
+  PointCloud cloud;
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> jitter(-0.2f, 0.2f);
+  for (const float step : {0.01f, 0.08f}) {
+    const int n = int(std::lround(1.0f / step));
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < 2 * n; ++j) {
+        const float x = (float(i) + 0.5f + jitter(random)) * step, y = -1 + (float(j) + 0.5f + jitter(random)) * step;
+        cloud.positions.push_back(vec3(step < 0.05f ? -x : x, y, 0));
+      }
+  }
+  const auto made = [&](float cell) {
+    MeshParams params;
+    params.projection = ProjectionParams::from_h(test::suggested_h(cloud));
+    params.projection.support = Support::adaptive;
+    params.cell = cell;
+    Stats stats;
+    return mesh_cloud(cloud, params, Backend::cpu, stats);
+  };
+  const auto fine = [](vec3 p) { return p.x < -0.3f && std::abs(p.y) < 0.7f; };
+  const auto coarse = [](vec3 p) { return p.x > 0.3f && std::abs(p.y) < 0.7f; };
+  const CloudMesh adapted = made(0);
+  EXPECT_GT(mean_edge(adapted.mesh, coarse), 4 * mean_edge(adapted.mesh, fine));
+  EXPECT_GT(adapted.counts.collapsed_vertices, 0);
+  EXPECT_EQ(topology(adapted.mesh).components, 1);
+  const CloudMesh asked = made(adapted.cell);
+  EXPECT_LT(mean_edge(asked.mesh, coarse), 1.25 * mean_edge(asked.mesh, fine));
+}
+
+}  // namespace
+}  // namespace pss
