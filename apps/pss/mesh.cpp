@@ -197,8 +197,9 @@ void add_mesh_command(CLI::App& app, Action action) {
       "Gaussian width h: a cloud's in its units (default: estimated from the spacing and the noise, see pss info); a volume's "
       "theta3 width in voxels u = (sx*sy*sz)^(1/3), at least 0.5 (default 2)");
   command->add_option("--cell", o->cell,
-                      "side of the cubes the surface is meshed in: smaller gives more, smaller triangles (default: "
-                      "a cloud's h/2, about the samples' spacing, at most rho/2: for coarser raise --h too; a volume's voxel u)")
+                      "side of the cubes the surface is meshed in, and for a cloud the size its triangles grow to: "
+                      "smaller gives more, smaller triangles (default: a cloud's h/2, cubes of the least, triangles "
+                      "grown to the local h/2, at most rho/2: for coarser raise --h too; a volume's voxel u)")
       ->check(finite_positive());
   clouds->add_option("--borders", o->borders,
                       "where the mesh ends: clip (at its samples' hull), extend (as far as the projection "

@@ -159,7 +159,8 @@ def mesh(points, h=None, *, normals=None, surface="rimls", outliers="set-aside",
 
     points, h, normals, surface, outliers, rho, support, iterations: as for project (the
     normals given, or estimated and oriented, say which side is out). cell: the cubes' side
-    (default h/2, about the points' spacing; smaller gives more, smaller triangles).
+    and the size the triangles grow to (default: cubes of the least h/2, triangles grown to
+    each place's h/2, the local spacing; smaller gives more, smaller triangles).
     borders: 'clip' (the mesh ends at the points' hull), 'extend' (on as far as the projection
     reaches, about rho past the last points) or 'auto' (extend: an array of points is a scan's,
     as the CLI's auto for files without faces). crease_angle: degrees; where the normals within
