@@ -11,6 +11,7 @@
 #include "pss/mesh/coarsen.hpp"
 #include "pss/mesh/mesh_cloud.hpp"
 #include "support/analytic_implicit.hpp"
+#include "support/mesh_checks.hpp"
 #include "support/self_intersection.hpp"
 #include "support/shapes.hpp"
 
@@ -19,13 +20,7 @@ namespace {
 
 using test::analytic;
 using test::march;
-
-double quality(const TriangleMesh& m, const std::array<int, 3>& t) {  // 1 when equilateral
-  const glm::dvec3 a(m.positions[std::size_t(t[0])]), b(m.positions[std::size_t(t[1])]),
-      c(m.positions[std::size_t(t[2])]);
-  const double edges = glm::dot(b - a, b - a) + glm::dot(c - b, c - b) + glm::dot(a - c, a - c);
-  return 2.0 * std::sqrt(3.0) * glm::length(glm::cross(b - a, c - a)) / edges;
-}
+using test::triangle_quality;
 
 glm::dvec3 centroid(const TriangleMesh& m, const std::array<int, 3>& t) {
   return (glm::dvec3(m.positions[std::size_t(t[0])]) + glm::dvec3(m.positions[std::size_t(t[1])]) +
@@ -78,8 +73,8 @@ TEST(Coarsen, AtTheMarchsCellTheSliversGoAndTheSphereStaysClosed) {
   double worst_before = 1;
   int slivers_before = 0;
   for (const auto& t : before.triangles) {
-    worst_before = std::min(worst_before, quality(before, t));
-    slivers_before += quality(before, t) < 0.15;
+    worst_before = std::min(worst_before, triangle_quality(before, t));
+    slivers_before += triangle_quality(before, t) < 0.15;
   }
   ASSERT_GT(slivers_before, 20);
   const auto everywhere = [](vec3) { return true; };
@@ -108,8 +103,8 @@ TEST(Coarsen, AtTheMarchsCellTheSliversGoAndTheSphereStaysClosed) {
   }
   int slivers = 0;
   for (const auto& tri : m.triangles) {
-    EXPECT_GE(quality(m, tri), worst_before - 1e-9);
-    slivers += quality(m, tri) < 0.15;
+    EXPECT_GE(triangle_quality(m, tri), worst_before - 1e-9);
+    slivers += triangle_quality(m, tri) < 0.15;
     EXPECT_GT(glm::dot(glm::cross(m.positions[std::size_t(tri[1])] - m.positions[std::size_t(tri[0])],
                                   m.positions[std::size_t(tri[2])] - m.positions[std::size_t(tri[0])]),
                        m.positions[std::size_t(tri[0])] - kSphere.center),

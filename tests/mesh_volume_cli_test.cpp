@@ -73,6 +73,9 @@ TEST_F(MeshVolumeCli, TheToothInThickSlicesIsClosed) {
       EXPECT_GT(extent.z, 2.0f * extent.x);
     else
       EXPECT_LT(extent.z, 0.5f * extent.x);
+    // Every normal faces as its triangles do, also where a merge turned them (within 60°).
+    TriangleMesh turned = m;
+    EXPECT_EQ(normals_follow_winding(turned), 0);
   }
 }
 
@@ -98,6 +101,9 @@ TEST_F(MeshVolumeCli, ARawVolumeGivesItsIsoSurface) {
   EXPECT_EQ(s["mesh"]["watertight"], true);
   EXPECT_GT(s["band"]["corners"].get<int>(), 0);
   EXPECT_TRUE(s["seconds"].contains("mesh vertices")) << s["seconds"].dump();
+  const long long merged = s["band"]["collapsed_vertices"].get<long long>();
+  EXPECT_GT(merged, 0);
+  EXPECT_NE(r.out.find(std::to_string(merged) + " vertices merged into neighbours"), std::string::npos) << r.out;
 }
 
 // A header's spacing puts the mesh in world units; the default cell is the voxel, and h

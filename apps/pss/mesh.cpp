@@ -143,9 +143,11 @@ void run_volume_mesh(const MeshOptions& o, Stats& stats, std::chrono::steady_clo
     std::printf("iso-surface %g", double(volume.feature.iso));
   else
     std::printf("gradient surface (threshold %g)", double(volume.feature.threshold));
-  std::printf(" by the %s, h = %g voxels, cell %g (%g voxels); %lld corners evaluated, %lld cubes meshed\n",
+  std::printf(" by the %s, h = %g voxels, cell %g (%g voxels); %lld corners evaluated, %lld cubes meshed, %lld "
+              "vertices merged into neighbours\n",
               options.method.c_str(), double(volume.params.h / voxel), double(result.cell),
-              double(result.cell / voxel), (long long)result.counts.corners, (long long)result.counts.cubes_crossed);
+              double(result.cell / voxel), (long long)result.counts.corners, (long long)result.counts.cubes_crossed,
+              (long long)result.counts.collapsed_vertices);
 
   if (!o.compute.stats_path.empty()) {
     record_run(stats, "mesh", o.input, o.output, backend);

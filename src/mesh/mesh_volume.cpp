@@ -6,6 +6,7 @@
 
 #include "implicit_surface.hpp"
 #include "pss/core/error.hpp"
+#include "pss/mesh/coarsen.hpp"
 #include "pss/mesh/volume_implicit.hpp"
 
 namespace pss {
@@ -55,6 +56,14 @@ VolumeMesh mesh_volume(const PreparedVolume& volume, float cell, Backend backend
     ScopedPhase phase(stats, "mesh", false);  // its kernels show their progress
     out.mesh = march_tetrahedra(lattice, seeds, implicit, mesh_detail::kMaxSlope, kNoCreases, out.counts,
                                 std::int64_t(kCornersPerBandCube * band_cubes));
+  }
+  {
+    // The march's slivers, where the surface passes near a lattice corner, merge into their
+    // neighbours (coarsen.hpp); the cell is one size, the voxel's, so nothing else grows.
+    ScopedPhase phase(stats, "coarsen", true);
+    out.counts.collapsed_vertices =
+        coarsen_mesh(out.mesh, std::vector<float>(out.mesh.positions.size(), out.cell));
+    out.counts.normals_turned += normals_follow_winding(out.mesh);
   }
   if (out.mesh.triangles.empty())
     throw Error(volume.cells.crossed_count == 0
