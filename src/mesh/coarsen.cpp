@@ -52,15 +52,23 @@ double quality(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
 class Coarsening {
  public:
   Coarsening(TriangleMesh& mesh, std::span<const float> cell)
-      : mesh_(mesh), cell_(cell), at_(mesh.positions.size()), alive_(mesh.triangles.size(), 1),
-        planes_(mesh.positions.size()), weight_(mesh.positions.size(), 0.0),
+      : mesh_(mesh), cell_(cell), first_(mesh.positions.size() + 1, 0), count_(mesh.positions.size(), 0),
+        alive_(mesh.triangles.size(), 1), planes_(mesh.positions.size()), weight_(mesh.positions.size(), 0.0),
         touched_(mesh.positions.size(), 0) {
+    // Each vertex's triangles, a slice of list_ (counting sort by vertex).
+    for (const auto& tri : mesh.triangles)
+      for (int v : tri) ++first_[std::size_t(v) + 1];
+    for (std::size_t v = 0; v < count_.size(); ++v) first_[v + 1] += first_[v];
+    capacity_.assign(count_.size(), 0);
+    for (std::size_t v = 0; v < count_.size(); ++v) capacity_[v] = int(first_[v + 1] - first_[v]);
+    list_.resize(std::size_t(first_.back()));
+    first_.pop_back();
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
       const auto& tri = mesh.triangles[t];
+      for (int v : tri) list_[std::size_t(first_[std::size_t(v)] + count_[std::size_t(v)]++)] = int(t);
       const glm::dvec3 a = p(tri[0]), b = p(tri[1]), c = p(tri[2]);
       const glm::dvec3 area = glm::cross(b - a, c - a);
       const double length = glm::length(area);
-      for (int v : tri) at_[std::size_t(v)].push_back(int(t));
       if (!(length > 0)) continue;
       const glm::dvec3 n = area / length;
       for (int v : tri) {
@@ -71,10 +79,10 @@ class Coarsening {
   }
 
   // One pass: the short edges, shortest (against their cell) first, each collapsed where
-  // neither end was touched by a collapse of this pass. The first pass looks at every edge,
-  // later ones at the edges of the vertices the last pass touched: the tests of a collapse
-  // read only its ends' triangles, so an edge refused with neither end touched since is
-  // refused again. Returns how many collapsed.
+  // neither end was collapsed in this pass. The first pass looks at every edge, later ones at
+  // the edges of the vertices the last pass touched: the tests of a collapse read only its
+  // ends' triangles, so an edge refused with neither end touched since is refused again.
+  // Returns how many collapsed.
   std::int64_t pass() {
     std::vector<Candidate>& short_edges = candidates_;
     short_edges.clear();
@@ -83,7 +91,7 @@ class Coarsening {
       first_pass_ = false;
     } else {
       for (const int v : touched_list_)
-        for (const int t : at_[std::size_t(v)]) add_short_edges(t, short_edges);
+        for (const int t : triangles(v)) add_short_edges(t, short_edges);
     }
     for (const int v : touched_list_) touched_[std::size_t(v)] = 0;
     touched_list_.clear();
@@ -94,12 +102,12 @@ class Coarsening {
     for (std::size_t i = 0; i < short_edges.size(); ++i) {
       const Candidate& e = short_edges[i];
       if (i > 0 && e.a == short_edges[i - 1].a && e.b == short_edges[i - 1].b) continue;
-      if (at_[std::size_t(e.a)].empty() || at_[std::size_t(e.b)].empty()) continue;  // one collapsed
-      const int removed = collapse(e.a, e.b) ? e.a : collapse(e.b, e.a) ? e.b : -1;
+      if (count_[std::size_t(e.a)] == 0 || count_[std::size_t(e.b)] == 0) continue;  // one collapsed
+      const int removed = collapse_edge(e.a, e.b);
       if (removed < 0) continue;
       ++collapsed;
       touch(removed);
-      for (int t : at_[std::size_t(removed == e.a ? e.b : e.a)])
+      for (int t : triangles(removed == e.a ? e.b : e.a))
         for (int v : mesh_.triangles[std::size_t(t)]) touch(v);
     }
     return collapsed;
@@ -125,6 +133,13 @@ class Coarsening {
 
   glm::dvec3 p(int v) const { return glm::dvec3(mesh_.positions[std::size_t(v)]); }
 
+  std::span<int> triangles(int v) {
+    return {list_.data() + first_[std::size_t(v)], std::size_t(count_[std::size_t(v)])};
+  }
+  std::span<const int> triangles(int v) const {
+    return {list_.data() + first_[std::size_t(v)], std::size_t(count_[std::size_t(v)])};
+  }
+
   void touch(int v) {
     if (touched_[std::size_t(v)]) return;
     touched_[std::size_t(v)] = 1;
@@ -148,7 +163,7 @@ class Coarsening {
   // triangles only (v's boundary neighbours).
   void ring(int v, std::vector<int>& all, std::vector<int>& boundary) const {
     all.clear();
-    for (int t : at_[std::size_t(v)])
+    for (int t : triangles(v))
       for (int w : mesh_.triangles[std::size_t(t)])
         if (w != v) all.push_back(w);
     std::sort(all.begin(), all.end());
@@ -162,36 +177,44 @@ class Coarsening {
     all.erase(std::unique(all.begin(), all.end()), all.end());
   }
 
-  // Collapses u into v where the conditions above hold.
-  bool collapse(int u, int v) {
-    ring(u, ring_u_, boundary_u_);
-    ring(v, ring_v_, boundary_v_);
+  // Collapses a into b, or else b into a, where the conditions above hold; returns the
+  // vertex removed, or -1. The topology's tests are the edge's, the others each direction's.
+  int collapse_edge(int a, int b) {
+    ring(a, ring_a_, boundary_a_);
+    ring(b, ring_b_, boundary_b_);
     std::vector<int>& opposite = scratch_;
     opposite.clear();
-    for (int t : at_[std::size_t(u)]) {
+    for (int t : triangles(a)) {
       const auto& tri = mesh_.triangles[std::size_t(t)];
-      if (tri[0] == v || tri[1] == v || tri[2] == v)
+      if (tri[0] == b || tri[1] == b || tri[2] == b)
         for (int w : tri)
-          if (w != u && w != v) opposite.push_back(w);
+          if (w != a && w != b) opposite.push_back(w);
     }
     std::sort(opposite.begin(), opposite.end());
-    const bool boundary_edge = std::binary_search(boundary_u_.begin(), boundary_u_.end(), v);
-    if (opposite.size() != (boundary_edge ? 1u : 2u)) return false;
-    if (!boundary_u_.empty()) {
+    const bool boundary_edge = std::binary_search(boundary_a_.begin(), boundary_a_.end(), b);
+    if (opposite.size() != (boundary_edge ? 1u : 2u)) return -1;
+    // The link condition.
+    std::vector<int>& shared = shared_;
+    shared.clear();
+    std::set_intersection(ring_a_.begin(), ring_a_.end(), ring_b_.begin(), ring_b_.end(), std::back_inserter(shared));
+    if (shared != opposite) return -1;
+    if (ring_a_.size() == 3 && ring_b_.size() == 3) return -1;  // a tetrahedron
+    if (may_collapse(a, b, boundary_a_, boundary_edge)) return apply(a, b), a;
+    if (may_collapse(b, a, boundary_b_, boundary_edge)) return apply(b, a), b;
+    return -1;
+  }
+
+  // Whether u may move onto v: its boundary, the planes it takes, its triangles' turn and shape.
+  bool may_collapse(int u, int v, const std::vector<int>& boundary_u, bool boundary_edge) {
+    if (!boundary_u.empty()) {
       // Along the boundary only, into its next vertex, with the boundary kept straight there.
-      if (!boundary_edge || boundary_u_.size() != 2 || at_[std::size_t(u)].size() < 2) return false;
-      const int w = boundary_u_[0] == v ? boundary_u_[1] : boundary_u_[0];
+      if (!boundary_edge || boundary_u.size() != 2 || count_[std::size_t(u)] < 2) return false;
+      const int w = boundary_u[0] == v ? boundary_u[1] : boundary_u[0];
       const glm::dvec3 along = p(w) - p(v);
       const double t = std::clamp(glm::dot(p(u) - p(v), along) / std::max(glm::dot(along, along), 1e-300), 0.0, 1.0);
       const double tolerance = double(kCoarseningError) * double(std::min(cell_[std::size_t(u)], cell_[std::size_t(v)]));
       if (glm::length(p(u) - (p(v) + t * along)) > tolerance) return false;
     }
-    // The link condition.
-    std::vector<int>& shared = shared_;
-    shared.clear();
-    std::set_intersection(ring_u_.begin(), ring_u_.end(), ring_v_.begin(), ring_v_.end(), std::back_inserter(shared));
-    if (shared != opposite) return false;
-    if (ring_u_.size() == 3 && ring_v_.size() == 3) return false;  // a tetrahedron
     // The planes the vertex takes.
     Quadric planes = planes_[std::size_t(v)];
     planes.add(planes_[std::size_t(u)]);
@@ -200,12 +223,12 @@ class Coarsening {
     if (weight > 0 && planes.at(p(v)) > tolerance * tolerance * weight) return false;
     // The triangles that stay, with v for u.
     double worst_before = 1;
-    for (int t : at_[std::size_t(u)]) {
+    for (int t : triangles(u)) {
       const auto& tri = mesh_.triangles[std::size_t(t)];
       worst_before = std::min(worst_before, quality(p(tri[0]), p(tri[1]), p(tri[2])));
     }
     const double least = std::min(kLeastQuality, worst_before);
-    for (int t : at_[std::size_t(u)]) {
+    for (int t : triangles(u)) {
       const auto& tri = mesh_.triangles[std::size_t(t)];
       if (tri[0] == v || tri[1] == v || tri[2] == v) continue;
       glm::dvec3 before[3], after[3];
@@ -219,31 +242,55 @@ class Coarsening {
       if (!(l1 > 0) || !(l0 > 0) || glm::dot(n0, n1) < kMostTurnCosine * l0 * l1) return false;
       if (quality(after[0], after[1], after[2]) < least) return false;
     }
-    for (int t : at_[std::size_t(u)]) {
-      auto& tri = mesh_.triangles[std::size_t(t)];
-      if (tri[0] == v || tri[1] == v || tri[2] == v) {
-        alive_[std::size_t(t)] = 0;
-        for (int w : tri)
-          if (w != u) std::erase(at_[std::size_t(w)], t);
-      } else {
-        for (int& w : tri)
-          if (w == u) w = v;
-        at_[std::size_t(v)].push_back(t);
-      }
-    }
-    at_[std::size_t(u)].clear();
     planes_[std::size_t(v)] = planes;
     weight_[std::size_t(v)] = weight;
     return true;
   }
 
+  // Moves u onto v: the edge's triangles go, u's others become v's.
+  void apply(int u, int v) {
+    std::vector<int>& moved = scratch_;
+    moved.clear();
+    for (int t : triangles(u)) {
+      auto& tri = mesh_.triangles[std::size_t(t)];
+      if (tri[0] == v || tri[1] == v || tri[2] == v) {
+        alive_[std::size_t(t)] = 0;
+        for (int w : tri)
+          if (w != u) remove(w, t);
+      } else {
+        for (int& w : tri)
+          if (w == u) w = v;
+        moved.push_back(t);
+      }
+    }
+    count_[std::size_t(u)] = 0;
+    // v's slice grows: where it has no room, it moves to list_'s end (with room for a few more).
+    const std::size_t n = std::size_t(count_[std::size_t(v)]), grown = n + moved.size();
+    if (grown > std::size_t(capacity_[std::size_t(v)])) {
+      const std::size_t at = list_.size();
+      list_.resize(at + grown + 4);
+      std::copy_n(list_.begin() + first_[std::size_t(v)], n, list_.begin() + std::ptrdiff_t(at));
+      first_[std::size_t(v)] = std::int64_t(at);
+      capacity_[std::size_t(v)] = int(grown + 4);
+    }
+    std::copy(moved.begin(), moved.end(), list_.begin() + first_[std::size_t(v)] + std::ptrdiff_t(n));
+    count_[std::size_t(v)] = int(grown);
+  }
+
+  void remove(int w, int t) {
+    const std::span<int> list = triangles(w);
+    const auto end = std::remove(list.begin(), list.end(), t);
+    count_[std::size_t(w)] = int(end - list.begin());
+  }
+
   TriangleMesh& mesh_;
   std::span<const float> cell_;
-  std::vector<std::vector<int>> at_;  // each vertex's triangles
+  std::vector<std::int64_t> first_;  // each vertex's triangles: list_[first_, first_ + count_)
+  std::vector<int> count_, capacity_, list_;
   std::vector<char> alive_;
   std::vector<Quadric> planes_;
   std::vector<double> weight_;
-  std::vector<int> ring_u_, ring_v_, boundary_u_, boundary_v_, scratch_, shared_;
+  std::vector<int> ring_a_, ring_b_, boundary_a_, boundary_b_, scratch_, shared_;
   std::vector<Candidate> candidates_;
   bool first_pass_ = true;
   std::vector<char> touched_;  // by a collapse of the last pass, as touched_list_
