@@ -4,8 +4,12 @@
 // spacing steps 8:1 meshed with triangles that follow it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
+#include <numbers>
 #include <random>
+#include <utility>
 
 #include "pss/core/error.hpp"
 #include "pss/mesh/coarsen.hpp"
@@ -219,6 +223,49 @@ TEST(Coarsen, ASquaresCornersStay) {
   EXPECT_TRUE(t.manifold());
   EXPECT_EQ(t.euler_characteristic(), 1);
   EXPECT_LT(t.boundary_edges, 4 * n);
+}
+
+// The distance from x to the nearest edge of m that lies in one triangle only.
+double distance_to_boundary(const TriangleMesh& m, const glm::dvec3& x) {
+  std::map<std::pair<int, int>, int> uses;
+  for (const auto& t : m.triangles)
+    for (int k = 0; k < 3; ++k) ++uses[std::minmax(t[std::size_t(k)], t[std::size_t((k + 1) % 3)])];
+  double nearest = 1e300;
+  for (const auto& [edge, n] : uses) {
+    if (n != 1) continue;
+    const glm::dvec3 a(m.positions[std::size_t(edge.first)]), b(m.positions[std::size_t(edge.second)]);
+    const double t = std::clamp(glm::dot(x - a, b - a) / glm::dot(b - a, b - a), 0.0, 1.0);
+    nearest = std::min(nearest, glm::length(x - (a + t * (b - a))));
+  }
+  return nearest;
+}
+
+// A flat sheet whose upper rim is an arc, y = 1 + 0.5 sin(πx): the rim's vertices go where
+// the rim is straight enough, and every vertex of the rim as it was stays within the
+// tolerance (0.02 cell) of the rim as it is, however many collapses took it in.
+TEST(Coarsen, ACurvedRimStaysWithinTheTolerance) {
+  TriangleMesh m;
+  const int n = 60;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const float x = float(i) / n;
+      m.positions.push_back(vec3(x, float(j) / n * (1 + 0.5f * std::sin(std::numbers::pi_v<float> * x)), 0));
+    }
+  const auto at = [&](int i, int j) { return j * (n + 1) + i; };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      m.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      m.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+  const TriangleMesh before = m;
+  const float cell = 0.1f;
+  EXPECT_GT(coarsen_mesh(m, std::vector<float>(m.positions.size(), cell)), 0);
+  EXPECT_LT(topology(m).boundary_edges, 4 * n);
+  double farthest = 0;
+  for (int i = 0; i <= n; ++i)
+    farthest = std::max(farthest, distance_to_boundary(m, glm::dvec3(before.positions[std::size_t(at(i, n))])));
+  EXPECT_LE(farthest, kCoarseningError * cell + 1e-6);
+  EXPECT_EQ(topology(m).euler_characteristic(), 1);
 }
 
 // A closed tetrahedron, flat and small against its cell: each edge passes the link condition

@@ -107,7 +107,7 @@ void run_cloud_mesh(const MeshOptions& o, Stats& stats, std::chrono::steady_cloc
   const MeshTopology shape =
       write_and_summarise(o, result.mesh, std::to_string(cloud.size()) + " points", backend, stats, start);
   std::printf("%s surface%s, h = %g (%s), rho = %g, borders %s, cell %g; %lld corners evaluated, %lld cubes meshed, "
-              "%lld vertices on creases, %lld merged into neighbours to suit the spacing; %lld outliers set aside, "
+              "%lld vertices on creases, %lld merged into neighbours; %lld outliers set aside, "
               "%lld part%s held by fewer than %d samples removed\n",
               surface_name(params.projection.surface), normals_text(result.normals), double(params.projection.h),
               support_text(params.projection.support, result.widths).c_str(), double(params.projection.rho),

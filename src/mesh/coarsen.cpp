@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -79,7 +81,7 @@ class Coarsening {
   }
 
   // One pass: the short edges, shortest (against their cell) first, each collapsed where
-  // neither end was collapsed in this pass. The first pass looks at every edge, later ones at
+  // neither end was removed by this pass. The first pass looks at every edge, later ones at
   // the edges of the vertices the last pass touched: the tests of a collapse read only its
   // ends' triangles, so an edge refused with neither end touched since is refused again.
   // Returns how many collapsed.
@@ -206,14 +208,20 @@ class Coarsening {
 
   // Whether u may move onto v: its boundary, the planes it takes, its triangles' turn and shape.
   bool may_collapse(int u, int v, const std::vector<int>& boundary_u, bool boundary_edge) {
+    int w = -1;  // u's other boundary neighbour, where u is on the boundary
     if (!boundary_u.empty()) {
-      // Along the boundary only, into its next vertex, with the boundary kept straight there.
+      // Along the boundary only, into its next vertex, with the new boundary edge v–w within
+      // the tolerance of u and of every boundary vertex its two edges had taken in before.
       if (!boundary_edge || boundary_u.size() != 2 || count_[std::size_t(u)] < 2) return false;
-      const int w = boundary_u[0] == v ? boundary_u[1] : boundary_u[0];
-      const glm::dvec3 along = p(w) - p(v);
-      const double t = std::clamp(glm::dot(p(u) - p(v), along) / std::max(glm::dot(along, along), 1e-300), 0.0, 1.0);
+      w = boundary_u[0] == v ? boundary_u[1] : boundary_u[0];
       const double tolerance = double(kCoarseningError) * double(std::min(cell_[std::size_t(u)], cell_[std::size_t(v)]));
-      if (glm::length(p(u) - (p(v) + t * along)) > tolerance) return false;
+      if (!near_segment(p(u), v, w, tolerance)) return false;
+      for (const int end : {v, w}) {
+        const auto taken = rim_taken_.find(edge_key(u, end));
+        if (taken == rim_taken_.end()) continue;
+        for (const glm::dvec3& x : taken->second)
+          if (!near_segment(x, v, w, tolerance)) return false;
+      }
     }
     // The planes the vertex takes.
     Quadric planes = planes_[std::size_t(v)];
@@ -244,7 +252,28 @@ class Coarsening {
     }
     planes_[std::size_t(v)] = planes;
     weight_[std::size_t(v)] = weight;
+    if (w >= 0) {  // the boundary vertices the new edge v–w stands for
+      std::vector<glm::dvec3> taken{p(u)};
+      for (const int end : {v, w}) {
+        const auto old = rim_taken_.find(edge_key(u, end));
+        if (old == rim_taken_.end()) continue;
+        taken.insert(taken.end(), old->second.begin(), old->second.end());
+        rim_taken_.erase(old);
+      }
+      rim_taken_[edge_key(v, w)] = std::move(taken);
+    }
     return true;
+  }
+
+  static std::uint64_t edge_key(int a, int b) {
+    return std::uint64_t(std::uint32_t(std::min(a, b))) << 32 | std::uint32_t(std::max(a, b));
+  }
+
+  // Whether x lies within `tolerance` of the segment from vertex a to vertex b.
+  bool near_segment(const glm::dvec3& x, int a, int b, double tolerance) const {
+    const glm::dvec3 along = p(b) - p(a);
+    const double t = std::clamp(glm::dot(x - p(a), along) / std::max(glm::dot(along, along), 1e-300), 0.0, 1.0);
+    return glm::length(x - (p(a) + t * along)) <= tolerance;
   }
 
   // Moves u onto v: the edge's triangles go, u's others become v's.
@@ -294,6 +323,8 @@ class Coarsening {
   std::vector<Candidate> candidates_;
   bool first_pass_ = true;
   std::vector<char> touched_;  // by a collapse of the last pass, as touched_list_
+  // The boundary vertices each boundary edge made by collapses stands for (by its ends).
+  std::map<std::uint64_t, std::vector<glm::dvec3>> rim_taken_;
   std::vector<int> touched_list_;
 };
 

@@ -7,12 +7,14 @@
 // placed on the surface, with its normal), shortest first, while
 // - the topology stays (the link condition of Dey et al. 1999: the two ends share no
 //   neighbour but the edge's opposite corners; a boundary vertex moves only along its
-//   boundary; no tetrahedron folds flat), so a watertight manifold stays one;
+//   boundary, the new boundary edge within the tolerance below of every boundary vertex it
+//   stands for; no tetrahedron folds flat), so a watertight manifold stays one;
 // - the triangles keep to the surface: the planes the removed vertices' triangles had stay
 //   within a share of the cell of the vertex that takes them (Garland & Heckbert's quadrics,
 //   1997, as a root mean square), so creases and curvature stop the coarsening, flat parts
 //   do not;
-// - no triangle turns more than 60° or becomes worse shaped than the worst it replaces.
+// - no triangle turns more than 60°, and none falls below a quality of 0.15 unless one it
+//   replaces already was (then not below that one).
 #pragma once
 
 #include <cstdint>

@@ -79,7 +79,7 @@ struct MarchCounts {
   std::int64_t crease_flips = 0;       // edges turned to join two of them
   std::int64_t pinched_triangles = 0;  // removed to keep every vertex one fan (remove_pinches)
   std::int64_t normals_turned = 0;     // facing against their triangles (normals_follow_winding)
-  std::int64_t collapsed_vertices = 0;  // a cloud's mesh: removed by coarsen_mesh (mesh_cloud.cpp)
+  std::int64_t collapsed_vertices = 0;  // removed by coarsen_mesh (mesh_cloud.cpp, mesh_volume.cpp)
   std::int64_t unsupported_parts = 0;  // a cloud's mesh: parts no samples hold, removed (mesh_cloud.cpp)
   std::int64_t closed_parts_turned = 0;  // a cloud's mesh of a guessed side: face_closed_parts_outward
 };
