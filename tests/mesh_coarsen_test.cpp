@@ -268,6 +268,16 @@ TEST(Coarsen, ACurvedRimStaysWithinTheTolerance) {
   EXPECT_EQ(topology(m).euler_characteristic(), 1);
 }
 
+// A lone sliver, its apex within the tolerance of its base: collapsing the apex would take
+// the only triangle with it, and the part would vanish. It stays.
+TEST(Coarsen, ALoneSliverIsNotCollapsedAway) {
+  TriangleMesh m;
+  m.positions = {vec3(0, 0, 0), vec3(1, 0, 0), vec3(0.5f, 0.001f, 0)};
+  m.triangles = {{0, 1, 2}};
+  EXPECT_EQ(coarsen_mesh(m, std::vector<float>(3, 10.0f)), 0);
+  EXPECT_EQ(m.triangles.size(), 1u);
+}
+
 // A closed tetrahedron, flat and small against its cell: each edge passes the link condition
 // (its ends share just the edge's two opposite corners), but a collapse would fold the rest
 // onto one double-sided triangle. It stays as it is.
