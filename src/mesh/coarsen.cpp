@@ -208,13 +208,13 @@ class Coarsening {
 
   // Whether u may move onto v: its boundary, the planes it takes, its triangles' turn and shape.
   bool may_collapse(int u, int v, const std::vector<int>& boundary_u, bool boundary_edge) {
+    const double tolerance = double(kCoarseningError) * double(std::min(cell_[std::size_t(u)], cell_[std::size_t(v)]));
     int w = -1;  // u's other boundary neighbour, where u is on the boundary
     if (!boundary_u.empty()) {
       // Along the boundary only, into its next vertex, with the new boundary edge v–w within
       // the tolerance of u and of every boundary vertex its two edges had taken in before.
       if (!boundary_edge || boundary_u.size() != 2 || count_[std::size_t(u)] < 2) return false;
       w = boundary_u[0] == v ? boundary_u[1] : boundary_u[0];
-      const double tolerance = double(kCoarseningError) * double(std::min(cell_[std::size_t(u)], cell_[std::size_t(v)]));
       if (!near_segment(p(u), v, w, tolerance)) return false;
       for (const int end : {v, w}) {
         const auto taken = rim_taken_.find(edge_key(u, end));
@@ -227,7 +227,6 @@ class Coarsening {
     Quadric planes = planes_[std::size_t(v)];
     planes.add(planes_[std::size_t(u)]);
     const double weight = weight_[std::size_t(u)] + weight_[std::size_t(v)];
-    const double tolerance = double(kCoarseningError) * double(std::min(cell_[std::size_t(u)], cell_[std::size_t(v)]));
     if (weight > 0 && planes.at(p(v)) > tolerance * tolerance * weight) return false;
     // The triangles that stay, with v for u.
     double worst_before = 1;
@@ -330,7 +329,7 @@ class Coarsening {
 
 }  // namespace
 
-std::int64_t coarsen_mesh(TriangleMesh& mesh, std::span<const float> cell) {
+void coarsen_mesh(TriangleMesh& mesh, std::span<const float> cell, MarchCounts& counts) {
   if (cell.size() != mesh.positions.size())
     throw Error("coarsen_mesh needs one cell a vertex (" + std::to_string(cell.size()) + " for " +
                 std::to_string(mesh.positions.size()) + ")");
@@ -339,7 +338,8 @@ std::int64_t coarsen_mesh(TriangleMesh& mesh, std::span<const float> cell) {
   Coarsening coarsening(mesh, cell);
   while (coarsening.pass() > 0) {
   }
-  return coarsening.finish();
+  counts.collapsed_vertices = coarsening.finish();
+  counts.normals_turned += normals_follow_winding(mesh);
 }
 
 }  // namespace pss

@@ -141,9 +141,7 @@ CloudMesh mesh_cloud(const PointCloud& cloud, const MeshParams& params, Backend 
   }
   {
     ScopedPhase phase(stats, "coarsen", true);
-    out.counts.collapsed_vertices =
-        coarsen_mesh(out.mesh, vertex_cells(out.mesh, grid, params.cell, out.cell));
-    out.counts.normals_turned += normals_follow_winding(out.mesh);
+    coarsen_mesh(out.mesh, vertex_cells(out.mesh, grid, params.cell, out.cell), out.counts);
   }
   out.counts.unsupported_parts = mesh_detail::remove_unsupported_parts(out.mesh, grid);
   out.mesh.origin = cloud.origin;

@@ -61,9 +61,7 @@ VolumeMesh mesh_volume(const PreparedVolume& volume, float cell, Backend backend
     // The march's slivers, where the surface passes near a lattice corner, merge into their
     // neighbours (coarsen.hpp); the cell is one size, the voxel's, so nothing else grows.
     ScopedPhase phase(stats, "coarsen", true);
-    out.counts.collapsed_vertices =
-        coarsen_mesh(out.mesh, std::vector<float>(out.mesh.positions.size(), out.cell));
-    out.counts.normals_turned += normals_follow_winding(out.mesh);
+    coarsen_mesh(out.mesh, std::vector<float>(out.mesh.positions.size(), out.cell), out.counts);
   }
   if (out.mesh.triangles.empty())
     throw Error(volume.cells.crossed_count == 0

@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <span>
 
+#include "pss/mesh/marching_tetrahedra.hpp"
 #include "pss/mesh/triangle_mesh.hpp"
 
 namespace pss {
@@ -31,9 +32,11 @@ inline constexpr float kShortEdgeShare = 0.5f;
 inline constexpr float kCoarseningError = 0.02f;
 
 // Coarsens `mesh` as above, `cell[v]` the cube's side that suits vertex v (the local
-// spacing's); removes the vertices it collapsed, keeping the others' order. Deterministic
-// (one thread). Returns how many vertices it removed. Throws Error unless there is one
+// spacing's); removes the vertices it collapsed, keeping the others' order, and turns the
+// normals that the turned triangles left facing against them (normals_follow_winding).
+// Deterministic (one thread). Counts the vertices removed in counts.collapsed_vertices and
+// adds the normals turned to counts.normals_turned. Throws Error unless there is one
 // positive cell per vertex.
-std::int64_t coarsen_mesh(TriangleMesh& mesh, std::span<const float> cell);
+void coarsen_mesh(TriangleMesh& mesh, std::span<const float> cell, MarchCounts& counts);
 
 }  // namespace pss
