@@ -83,6 +83,10 @@ struct CloudImplicit {
   SupportGridView grid;
   ProjectionParams params;
   PSS_HOST_DEVICE SignedDistance operator()(vec3 x) const { return signed_distance(grid, x, params); }
+  // A mesh vertex's normal, from its last projection s: the one `pss project` reports there.
+  PSS_HOST_DEVICE vec3 vertex_normal(const SignedDistance& s) const {
+    return reported_normal(grid, s.surface_point, s.normal, params);
+  }
 };
 
 }  // namespace pss

@@ -44,7 +44,8 @@ inline constexpr float kEdgeMargin = 1e-2f;
 // keeps the root on the edge), until |f| <= tolerance or `steps` projections; the normal is
 // the surface's at the root. f is nearly linear along an edge, so the secant lands close:
 // 1.95 projections per vertex on the bunny, 2.33 on hippo1 (Illinois's rule, which keeps an
-// end from sticking, measured no fewer).
+// end from sticking, measured no fewer). The vertex's normal is the implicit's vertex_normal
+// of the last projection (RIMLS's filtered one costs a fit: once a vertex, not a step).
 template <class Implicit>
 struct CrossEdgesKernel {
   Implicit implicit;
@@ -56,12 +57,12 @@ struct CrossEdgesKernel {
     const EdgeCrossing e = edges[i];
     float lo = 0, hi = 1, f_lo = e.distance_a, f_hi = e.distance_b;
     float t = f_lo / (f_lo - f_hi);
-    vec3 normal(0.0f);
+    SignedDistance last{0.0f, vec3(0.0f), vec3(0.0f), false};
     for (int k = 0; k < steps; ++k) {
       t = min(max(t, kEdgeMargin), 1 - kEdgeMargin);
       const SignedDistance s = implicit(e.a + t * (e.b - e.a));
       if (!s.valid) break;
-      normal = s.normal;
+      last = s;
       if (abs(s.distance) <= tolerance) break;
       if ((s.distance < 0) == (f_lo < 0)) {
         lo = t;
@@ -73,6 +74,7 @@ struct CrossEdgesKernel {
       t = lo + (hi - lo) * (f_lo / (f_lo - f_hi));
     }
     t = min(max(t, kEdgeMargin), 1 - kEdgeMargin);
+    vec3 normal = last.valid ? implicit.vertex_normal(last) : vec3(0.0f);
     if (!(length2(normal) > 0)) normal = glm::normalize(e.distance_a < 0 ? e.b - e.a : e.a - e.b);
     out[i] = {e.a + t * (e.b - e.a), normal};
   }

@@ -59,6 +59,8 @@ struct VolumeImplicit {
       return {difference > 0 ? side_reach : difference < 0 ? -side_reach : 0.0f, x, vec3(0.0f), true, false, true};
     return {clamp(difference / length, -side_reach, side_reach), x, -g / length, true, false, true};
   }
+  // A mesh vertex's normal, from its last projection s.
+  PSS_HOST_DEVICE vec3 vertex_normal(const SignedDistance& s) const { return s.normal; }
 };
 
 }  // namespace pss

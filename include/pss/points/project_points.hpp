@@ -25,7 +25,8 @@ inline std::size_t projection_chunk(Backend backend) { return std::size_t(1) << 
 // The per-point kernel both backends run.
 PSS_INLINE ProjectedPoint project_point(const SupportGridView& grid, vec3 r, vec3 hint, const ProjectionParams& params) {
   const Projection p = project_onto_surface(grid, r, params, hint);
-  return {p.point, p.normal, p.status};
+  const bool projected = p.status == ProjectionStatus::converged || p.status == ProjectionStatus::not_converged;
+  return {p.point, projected ? reported_normal(grid, p.point, p.normal, params) : p.normal, p.status};
 }
 
 // out[i] = the projection of points[i] (backend/parallel_for.hpp).

@@ -28,6 +28,9 @@ inline constexpr int kRimlsFits = 3;
 inline constexpr float kRimlsCurvedFrom = 0.87f;
 inline constexpr float kRimlsCreaseBelow = 0.7f;
 
+// Whether fit_robust_implicit also filters the normal (below), or gives ∇f alone.
+enum class ReportedNormal : unsigned char { filtered, gradient };
+
 struct RobustImplicit {
   float f = 0;
   vec3 gradient{0.0f};
@@ -48,13 +51,21 @@ struct RobustImplicit {
 // fit before it, so the correction is taken once the fits converge (∇f moved less than √1e-3,
 // about 2° where ‖∇f‖ ≈ 1, as it is near the surface); a fit that does not converge within
 // kRimlsFits keeps the paper's f.
-template <class Samples>
-PSS_HOST_DEVICE RobustImplicit fit_robust_implicit(const Samples& samples, vec3 x) {
+// ∇f is the samples' mean normal m = Σ wᵢnᵢ / Σ wᵢ plus c = Σ ∇wᵢ·(fᵢ − f) / Σ wᵢ, a regression
+// of the residuals on position: c turns m to the points where their normals lean, and carries
+// the points' noise (on issue 27's noisy torus ∇f is 2° off, m 1°). With
+// ReportedNormal::filtered, `normal` is set to m + s·c, s = clamp(1 − v/‖c‖², 0, 1), where
+// v = Σ ‖∇wᵢ‖²(eᵢ − ē)² / (Σ wᵢ)² is the variance c would have if the samples' planes at x, eᵢ,
+// scattered by noise alone (eᵢ corrected for the curvature as f is; ē their mean under
+// ‖∇wᵢ‖²): an empirical Wiener filter, which keeps c where it stands out of the noise
+// (normals that lean) and drops it where it does not (docs/paper-notes.md).
+template <ReportedNormal reported, class Samples>
+PSS_HOST_DEVICE RobustImplicit fit_robust_implicit(const Samples& samples, vec3 x, vec3& normal) {
   RobustImplicit fit;
   const float inv_sn2 = 1 / (kRimlsSigmaN * kRimlsSigmaN);
   const float inv_sr2 = 1 / (kRimlsSigmaR * kRimlsSigmaR);
   for (int k = 0; k < kRimlsFits; ++k) {
-    float sw = 0, sf = 0, sc = 0;
+    float sw = 0, sf = 0, sc = 0, se = 0, see = 0, sg = 0;
     vec3 sgw(0.0f), sgf(0.0f), sn(0.0f);
     // The previous fit's normal; none (no correction) before the first or where ∇f vanished.
     const float g2 = length2(fit.gradient);
@@ -76,6 +87,15 @@ PSS_HOST_DEVICE RobustImplicit fit_robust_implicit(const Samples& samples, vec3 
       sf += w * fi;
       sgw += gw;
       sgf += gw * fi;
+      if constexpr (reported == ReportedNormal::filtered) {
+        // The sample's plane, for c's noise: corrected for the curvature (as sc's term), so
+        // that on a clean sphere every sample's is the same.
+        const float e = k > 0 ? 0.5f * glm::dot(d, n + facing) : fi;
+        const float g2w = length2(gw);
+        sg += g2w;
+        se += g2w * e;
+        see += g2w * e * e;
+      }
       sn += w * n;
       if (k > 0) {
         const float agree = glm::clamp((glm::dot(n, facing) - kRimlsCreaseBelow) / (kRimlsCurvedFrom - kRimlsCreaseBelow),
@@ -89,6 +109,12 @@ PSS_HOST_DEVICE RobustImplicit fit_robust_implicit(const Samples& samples, vec3 
     const float change = length2(gradient - fit.gradient);
     fit.f = f;
     fit.gradient = gradient;
+    if constexpr (reported == ReportedNormal::filtered) {
+      const vec3 c = gradient - sn / sw;  // ∇f − m
+      const float c2 = length2(c);
+      const float v = sg > 0 ? (see - se * se / sg) / (sw * sw) : 0.0f;
+      normal = c2 > 0 ? gradient - glm::clamp(v / c2, 0.0f, 1.0f) * c : gradient;
+    }
     fit.valid = true;
     if (k > 0 && change < 1e-3f) {  // converged: n is the previous fit's to within 2°
       fit.correction = 0.5f * sc / sw;
@@ -105,7 +131,8 @@ template <class Samples>
 PSS_HOST_DEVICE Projection project_rimls(const Samples& samples, vec3 r, const ProjectionParams& params,
                                          vec3 normal_hint, int steps) {
   return project_by_fits(samples, r, params, normal_hint, steps, [&](vec3& x, float, Projection& out) {
-    const RobustImplicit fit = fit_robust_implicit(samples, x);
+    vec3 unfiltered;
+    const RobustImplicit fit = fit_robust_implicit<ReportedNormal::gradient>(samples, x, unfiltered);
     const float g = glm::length(fit.gradient);
     if (!fit.valid || !(g > 0)) return -1.0f;
     out.normal = fit.gradient / g;
@@ -115,6 +142,20 @@ PSS_HOST_DEVICE Projection project_rimls(const Samples& samples, vec3 r, const P
     out.polynomial = Polynomial{};
     return abs(f);
   });
+}
+
+// The normal `pss project` and `pss mesh` report at a RIMLS point x: the filtered one, from a
+// fit at x (fit_robust_implicit). The ray tracer keeps ∇f: the filter's four more live values
+// spilled its GPU kernels past their stack budget (1,048 bytes of 1,024 on sm_90), and its
+// hits gained little (the noisy sphere of RenderTruth: 4.77° → 4.70°). `fallback` where the
+// fit fails; oriented as it.
+template <class Samples>
+PSS_HOST_DEVICE vec3 filtered_rimls_normal(const Samples& samples, vec3 x, vec3 fallback) {
+  vec3 filtered(0.0f);
+  const RobustImplicit fit = fit_robust_implicit<ReportedNormal::filtered>(samples, x, filtered);
+  const float m = glm::length(filtered);
+  if (!fit.valid || !(m > 0)) return fallback;
+  return glm::dot(filtered, fallback) < 0 ? -filtered / m : filtered / m;
 }
 
 }  // namespace pss

@@ -51,4 +51,12 @@ PSS_HOST_DEVICE Projection project_onto_surface(const SupportGridView& grid, vec
   }
 }
 
+// The normal `pss project` and `pss mesh` report at a projected point with the projection's
+// normal n: RIMLS's filtered there (filtered_rimls_normal), oriented as n; the others' n.
+PSS_HOST_DEVICE inline vec3 reported_normal(const SupportGridView& grid, vec3 point, vec3 n,
+                                            const ProjectionParams& params) {
+  if (params.surface != SurfaceOperator::rimls) return n;
+  return filtered_rimls_normal(SampleIndices(grid, point), point, n);
+}
+
 }  // namespace pss
