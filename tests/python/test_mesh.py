@@ -68,6 +68,14 @@ def test_cell_borders_and_h_are_the_cli_s(tmp_path):
     assert np.array_equal(f, faces) and np.allclose(v, vertices, atol=0)
 
 
+def test_borders_clip_an_open_sheet_at_its_points_and_extend_it_by_default():
+    rng = np.random.default_rng(5)
+    square = np.column_stack([rng.uniform(-1, 1, (3000, 2)), np.zeros(3000)]).astype(np.float32)
+    reach = {b: np.abs(pss.mesh(square, borders=b)[0][:, :2]).max() for b in ["extend", "clip", "auto"]}
+    assert reach["clip"] < 1.0 < 1.05 < reach["extend"]  # the band past the square's edge
+    assert reach["auto"] == reach["extend"]  # an array of points is a scan's
+
+
 def turned_box_samples(count=20000, seed=3):
     """Points on the faces of a box (1 x 0.8 x 0.6) turned against the axes, with their normals."""
     rng = np.random.default_rng(seed)

@@ -58,7 +58,9 @@ struct RobustImplicit {
 // v = Σ ‖∇wᵢ‖²(eᵢ − ē)² / (Σ wᵢ)² is the variance c would have if the samples' planes at x, eᵢ,
 // scattered by noise alone (eᵢ corrected for the curvature as f is; ē their mean under
 // ‖∇wᵢ‖²): an empirical Wiener filter, which keeps c where it stands out of the noise
-// (normals that lean) and drops it where it does not (docs/paper-notes.md).
+// (normals that lean) and drops it where it does not (docs/paper-notes.md). `normal` is an
+// out-parameter, not a member of RobustImplicit: as a member it put the GPU's secondary-ray
+// kernel at 1,120 bytes of stack, over its budget of 1,024 (tests/gpu/kernel_stacks.py).
 template <ReportedNormal reported, class Samples>
 PSS_HOST_DEVICE RobustImplicit fit_robust_implicit(const Samples& samples, vec3 x, vec3& normal) {
   RobustImplicit fit;
