@@ -6,12 +6,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <numbers>
 #include <random>
 #include <span>
 #include <utility>
 
+#include "pss/backend/backend.hpp"
 #include "pss/core/error.hpp"
 #include "pss/mesh/coarsen.hpp"
 #include "pss/mesh/mesh_cloud.hpp"
@@ -239,6 +241,49 @@ TEST(Coarsen, ASquaresCornersStay) {
   EXPECT_TRUE(t.manifold());
   EXPECT_EQ(t.euler_characteristic(), 1);
   EXPECT_LT(t.boundary_edges, 4 * n);
+}
+
+// A sheet of 48,841 vertices, so many that the coarsening splits it into blocks that cores
+// take in turn (coarsen.cpp): on 1, 2 and 3 threads the same mesh, and as coarse across the
+// blocks' borders as within them: no edge is left shorter than the share of the cell that
+// collapses but at the outline, whose corners stay. Left to the blocks alone, the edges
+// across their borders would stay short.
+TEST(Coarsen, ALargeSheetCoarsensTheSameOnAnyThreadsAndAsCoarseAcrossItsBlocks) {
+  const int n = 220;
+  const TriangleMesh sheet = grid_sheet(n, [](float x, float y) { return vec3(x, y, 0); });
+  const float side = 4.0f / float(n);
+  const std::vector<float> cell(sheet.positions.size(), side);
+  std::vector<TriangleMesh> meshes;
+  for (const int threads : {1, 2, 3}) {
+    set_cpu_threads(threads);
+    TriangleMesh m = sheet;
+    EXPECT_GT(coarsened(m, cell), 0);
+    meshes.push_back(std::move(m));
+  }
+  set_cpu_threads(0);
+  for (std::size_t k = 1; k < meshes.size(); ++k) {
+    EXPECT_EQ(meshes[k].positions, meshes[0].positions) << k + 1 << " threads";
+    EXPECT_EQ(meshes[k].triangles, meshes[0].triangles) << k + 1 << " threads";
+  }
+  const TriangleMesh& m = meshes[0];
+  const auto inner = [](vec3 p) { return std::min(std::min(p.x, 1 - p.x), std::min(p.y, 1 - p.y)) > 0.05f; };
+  int short_edges = 0, edges = 0;
+  for (const auto& t : m.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const vec3 a = m.positions[std::size_t(t[std::size_t(k)])];
+      const vec3 b = m.positions[std::size_t(t[std::size_t((k + 1) % 3)])];
+      if (!inner(a) || !inner(b)) continue;
+      ++edges;
+      short_edges += glm::length(a - b) < kShortEdgeShare * side;
+    }
+  std::printf("%d of %d inner edges shorter than %g cells\n", short_edges, edges, double(kShortEdgeShare));
+  EXPECT_GT(edges, 1000);
+  EXPECT_LT(short_edges, edges / 100);
+  EXPECT_NEAR(area(m), 1.0, 1e-5);
+  const MeshTopology t = topology(m);
+  EXPECT_TRUE(t.manifold());
+  EXPECT_EQ(t.euler_characteristic(), 1);
+  EXPECT_EQ(test::crossing_triangle_pairs(m), 0);
 }
 
 // The distance from x to the nearest edge of m that lies in one triangle only.

@@ -76,10 +76,15 @@ def test_borders_clip_an_open_sheet_at_its_points_and_extend_it_by_default():
     assert reach["auto"] == reach["extend"]  # an array of points is a scan's
 
 
+BOX_HALF = np.array([0.5, 0.4, 0.3])
+BOX_TURN = (np.array([[np.cos(0.5), -np.sin(0.5), 0], [np.sin(0.5), np.cos(0.5), 0], [0, 0, 1]])
+            @ np.array([[1, 0, 0], [0, np.cos(0.5), -np.sin(0.5)], [0, np.sin(0.5), np.cos(0.5)]]))
+
+
 def turned_box_samples(count=20000, seed=3):
     """Points on the faces of a box (1 x 0.8 x 0.6) turned against the axes, with their normals."""
     rng = np.random.default_rng(seed)
-    half = np.array([0.5, 0.4, 0.3])
+    half = BOX_HALF
     points, normals = [], []
     for axis in range(3):
         for side in (-1, 1):
@@ -89,9 +94,14 @@ def turned_box_samples(count=20000, seed=3):
             n[:, axis] = side
             points.append(p)
             normals.append(n)
-    c, s = np.cos(0.5), np.sin(0.5)
-    turn = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]]) @ np.array([[1, 0, 0], [0, c, -s], [0, s, c]])
-    return np.vstack(points) @ turn.T, np.vstack(normals) @ turn.T
+    return np.vstack(points) @ BOX_TURN.T, np.vstack(normals) @ BOX_TURN.T
+
+
+def on_the_box_edges(vertices, within=1e-3):
+    """How many of a mesh's vertices lie on the edges of turned_box_samples' box (within
+    `within` of two of its faces' planes): 601 creased and 291 chamfered, measured."""
+    local = np.abs(vertices @ BOX_TURN)
+    return int(((np.abs(local - BOX_HALF) < within).sum(1) >= 2).sum())
 
 
 def test_crease_angle_is_the_cli_s(tmp_path):
@@ -106,7 +116,8 @@ def test_crease_angle_is_the_cli_s(tmp_path):
         assert np.array_equal(f, faces) and np.array_equal(v, vertices)
     creased = pss.mesh(points, surface="rimls", normals=normals)
     chamfered = pss.mesh(points, surface="rimls", normals=normals, crease_angle=180)
-    assert len(creased[0]) > len(chamfered[0])  # a vertex on the crease in each of its cubes
+    # a vertex on the crease in each of its cubes
+    assert on_the_box_edges(creased[0]) > 1.5 * on_the_box_edges(chamfered[0])
     with pytest.raises(pss.Error, match="crease_angle"):
         pss.mesh(points, crease_angle=0)
     with pytest.raises(pss.Error, match="crease_angle"):
