@@ -254,13 +254,14 @@ TEST(Coarsen, ALargeSheetCoarsensTheSameOnAnyThreadsAndAsCoarseAcrossItsBlocks) 
   const float side = 4.0f / float(n);
   const std::vector<float> cell(sheet.positions.size(), side);
   std::vector<TriangleMesh> meshes;
+  const int threads_before = cpu_threads();
   for (const int threads : {1, 2, 3}) {
     set_cpu_threads(threads);
     TriangleMesh m = sheet;
     EXPECT_GT(coarsened(m, cell), 0);
     meshes.push_back(std::move(m));
   }
-  set_cpu_threads(0);
+  set_cpu_threads(threads_before);
   for (std::size_t k = 1; k < meshes.size(); ++k) {
     EXPECT_EQ(meshes[k].positions, meshes[0].positions) << k + 1 << " threads";
     EXPECT_EQ(meshes[k].triangles, meshes[0].triangles) << k + 1 << " threads";
@@ -343,13 +344,16 @@ TEST(Coarsen, ATetrahedronDoesNotFoldFlat) {
   EXPECT_TRUE(topology(m).watertight());
 }
 
-TEST(Coarsen, CellsMustBeOneAVertexAndPositive) {
+TEST(Coarsen, CellsMustBeOneAVertexAndPositiveAndPlacesFinite) {
   TriangleMesh m = marched_sphere(0.2f);
   EXPECT_THROW(coarsened(m, std::vector<float>(m.positions.size() - 1, 0.2f)), Error);
   std::vector<float> cell(m.positions.size(), 0.2f);
   cell[3] = 0;
   EXPECT_THROW(coarsened(m, cell), Error);
   cell[3] = std::nanf("");
+  EXPECT_THROW(coarsened(m, cell), Error);
+  cell[3] = 0.2f;
+  m.positions[5].y = std::nanf("");  // no place in the blocks' order
   EXPECT_THROW(coarsened(m, cell), Error);
 }
 

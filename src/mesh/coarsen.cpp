@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <exception>
 #include <map>
 #include <mutex>
 #include <string>
@@ -54,6 +56,26 @@ constexpr double kMostTurnCosine = 0.5;
 // to the last, one thread, at this size (the locally refined cylinder's 2.5 M in its first pass).
 constexpr std::size_t kBlockVertices = 4096;
 
+// f(i) for i in [0, n) on `threads` OpenMP threads, `chunk` at a time; the first exception
+// (a bad_alloc) is thrown again on the caller's thread, as one thread's loop would throw it.
+template <class F>
+void on_threads(std::int64_t n, int threads, int chunk, F&& f) {
+  std::exception_ptr error;
+  std::atomic<bool> failed{false};
+#pragma omp parallel for schedule(dynamic, chunk) num_threads(threads)
+  for (std::int64_t i = 0; i < n; ++i) {
+    if (failed.load(std::memory_order_relaxed)) continue;
+    try {
+      f(i);
+    } catch (...) {
+#pragma omp critical(pss_coarsen_error)
+      if (!error) error = std::current_exception();
+      failed.store(true, std::memory_order_relaxed);
+    }
+  }
+  if (error) std::rethrow_exception(error);
+}
+
 double quality(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
   const double edges = glm::dot(b - a, b - a) + glm::dot(c - b, c - b) + glm::dot(a - c, a - c);
   return edges > 0 ? 2.0 * std::sqrt(3.0) * glm::length(glm::cross(b - a, c - a)) / edges : 0.0;
@@ -85,9 +107,7 @@ class Coarsening {
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
       for (int v : mesh.triangles[t]) list[std::size_t(first_[std::size_t(v)] + count_[std::size_t(v)]++)] = int(t);
     // Each vertex's planes, its triangles' in their order, a third of each one's area.
-    const auto vertices = std::int64_t(count_.size());
-#pragma omp parallel for schedule(static) num_threads(int(scratch_.size()))
-    for (std::int64_t v = 0; v < vertices; ++v) {
+    on_threads(std::int64_t(count_.size()), int(scratch_.size()), 256, [&](std::int64_t v) {
       for (const int t : triangles(int(v))) {
         const auto& tri = mesh.triangles[std::size_t(t)];
         const glm::dvec3 a = p(tri[0]), b = p(tri[1]), c = p(tri[2]);
@@ -98,7 +118,7 @@ class Coarsening {
         planes_[std::size_t(v)].add_plane(n, -glm::dot(n, a), length / 6);
         weight_[std::size_t(v)] += length / 6;
       }
-    }
+    });
   }
 
   // One pass: the short edges, shortest (against their cell) first, each collapsed where
@@ -114,12 +134,11 @@ class Coarsening {
     const int threads = int(scratch_.size());
     std::vector<std::vector<Candidate>> found(static_cast<std::size_t>(threads));
     const auto sources = std::int64_t(first_pass_ ? mesh_.positions.size() : touched_list_.size());
-#pragma omp parallel for schedule(static) num_threads(threads)
-    for (std::int64_t i = 0; i < sources; ++i) {
+    on_threads(sources, threads, 256, [&](std::int64_t i) {
       const auto thread = std::size_t(omp_get_thread_num());
       add_short_edges(first_pass_ ? int(i) : touched_list_[std::size_t(i)], !first_pass_, scratch_[thread].ring_a,
                       found[thread]);
-    }
+    });
     first_pass_ = false;
     for (const int v : touched_list_) touched_[std::size_t(v)] = 0;
     touched_list_.clear();
@@ -132,9 +151,10 @@ class Coarsening {
         return std::span<const Candidate>(left).subspan(from, to - from);
       };
       std::vector<Outcome> done(std::size_t(partition.blocks));
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-      for (int b = 0; b < partition.blocks; ++b)
-        collapse_in_order(run(b), &partition, b, scratch_[std::size_t(omp_get_thread_num())], done[std::size_t(b)]);
+      on_threads(partition.blocks, threads, 1, [&](std::int64_t b) {
+        collapse_in_order(run(int(b)), &partition, int(b), scratch_[std::size_t(omp_get_thread_num())],
+                          done[std::size_t(b)]);
+      });
       std::vector<Candidate> between(run(partition.blocks).begin(), run(partition.blocks).end());
       for (Outcome& o : done) {
         between.insert(between.end(), o.deferred.begin(), o.deferred.end());
@@ -238,9 +258,9 @@ class Coarsening {
     const auto count = std::int64_t(lists.size());
     // at[l][k]: list l's edges of run k, then where the first of them goes.
     std::vector<std::vector<std::size_t>> at(lists.size(), std::vector<std::size_t>(keys, 0));
-#pragma omp parallel for schedule(static, 1) num_threads(threads)
-    for (std::int64_t l = 0; l < count; ++l)
+    on_threads(count, threads, 1, [&](std::int64_t l) {
       for (const Candidate& e : lists[std::size_t(l)]) ++at[std::size_t(l)][key(e)];
+    });
     std::vector<std::size_t> begin(keys + 1, 0);
     std::size_t total = 0;
     for (std::size_t k = 0; k < keys; ++k) {
@@ -249,16 +269,15 @@ class Coarsening {
     }
     begin[keys] = total;
     runs.resize(total);
-#pragma omp parallel for schedule(static, 1) num_threads(threads)
-    for (std::int64_t l = 0; l < count; ++l) {
+    on_threads(count, threads, 1, [&](std::int64_t l) {
       std::vector<std::size_t>& next = at[std::size_t(l)];
       for (const Candidate& e : lists[std::size_t(l)]) runs[next[key(e)]++] = e;
       std::vector<Candidate>().swap(lists[std::size_t(l)]);
-    }
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-    for (int k = 0; k <= between; ++k)
+    });
+    on_threads(between + 1, threads, 1, [&](std::int64_t k) {
       std::sort(runs.begin() + std::ptrdiff_t(begin[std::size_t(k)]),
                 runs.begin() + std::ptrdiff_t(begin[std::size_t(k) + 1]), shorter);
+    });
     return begin;
   }
 
@@ -471,7 +490,8 @@ class Coarsening {
       first_[std::size_t(v)] = std::int64_t(at);
       capacity_[std::size_t(v)] = int(grown + 4);
     }
-    std::copy(moved.begin(), moved.end(), triangles(v).begin() + std::ptrdiff_t(n));
+    std::copy(moved.begin(), moved.end(),
+              arenas_[std::size_t(arena_[std::size_t(v)])].begin() + first_[std::size_t(v)] + std::ptrdiff_t(n));
     count_[std::size_t(v)] = int(grown);
   }
 
@@ -509,6 +529,10 @@ void coarsen_mesh(TriangleMesh& mesh, std::span<const float> cell, MarchCounts& 
                 std::to_string(mesh.positions.size()) + ")");
   for (const float c : cell)
     if (!(c > 0) || !std::isfinite(c)) throw Error("coarsen_mesh needs positive cells");
+  for (const vec3& p : mesh.positions)
+    if (!is_finite(p)) throw Error("coarsen_mesh needs finite vertex positions");
+  for (const vec3& p : mesh.positions)
+    if (!is_finite(p)) throw Error("coarsen_mesh needs finite vertex positions");
   Coarsening coarsening(mesh, cell);
   while (coarsening.pass() > 0) {
   }

@@ -34,9 +34,9 @@ inline constexpr float kCoarseningError = 0.02f;
 // Coarsens `mesh` as above, `cell[v]` the cube's side that suits vertex v (the local
 // spacing's); removes the vertices it collapsed, keeping the others' order, and turns the
 // normals that the turned triangles left facing against them (normals_follow_winding).
-// On all cores, block by block, and the same for any thread count. Counts the vertices removed in counts.collapsed_vertices and
-// adds the normals turned to counts.normals_turned. Throws Error unless there is one
-// positive cell per vertex.
+// On all cores, block by block, and the same for any thread count. Counts the vertices
+// removed in counts.collapsed_vertices and adds the normals turned to counts.normals_turned.
+// Throws Error unless there is one positive cell per vertex and every position is finite.
 void coarsen_mesh(TriangleMesh& mesh, std::span<const float> cell, MarchCounts& counts);
 
 }  // namespace pss
