@@ -102,7 +102,10 @@ TEST(VolumeIo, NrrdAttachedDetachedAndGzip) {
   write_bytes(d / "g.nrrd", header + "encoding: gzip\n\n" + gzip(ramp_uint8()));
   write_bytes(d / "data.raw", ramp_uint8());
   write_bytes(d / "b.nhdr", header + "encoding: raw\ndata file: data.raw\n");
-  for (const char* name : {"a.nrrd", "g.nrrd", "b.nhdr"}) {
+  // byte skip -1: the voxels are the data's last bytes, whatever comes before them.
+  write_bytes(d / "prefixed.raw", "a preamble" + ramp_uint8());
+  write_bytes(d / "c.nhdr", header + "encoding: raw\nbyte skip: -1\ndata file: prefixed.raw\n");
+  for (const char* name : {"a.nrrd", "g.nrrd", "b.nhdr", "c.nhdr"}) {
     const Volume v = read_volume(d / name, std::nullopt);
     EXPECT_EQ(v.dims, ivec3(2, 3, 4)) << name;
     EXPECT_EQ(v.view().at(1, 1, 2), 211.0f) << name;
@@ -122,6 +125,10 @@ TEST(VolumeIo, BadInputsAreOneLineErrors) {
   RawVolumeFormat f;
   f.dims = ivec3(2, 3, 4);
   EXPECT_NE(error_of([&] { read_raw_volume(d / "short.raw", f); }).find("holds 23 bytes"), std::string::npos);
+  // A byte too many is refused too: the dims or the type are not the file's, and read
+  // anyway every slice would shift.
+  write_bytes(d / "long.raw", ramp_uint8() + "x");
+  EXPECT_NE(error_of([&] { read_raw_volume(d / "long.raw", f); }).find("holds 25 bytes"), std::string::npos);
   EXPECT_NE(error_of([] { parse_dims("0x4x4"); }).find("positive"), std::string::npos);
   EXPECT_NE(error_of([] { parse_dims("100000x100000x100000"); }).find("more than"), std::string::npos);
   EXPECT_NE(error_of([] { parse_dims("4x4"); }).find("XxYxZ"), std::string::npos);
