@@ -112,6 +112,13 @@ TEST_F(OutputFormats, JpegHoldsTheFramesColours) {
   ASSERT_EQ(jpeg.channels, 3);
   ASSERT_EQ(jpeg.width, 16);
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(jpeg.at(8, 8, c), srgb8(kSecond[c]), 3) << c;
+  // At the quality --help names (kJpegQuality, 95): the luminance table's first step is the
+  // standard table's 16 scaled by (200 − 2·95) %, rounded: 2 (quality 90 would give 3).
+  const std::string bytes = read(path("f.JPEG"));
+  const std::size_t table = bytes.find("\xff\xdb");
+  ASSERT_NE(table, std::string::npos);
+  ASSERT_LT(table + 5, bytes.size());
+  EXPECT_EQ(int(std::uint8_t(bytes[table + 5])), (16 * (200 - 2 * kJpegQuality) + 50) / 100);
 }
 
 TEST_F(OutputFormats, ExrHoldsLinearColourAlphaDepthAndNormals) {
