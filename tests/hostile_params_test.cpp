@@ -5,6 +5,7 @@
 
 #include <unistd.h>
 
+#include <cfloat>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -52,6 +53,24 @@ TEST(Text, OneLineEscapesControlBytesOnly) {
   std::string escapes;  // 256 escapes of 4 bytes: 1024
   for (int i = 0; i < 256; ++i) escapes += "\\x19";
   EXPECT_EQ(one_line(std::string(5000, '\x19')), escapes + "…");
+}
+
+// MiB below a GiB, GiB from it, four significant digits (the memory plans' messages).
+TEST(Text, ByteSizesInMibAndGib) {
+  EXPECT_EQ(byte_size(3.5 * (1 << 20)), "3.5 MiB");
+  EXPECT_EQ(byte_size(1023.0 * (1 << 20)), "1023 MiB");
+  EXPECT_EQ(byte_size(double(1 << 30)), "1 GiB");
+  EXPECT_EQ(byte_size(12.25 * double(1 << 30)), "12.25 GiB");
+}
+
+// The numbers a value must be, as the flags' and the Python module's messages name them.
+TEST(Text, RangesAsMessagesNameThem) {
+  EXPECT_EQ(range_text(0, FLT_MAX, true), "a finite number > 0");
+  EXPECT_EQ(range_text(1, FLT_MAX, false), "a finite number >= 1");
+  EXPECT_EQ(range_text(-FLT_MAX, 5, false), "a finite number <= 5");
+  EXPECT_EQ(range_text(-FLT_MAX, FLT_MAX, false), "a finite number");
+  EXPECT_EQ(range_text(0, 180, true), "a finite number > 0 and <= 180");
+  EXPECT_EQ(range_text(1, 100, false), "a finite number from 1 to 100");
 }
 
 TEST(Text, FileErrorsShowTheNamePrintably) {
