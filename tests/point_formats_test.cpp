@@ -22,6 +22,7 @@
 #include "pss/io/pcd.hpp"
 #include "pss/io/ply.hpp"
 #include "pss/io/point_cloud_file.hpp"
+#include "pss/io/point_stream.hpp"
 #include "pss/io/stl.hpp"
 #include "pss/points/project_cloud.hpp"
 #include "support/cli.hpp"
@@ -686,6 +687,30 @@ TEST_F(FormatTest, PlyScalarsRoundTripWithTheirTypes) {
               std::string::npos);
     expect_scalars(pss::read_ply(path("out.ply")), kScalarsWritten);
   }
+}
+
+// A file is read a part of 65,536 points at a time (io/point_stream.hpp): a scalar's values
+// come out whole and in order across the parts.
+TEST_F(FormatTest, PlyScalarsOfManyPartsComeOutWholeAndInOrder) {
+  constexpr int n = 70000;
+  std::string bytes = "ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string(n) +
+                      "\nproperty float x\nproperty float y\nproperty float z\nproperty float intensity\nend_header\n";
+  for (int i = 0; i < n; ++i) {
+    const float v[4] = {float(i % 300), float(i / 300), 0.0f, float(i)};
+    bytes.append(reinterpret_cast<const char*>(v), sizeof v);
+  }
+  const PointCloud cloud = pss::read_point_cloud(write("many.ply", bytes));
+  ASSERT_EQ(cloud.size(), std::size_t(n));
+  ASSERT_EQ(cloud.scalars.size(), 1u);
+  ASSERT_EQ(cloud.scalars[0].values.size(), std::size_t(n));
+  for (int i = 0; i < n; ++i) ASSERT_EQ(cloud.scalars[0].values[std::size_t(i)], double(i)) << i;
+}
+
+// The formats read a part at a time, so that a cloud larger than memory is tiled.
+TEST_F(FormatTest, TheStreamedFormats) {
+  for (const char* name : {"a.ply", "a.xyz", "a.txt", "a.pts", "a.pwn", "a.las", "A.PTS"})
+    EXPECT_TRUE(pss::has_point_stream(name)) << name;
+  for (const char* name : {"a.obj", "a.off", "a.stl", "a.pcd"}) EXPECT_FALSE(pss::has_point_stream(name)) << name;
 }
 
 TEST_F(FormatTest, PlyScalarsAreKeptOnceEachAndNeverUnderAReadName) {
