@@ -136,7 +136,7 @@ class Coarsening {
     const auto sources = std::int64_t(first_pass_ ? mesh_.positions.size() : touched_list_.size());
     on_threads(sources, threads, 256, [&](std::int64_t i) {
       const auto thread = std::size_t(omp_get_thread_num());
-      add_short_edges(first_pass_ ? int(i) : touched_list_[std::size_t(i)], !first_pass_, scratch_[thread].ring_a,
+      add_short_edges(first_pass_ ? int(i) : touched_list_[std::size_t(i)], !first_pass_, scratch_[thread],
                       found[thread]);
     });
     first_pass_ = false;
@@ -320,14 +320,9 @@ class Coarsening {
   // side of a step in the spacing grades towards the fine one), each once: those to a
   // neighbour w of v's ring with w > v, or, where `after_touched`, w not touched (an edge
   // between two touched vertices comes from the lower).
-  void add_short_edges(int v, bool after_touched, std::vector<int>& ring, std::vector<Candidate>& out) const {
-    ring.clear();
-    for (int t : triangles(v))
-      for (int w : mesh_.triangles[std::size_t(t)])
-        if (w != v) ring.push_back(w);
-    std::sort(ring.begin(), ring.end());
-    ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
-    for (const int w : ring) {
+  void add_short_edges(int v, bool after_touched, Scratch& s, std::vector<Candidate>& out) const {
+    ring(v, s.ring_a, s.boundary_a);
+    for (const int w : s.ring_a) {
       if (!(w > v || (after_touched && !touched_[std::size_t(w)]))) continue;
       const double cell = double(std::min(cell_[std::size_t(v)], cell_[std::size_t(w)]));
       const double share = glm::length(p(v) - p(w)) / cell;
@@ -529,8 +524,6 @@ void coarsen_mesh(TriangleMesh& mesh, std::span<const float> cell, MarchCounts& 
                 std::to_string(mesh.positions.size()) + ")");
   for (const float c : cell)
     if (!(c > 0) || !std::isfinite(c)) throw Error("coarsen_mesh needs positive cells");
-  for (const vec3& p : mesh.positions)
-    if (!is_finite(p)) throw Error("coarsen_mesh needs finite vertex positions");
   for (const vec3& p : mesh.positions)
     if (!is_finite(p)) throw Error("coarsen_mesh needs finite vertex positions");
   Coarsening coarsening(mesh, cell);
