@@ -39,8 +39,9 @@ cmake --build build-asan -j"$(nproc)"
 export ASAN_OPTIONS=halt_on_error=1:abort_on_error=1:detect_leaks=1:strict_string_checks=1
 export UBSAN_OPTIONS=halt_on_error=1:abort_on_error=1:print_stacktrace=1
 unsanitized=$(sed 's/#.*//' tests/unsanitized.txt | xargs)
+suite=$(ctest --test-dir build-asan -N | sed -n 's/^ *Test *#[0-9]*: //p')
 for name in $unsanitized; do
-  [[ $(ctest --test-dir build-asan -N -R "^${name//./\\.}\$") == *"Total Tests: 1"* ]] ||
+  grep -qxF "$name" <<<"$suite" ||
     { echo "tests/unsanitized.txt names $name, which the suite does not have" >&2; exit 1; }
 done
 # A test over 5 minutes sanitized fails here: make it lighter, or list it in tests/unsanitized.txt.
