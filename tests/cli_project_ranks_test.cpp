@@ -151,5 +151,26 @@ TEST_F(ProjectRanks, ARankThatDiesEndsTheRunWithNoOutputAndNoScratch) {
   EXPECT_TRUE(scratch.empty()) << "the tiles' scratch files are left behind";
 }
 
+// mpirun -np N pss mesh: the ranks share the tiles' pieces, and the mesh, whatever the tiles
+// (tests/tiled_mesh_test.cpp), is byte for byte one process's with tiles of another size.
+TEST_F(ProjectRanks, TheRanksMeshOneProcesssMeshInTilesOfAnotherSize) {
+  SKIP_WITHOUT_MPI();
+  const std::string file = write("torus.xyz", test::torus_xyz(60000, false, 0));
+  const ScratchFolder scratch(dir_ / "scratch");
+  const test::CliResult one = test::run_pss("mesh " + file + " -o " + path("one.ply") + " --memory 45M");
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  ASSERT_NE(one.out.find("tile by tile: "), std::string::npos) << one.out;
+  const test::CliResult r = run_ranks(2, "mesh " + file + " -o " + path("two.ply") + " --stats " + path("two.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find(", 2 ranks)"), std::string::npos) << r.out;
+  EXPECT_NE(one.out.substr(one.out.find("tile by tile"), 40), r.out.substr(r.out.find("tile by tile"), 40))
+      << "the same tiles: the test would not tell seams apart";
+  EXPECT_EQ(read(path("two.ply")), read(path("one.ply"))) << "the ranks' mesh differs from one process's";
+  const nlohmann::json v = nlohmann::json::parse(read(path("two.json")));
+  EXPECT_EQ(v["ranks"], 2);
+  EXPECT_GT(v["points_per_rank"][1].get<std::uint64_t>(), 0u);
+  EXPECT_TRUE(scratch.empty()) << "the tiles' scratch files are left behind";
+}
+
 }  // namespace
 }  // namespace pss

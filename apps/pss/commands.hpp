@@ -9,6 +9,7 @@
 #include "pss/backend/backend.hpp"
 #include "pss/core/error.hpp"
 #include "pss/core/stats.hpp"
+#include "pss/tiles/memory_plan.hpp"
 #include "pss/io/tiled_cloud.hpp"
 #include "pss/points/cloud.hpp"
 #include "pss/points/projection.hpp"
@@ -39,6 +40,8 @@ template <class Make>
 auto naming_input(const std::string& file, Make&& make) {
   try {
     return make();
+  } catch (const NotTiled&) {
+    throw;  // for the caller to run in core
   } catch (const Error& e) {
     throw file_error(file, e.what());
   }

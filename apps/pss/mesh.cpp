@@ -1,7 +1,9 @@
 // pss mesh FILE -o OUT.ply|.obj|.stl|.off: a triangle mesh of the PSS of a point cloud or of a
 // volume (issue 27), its vertices on the surface with the surface's normals.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <optional>
 #include <span>
 #include <string>
 
@@ -12,10 +14,16 @@
 #include "pss/io/mesh_file.hpp"
 #include "pss/io/output_file.hpp"
 #include "pss/io/point_cloud_file.hpp"
+#include "pss/io/point_stream.hpp"
+#include "pss/io/tiled_cloud.hpp"
 #include "pss/mesh/mesh_cloud.hpp"
 #include "pss/mesh/mesh_stats.hpp"
 #include "pss/mesh/mesh_volume.hpp"
 #include "pss/points/border_choice.hpp"
+#include "pss/tiles/memory_plan.hpp"
+#include "pss/tiles/mesh.hpp"
+#include "pss/tiles/spacing.hpp"
+#include "ranks/ranks.hpp"
 #include "volume_options.hpp"
 
 namespace pss::app {
@@ -30,12 +38,19 @@ struct MeshOptions {
   std::string borders = "auto";
   VolumeOptions volume;       // a volume's flags
   ComputeOptions compute;
+  std::string memory;  // --memory SIZE
   CLI::App* command = nullptr;
 };
 
+// Bytes a point (tiles/memory_plan.hpp): in core, the mesh's band at its peak (the 10^6-point
+// noisy torus: 980 MiB, docs/benchmarks.md); beside the tiles, each point's width and flags and
+// the welded mesh, held whole (about 3 triangles and 1.5 vertices a point before the
+// coarsening, 36 bytes each); a tile's point and its halo's as project's, with its band.
+constexpr MemoryCosts kMeshCosts{1024, 192, 1536};
+
 // The flags that only a cloud's PSS, or only a volume's, takes.
-constexpr const char* kCloudFlags[] = {"--rho",      "--support",    "--surface", "--normals",
-                                       "--outliers", "--iterations", "--borders", "--crease-angle"};
+constexpr const char* kCloudFlags[] = {"--rho",        "--support", "--surface",      "--normals", "--outliers",
+                                       "--iterations", "--borders", "--crease-angle", "--memory"};
 constexpr const char* kVolumeFlags[] = {"--iso",   "--gradient", "--method", "--radius",
                                         "--alpha", "--smoothing", "--error", "--threshold"};
 
@@ -90,22 +105,9 @@ MeshTopology write_and_summarise(const MeshOptions& o, const TriangleMesh& mesh,
   return shape;
 }
 
-void run_cloud_mesh(const MeshOptions& o, Stats& stats, std::chrono::steady_clock::time_point start) {
-  const Backend backend = start_compute(o.compute);
-  const PointCloud cloud = read_cloud(o.input, stats);
-  if (cloud.size() < 3)
-    throw file_error(o.input, "has " + std::to_string(cloud.size()) + (cloud.size() == 1 ? " point" : " points") +
-                                  ": a mesh needs at least 3");
-  check_mesh_origin(o.output, cloud.origin);  // before the work, not after
-  MeshParams params;
-  params.projection = projection_params(o.surface, cloud, o.input, PlaneFitMethod::mls, stats);
-  params.projection.borders = borders_for(border_choice_of(o.borders), cloud);
-  params.cell = o.cell;
-  params.crease_angle = o.crease_angle;
-
-  const CloudMesh result = naming_input(o.input, [&] { return mesh_cloud(cloud, params, backend, stats); });
-  const MeshTopology shape =
-      write_and_summarise(o, result.mesh, std::to_string(cloud.size()) + " points", backend, stats, start);
+// What pss mesh says of a cloud's mesh, in core or tile by tile, and records in --stats.
+void summarise_cloud_mesh(const MeshOptions& o, const CloudMesh& result, const MeshParams& params,
+                          const MeshTopology& shape, Stats& stats) {
   std::printf("%s surface%s, h = %g (%s), rho = %g, borders %s, cell %g; %lld corners evaluated, %lld cubes meshed, "
               "%lld vertices on creases, %lld merged into neighbours; %lld outliers set aside, "
               "%lld part%s held by fewer than %d samples removed\n",
@@ -115,16 +117,103 @@ void run_cloud_mesh(const MeshOptions& o, Stats& stats, std::chrono::steady_cloc
               (long long)result.counts.cubes_crossed, (long long)result.counts.crease_vertices,
               (long long)result.counts.collapsed_vertices, (long long)result.outliers.set_aside,
               (long long)result.counts.unsupported_parts, result.counts.unsupported_parts == 1 ? "" : "s", kMinPartSamples);
-  print_normals_turned(result.normals_turned, cloud.size());
-  print_file_normals_off(result.file_normals_off, cloud.size());
-  print_file_normals_left_out(file_normals_without_direction(cloud, o.surface.surface), cloud.size());
   if (result.turned_outward)
     std::printf("the normals' orientation faced inward (the closed parts enclosed a negative volume): the mesh "
                 "was turned to face outward\n");
+  if (!o.compute.stats_path.empty()) record_cloud_mesh(stats, result, params, shape);
+}
 
+MeshParams mesh_params(const MeshOptions& o, ProjectionParams projection, bool mesh_vertices) {
+  MeshParams params;
+  params.projection = projection;
+  params.projection.borders =
+      border_choice_of(o.borders).value_or(mesh_vertices ? BorderMode::clip : BorderMode::extend);
+  params.cell = o.cell;
+  params.crease_angle = o.crease_angle;
+  return params;
+}
+
+void mesh_cloud_in_core(const MeshOptions& o, Backend backend, Stats& stats,
+                        std::chrono::steady_clock::time_point start) {
+  const PointCloud cloud = read_cloud(o.input, stats);
+  if (cloud.size() < 3)
+    throw file_error(o.input, "has " + std::to_string(cloud.size()) + (cloud.size() == 1 ? " point" : " points") +
+                                  ": a mesh needs at least 3");
+  check_mesh_origin(o.output, cloud.origin);  // before the work, not after
+  const MeshParams params = mesh_params(
+      o, projection_params(o.surface, cloud, o.input, PlaneFitMethod::mls, stats), cloud.mesh_vertices);
+  const CloudMesh result = naming_input(o.input, [&] { return mesh_cloud(cloud, params, backend, stats); });
+  const MeshTopology shape =
+      write_and_summarise(o, result.mesh, std::to_string(cloud.size()) + " points", backend, stats, start);
+  if (!o.compute.stats_path.empty()) record_cloud_run(stats, "mesh", o.input, o.output, cloud, backend);
+  summarise_cloud_mesh(o, result, params, shape, stats);
+  print_normals_turned(result.normals_turned, cloud.size());
+  print_file_normals_off(result.file_normals_off, cloud.size());
+  print_file_normals_left_out(file_normals_without_direction(cloud, o.surface.surface), cloud.size());
+}
+
+// A cloud larger than the budget, or shared by ranks, tile by tile (issue 28, tiles/mesh.hpp).
+void mesh_cloud_in_tiles(const MeshOptions& o, const MemoryPlan& plan, Backend backend, Stats& stats,
+                         std::chrono::steady_clock::time_point start) {
+  std::optional<TiledCloud> read;
+  {
+    ScopedPhase phase(stats, "read", false);  // its Progress shows it
+    read.emplace(o.input, scratch_folder(), plan.points_per_tile, plan.buffer_bytes);
+  }
+  const TiledCloud& tiles = *read;
+  if (tiles.size() < 3)
+    throw file_error(o.input, "has " + std::to_string(tiles.size()) + (tiles.size() == 1 ? " point" : " points") +
+                                  ": a mesh needs at least 3");
+  check_mesh_origin(o.output, tiles.origin());
+  const ProjectionParams projection = projection_params(
+      o.surface, [&] { return naming_input(o.input, [&] { return float(estimate_spacing(tiles).suggested_h); }); },
+      PlaneFitMethod::mls, stats);
+  const MeshParams params = mesh_params(o, projection, open_point_stream(o.input)->mesh_vertices());
+  // A window's records take about 64 bytes (the orientation's).
+  const std::size_t window = std::size_t(std::clamp<std::uint64_t>(plan.budget / 8 / 64, 4096, 1u << 24));
+  const TiledCloudMesh result = naming_input(o.input, [&] {
+    return mesh_in_tiles(tiles, params, backend, scratch_folder(), window, plan.buffer_bytes, stats, rank_farm());
+  });
+  const std::string ranks = rank_count() > 1 ? ", " + std::to_string(rank_count()) + " ranks" : "";
+  const MeshTopology shape =
+      write_and_summarise(o, result.mesh.mesh,
+                          std::to_string(tiles.size()) + " points, tile by tile: " + tiles_text(tiles) + ranks, backend,
+                          stats, start);
   if (!o.compute.stats_path.empty()) {
-    record_cloud_run(stats, "mesh", o.input, o.output, cloud, backend);
-    record_cloud_mesh(stats, result, params, shape);
+    record_cloud_run(stats, "mesh", o.input, o.output, tiles.size(), tiles.origin(), backend);
+    stats.values()["points_per_rank"] = result.points_per_rank;
+  }
+  summarise_cloud_mesh(o, result.mesh, params, shape, stats);
+}
+
+void run_cloud_mesh(const MeshOptions& o, Stats& stats, std::chrono::steady_clock::time_point start) {
+  const Backend backend = start_compute(o.compute);
+  // Formats read whole (OBJ, STL, OFF, PCD) have no stream to tile: in core.
+  MemoryPlan plan;
+  plan.budget = memory_budget(o.memory);
+  if (has_point_stream(o.input)) plan = plan_memory(o.input, plan.budget, kMeshCosts);
+  // Under mpirun, a cloud that fits in core is tiled all the same, for the ranks to share.
+  const MemoryPlan needed = plan;
+  plan = spread_over_ranks(plan, rank_count());
+  try {
+    if (plan.tiled)
+      mesh_cloud_in_tiles(o, plan, backend, stats, start);
+    else
+      mesh_cloud_in_core(o, backend, stats, start);
+  } catch (const NotTiled& e) {
+    if (needed.tiled)
+      throw file_error(o.input, std::string(e.what()) + "; in core it needs about " +
+                                    byte_size(double(plan.points * kMeshCosts.in_core)) + " (--memory)");
+    stats = Stats();  // rank 0 alone, in core
+    plan = needed;
+    run_alone();
+    mesh_cloud_in_core(o, backend, stats, start);
+  }
+  if (!o.compute.stats_path.empty()) {
+    auto& v = stats.values();
+    v["memory"] = {{"budget", plan.budget}, {"tiled", plan.tiled}};
+    if (plan.tiled) v["memory"]["points_per_tile"] = plan.points_per_tile;
+    v["ranks"] = rank_count();
   }
 }
 
@@ -193,6 +282,7 @@ void add_mesh_command(CLI::App& app, Action action) {
   auto* clouds = command->add_option_group("Point clouds' PSS");
   auto* volumes = command->add_option_group("Volumes' PSS (--iso or --gradient)");
   add_cloud_surface_flags(*command, o->surface);  // --h serves both: the others move to their group
+  add_memory_option(*command, o->memory, "the pieces welded at the seams into the in-core mesh (docs/architecture.md)");
   for (const char* flag : kCloudFlags)  // those of project's; the mesh's own are added to the group below
     if (CLI::Option* option = command->get_option_no_throw(flag)) clouds->add_option(option);
   command->get_option("--h")->description(

@@ -107,9 +107,13 @@ TiledCloud::TiledCloud(const std::filesystem::path& input, const std::filesystem
 }
 
 // In double, where a float's difference is exact: a point's tile and the tile's box agree.
-int TiledCloud::tile_of(vec3 p) const {
+ivec3 TiledCloud::tile_cell_of(vec3 p) const {
   const glm::dvec3 at = glm::floor((glm::dvec3(p) - glm::dvec3(bounds_.lo)) / double(side_));
-  const ivec3 c = glm::clamp(ivec3(glm::clamp(at, glm::dvec3(-1.0), glm::dvec3(counts_))), ivec3(0), counts_ - 1);
+  return glm::clamp(ivec3(glm::clamp(at, glm::dvec3(-1.0), glm::dvec3(counts_))), ivec3(0), counts_ - 1);
+}
+
+int TiledCloud::tile_of(vec3 p) const {
+  const ivec3 c = tile_cell_of(p);
   return (c.z * counts_.y + c.y) * counts_.x + c.x;
 }
 

@@ -237,7 +237,7 @@ std::int64_t flip_between_centres(TriangleMesh& mesh, int first_centre, double m
 
 }  // namespace
 
-CreaseCounts snap_creases(TriangleMesh& mesh, const CubeTriangles& cubes, float cell, const ImplicitSurface& implicit,
+CreaseCounts snap_creases(TriangleMesh& mesh, CubeTriangles& cubes, float cell, const ImplicitSurface& implicit,
                           float crease_angle) {
   CreaseCounts counts;
   const std::size_t n = cubes.lowest.size();
@@ -271,8 +271,10 @@ CreaseCounts snap_creases(TriangleMesh& mesh, const CubeTriangles& cubes, float 
   const int first_centre = int(mesh.positions.size());
   std::vector<std::array<int, 3>> triangles;
   triangles.reserve(mesh.triangles.size());
+  std::vector<std::size_t> first(n + 1, 0);
   for (std::size_t c = 0; c < n; ++c) {
     const Fan& fan = fans[c];
+    first[c] = triangles.size();
     if (!fan.candidate) {
       triangles.insert(triangles.end(), mesh.triangles.begin() + std::ptrdiff_t(cubes.first[c]),
                        mesh.triangles.begin() + std::ptrdiff_t(cubes.first[c + 1]));
@@ -281,10 +283,13 @@ CreaseCounts snap_creases(TriangleMesh& mesh, const CubeTriangles& cubes, float 
     const int centre = int(mesh.positions.size());
     mesh.positions.push_back(fan.centre);
     mesh.normals.push_back(fan.normal);
+    cubes.centres.push_back(c);
     for (std::size_t i = 0; i < fan.loop.size(); ++i)
       triangles.push_back({fan.loop[i], fan.loop[(i + 1) % fan.loop.size()], centre});
     ++counts.vertices;
   }
+  first[n] = triangles.size();
+  cubes.first.swap(first);
   mesh.triangles.swap(triangles);
   if (counts.vertices > 0) counts.flips = flip_between_centres(mesh, first_centre, most_cos);
   return counts;

@@ -18,10 +18,12 @@
 namespace pss::mesh_detail {
 
 // The marched cubes' triangles: cube i's are mesh.triangles[first[i], first[i + 1]) and its
-// lowest corner is lowest[i].
+// lowest corner is lowest[i]. snap_creases keeps `first` so, and lists the cube of each fan
+// centre it adds in `centres`.
 struct CubeTriangles {
   std::vector<vec3> lowest;
   std::vector<std::size_t> first;  // one more than the cubes
+  std::vector<std::size_t> centres;
 };
 
 struct CreaseCounts {
@@ -41,8 +43,8 @@ inline constexpr float kCreaseOnSurface = 0.02f;
 // face against its edge's normals. The mesh keeps its boundary edges, so it stays watertight
 // where it was; a fan from a point inside a convex cube over a loop on its faces is
 // embedded, so no triangle crosses another. Vertices no triangle uses are left (for
-// remove_pinches to drop).
-CreaseCounts snap_creases(TriangleMesh& mesh, const CubeTriangles& cubes, float cell, const ImplicitSurface& implicit,
+// remove_pinches to drop). The flips keep each triangle in its cube's range.
+CreaseCounts snap_creases(TriangleMesh& mesh, CubeTriangles& cubes, float cell, const ImplicitSurface& implicit,
                           float crease_angle);
 
 }  // namespace pss::mesh_detail

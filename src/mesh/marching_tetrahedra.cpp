@@ -190,14 +190,19 @@ Lattice lattice_over(vec3 lo, vec3 hi, double margin, double cell, const char* w
   return l;
 }
 
-TriangleMesh march_tetrahedra(const Lattice& lattice, std::span<const vec3> seeds, const ImplicitSurface& implicit,
-                              float max_slope, float crease_angle, MarchCounts& counts, std::int64_t expected_corners) {
+namespace {
+
+// The march of march_tetrahedra within `within` (all the lattice where null), keyed for
+// welding (MarchedPiece) where `within` is given; its pinches left, its normals unturned.
+MarchedPiece march(const Lattice& lattice, std::span<const vec3> seeds, const ImplicitSurface& implicit,
+                   float max_slope, float crease_angle, MarchCounts& counts, std::int64_t expected_corners,
+                   const CubeBox* within) {
   counts = {};
   Corners corners;
   std::vector<std::uint64_t> visited, frontier;
   std::vector<std::pair<std::uint64_t, int>> crossed;  // a cube's key, its negative corners (bit c: corner c)
   auto consider = [&](std::vector<std::uint64_t>& into, ivec3 cube) {
-    if (lattice.holds_cube(cube)) into.push_back(Lattice::key(cube));
+    if (lattice.holds_cube(cube) && (within == nullptr || within->holds(cube))) into.push_back(Lattice::key(cube));
   };
   for (const vec3& s : seeds) consider(frontier, lattice.cube_of(s));
   frontier = unique_sorted(std::move(frontier));
@@ -281,6 +286,10 @@ TriangleMesh march_tetrahedra(const Lattice& lattice, std::span<const vec3> seed
     }
   }
   cubes.first.push_back(triangles.size());
+  MarchedPiece piece;
+  std::vector<std::uint64_t> cube_keys;
+  if (within != nullptr)
+    for (const auto& [key, negative] : crossed) cube_keys.push_back(key);
   release(crossed);
   std::vector<std::uint64_t> edges;
   edges.reserve(triangles.size() * 3);
@@ -304,7 +313,7 @@ TriangleMesh march_tetrahedra(const Lattice& lattice, std::span<const vec3> seed
   implicit.cross(crossings, vertices);
   release(crossings);
 
-  TriangleMesh mesh;
+  TriangleMesh& mesh = piece.mesh;
   mesh.positions.resize(vertices.size());
   mesh.normals.resize(vertices.size());
   for (std::size_t i = 0; i < vertices.size(); ++i) {
@@ -319,17 +328,69 @@ TriangleMesh march_tetrahedra(const Lattice& lattice, std::span<const vec3> seed
           int(std::lower_bound(edges.begin(), edges.end(), triangles[std::size_t(i)][k]) - edges.begin());
   });
   release(triangles);
-  release(edges);
+  if (within != nullptr)
+    piece.vertex_key = std::move(edges);
+  else
+    release(edges);
   const mesh_detail::CreaseCounts creases =
       mesh_detail::snap_creases(mesh, cubes, float(lattice.cell), implicit, crease_angle);
   counts.crease_vertices = creases.vertices;
   counts.crease_flips = creases.flips;
+  if (within != nullptr) {
+    for (const std::size_t c : cubes.centres) piece.vertex_key.push_back(cube_keys[c] << 3);
+    piece.triangle_cube.resize(mesh.triangles.size());
+    piece.triangle_place.resize(mesh.triangles.size());
+    for (std::size_t c = 0; c + 1 < cubes.first.size(); ++c)
+      for (std::size_t t = cubes.first[c]; t < cubes.first[c + 1]; ++t) {
+        piece.triangle_cube[t] = cube_keys[c];
+        piece.triangle_place[t] = std::int32_t(t - cubes.first[c]);
+      }
+  }
+  return piece;
+}
+
+}  // namespace
+
+TriangleMesh march_tetrahedra(const Lattice& lattice, std::span<const vec3> seeds, const ImplicitSurface& implicit,
+                              float max_slope, float crease_angle, MarchCounts& counts, std::int64_t expected_corners) {
+  TriangleMesh mesh =
+      march(lattice, seeds, implicit, max_slope, crease_angle, counts, expected_corners, nullptr).mesh;
   counts.pinched_triangles = remove_pinches(mesh);
   counts.normals_turned = normals_follow_winding(mesh);
   return mesh;
 }
 
-std::int64_t remove_pinches(TriangleMesh& mesh) {
+MarchedPiece march_piece(const Lattice& lattice, std::span<const vec3> seeds, const ImplicitSurface& implicit,
+                         float max_slope, float crease_angle, const CubeBox& marched, const CubeBox& kept,
+                         MarchCounts& counts) {
+  MarchedPiece all = march(lattice, seeds, implicit, max_slope, crease_angle, counts, 0, &marched);
+  // The kept cubes' triangles, in their cubes' order, and the vertices they use.
+  MarchedPiece piece;
+  std::vector<int> renumber(all.mesh.positions.size(), -1);
+  counts.cubes_crossed = 0;
+  for (std::size_t t = 0; t < all.mesh.triangles.size(); ++t) {
+    const std::uint64_t cube = all.triangle_cube[t];
+    if (!kept.holds(Lattice::corner(cube))) continue;
+    counts.cubes_crossed += all.triangle_place[t] == 0;
+    std::array<int, 3> triangle = all.mesh.triangles[t];
+    for (int& v : triangle) {
+      int& to = renumber[std::size_t(v)];
+      if (to < 0) {
+        to = int(piece.mesh.positions.size());
+        piece.mesh.positions.push_back(all.mesh.positions[std::size_t(v)]);
+        piece.mesh.normals.push_back(all.mesh.normals[std::size_t(v)]);
+        piece.vertex_key.push_back(all.vertex_key[std::size_t(v)]);
+      }
+      v = to;
+    }
+    piece.mesh.triangles.push_back(triangle);
+    piece.triangle_cube.push_back(cube);
+    piece.triangle_place.push_back(all.triangle_place[t]);
+  }
+  return piece;
+}
+
+std::int64_t remove_pinches(TriangleMesh& mesh, std::vector<float>* follow) {
   std::int64_t removed = 0;
   for (;;) {
     mesh_detail::Incidence in = mesh_detail::incidence(mesh.triangles);
@@ -358,7 +419,7 @@ std::int64_t remove_pinches(TriangleMesh& mesh) {
     removed += std::int64_t(nt - kept_triangles.size());
     mesh.triangles.swap(kept_triangles);
   }
-  drop_unused_vertices(mesh);
+  drop_unused_vertices(mesh, follow);
   return removed;
 }
 

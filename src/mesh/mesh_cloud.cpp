@@ -8,7 +8,7 @@
 
 #include "implicit_surface.hpp"
 #include "incidence.hpp"
-#include "unsupported_parts.hpp"
+#include "vertex_cells.hpp"
 #include "pss/core/error.hpp"
 #include "pss/backend/cpu/parallel_for.hpp"
 #include "pss/core/text.hpp"
@@ -67,45 +67,65 @@ void check_not_a_line(std::span<const vec3> points) {
   if (off <= 1e-6 * along) throw Error("the points lie on a line: they define no surface to mesh");
 }
 
-// The cube's side that suits each vertex: the one asked for, or kDefaultCellPerH of the
-// width of the nearest sample whose support holds it (the lattice's, the least, where none).
-std::vector<float> vertex_cells(const TriangleMesh& mesh, const SupportGrid& grid, float asked, float least) {
-  std::vector<float> cell(mesh.positions.size(), asked > 0 ? asked : least);
-  if (asked > 0) return cell;
-  const SupportGridView view = grid.view();
-  const std::span<const float> inv_h2 = grid.inv_h2();
-  cpu::parallel_for(std::int64_t(cell.size()), [&](std::int64_t v) {
-    const int i = view.nearest_covering(mesh.positions[std::size_t(v)]);
-    if (i >= 0) cell[std::size_t(v)] = std::max(least, kDefaultCellPerH / std::sqrt(inv_h2[std::size_t(i)]));
-  });
-  return cell;
-}
-
 }  // namespace
 
-CloudMesh mesh_cloud(const PointCloud& cloud, const MeshParams& params, Backend backend, Stats& stats) {
+void finish_cloud_mesh(CloudMesh& out, const ProjectionParams& projection) {
+  // Which side is out is a guess where the normals were estimated, and where the file's
+  // disagreed among themselves (some turned: the side kept is a vote's). A file that faces
+  // one way throughout, none turned, keeps its side (a room's scan faces into the room). The closed
+  // parts' volume tells it where they are most of the mesh; where most is open (an aerial
+  // scan's ground and roofs), a few closed blobs would decide by chance, and the guess (the
+  // highest sample facing up) stands.
+  // Then each closed part faces out by its depth (face_closed_parts_outward), from the same
+  // components and volumes.
+  const bool guessed = out.normals == NormalsUsed::estimated || out.normals_turned > 0;
+  if (guessed && !out.mesh.triangles.empty()) {
+    mesh_detail::Incidence in = mesh_detail::incidence(out.mesh.triangles);
+    mesh_detail::ComponentVolumes parts = mesh_detail::component_volumes(out.mesh, in);
+    double closed_share = 0;
+    if (mesh_detail::enclosed_volume(parts, &closed_share) < 0 && closed_share >= kClosedShareToTurn) {
+      turn_inside_out(out.mesh);
+      for (double& volume : parts.volume) volume = -volume;
+      out.turned_outward = true;
+    }
+    out.counts.closed_parts_turned = mesh_detail::face_closed_parts_outward(out.mesh, in, parts);
+  }
+  if (out.mesh.triangles.empty())
+    throw Error("the surface gave no triangle with h = " + format_number(projection.h) + ", rho = " +
+                format_number(projection.rho) +
+                ": either is likely too small for the sample spacing (pss info suggests h; rho is 2h by default), or "
+                "the cell too large");
+}
+
+float mesh_cell(const MeshParams& params) {
   const ProjectionParams& projection = params.projection;
   validate(projection);
   if (!(params.crease_angle > 0 && params.crease_angle <= 180))
     throw Error("the crease angle must lie in (0, 180] degrees (got " + std::to_string(params.crease_angle) + ")");
-  if (cloud.size() < 3)
-    throw Error("a mesh needs at least 3 points (the cloud has " + std::to_string(cloud.size()) + ")");
-  const Aabb box = cloud.bounds();
-  check_neighbourhood(projection, double(glm::length(box.extent())), cloud.size());
-  CloudMesh out;
   if (!(params.cell >= 0) || !std::isfinite(params.cell))
     throw Error("the cell size must be a positive number (got " + std::to_string(params.cell) + ")");
-  out.cell = params.cell > 0 ? params.cell : kDefaultCellPerH * projection.h;
+  const float cell = params.cell > 0 ? params.cell : kDefaultCellPerH * projection.h;
   // A cube the surface crosses has corners up to its diagonal, √3 cells, off the surface, and
   // a corner's projection needs samples within its support (at least ρ): a 6,000-point
   // sphere stays closed up to a cell of ρ/2 and opens at 0.55ρ, and the bunny broke into a
   // hundred pieces at 0.9ρ.
-  if (out.cell > 0.5f * projection.rho)
-    throw Error("the cell size " + format_number(out.cell) + " is larger than rho/2 = " +
+  if (cell > 0.5f * projection.rho)
+    throw Error("the cell size " + format_number(cell) + " is larger than rho/2 = " +
                 format_number(0.5f * projection.rho) + " (h = " + format_number(projection.h) + ", rho = " +
                 format_number(projection.rho) +
                 "): a cube's corners would lie beyond the samples' supports and the mesh would break apart; for a "
                 "coarser mesh give a larger h as well");
+  return cell;
+}
+
+CloudMesh mesh_cloud(const PointCloud& cloud, const MeshParams& params, Backend backend, Stats& stats) {
+  const ProjectionParams& projection = params.projection;
+  CloudMesh out;
+  out.cell = mesh_cell(params);
+  if (cloud.size() < 3)
+    throw Error("a mesh needs at least 3 points (the cloud has " + std::to_string(cloud.size()) + ")");
+  const Aabb box = cloud.bounds();
+  check_neighbourhood(projection, double(glm::length(box.extent())), cloud.size());
   check_not_a_line(cloud.positions);
   {
     ScopedPhase phase(stats, "support widths", projection.support == Support::global);
@@ -141,35 +161,19 @@ CloudMesh mesh_cloud(const PointCloud& cloud, const MeshParams& params, Backend 
   }
   {
     ScopedPhase phase(stats, "coarsen", true);
-    coarsen_mesh(out.mesh, vertex_cells(out.mesh, grid, params.cell, out.cell), out.counts);
+    coarsen_mesh(out.mesh, mesh_detail::vertex_cells(out.mesh.positions, grid, params.cell, out.cell), out.counts);
   }
-  out.counts.unsupported_parts = mesh_detail::remove_unsupported_parts(out.mesh, grid);
+  out.counts.unsupported_parts = remove_unsupported_parts(
+      out.mesh, [&](std::span<const vec3> centre, std::span<const float> radius, std::span<int> inside) {
+        cpu::parallel_for(std::int64_t(centre.size()), [&](std::int64_t p) {
+          const vec3 c = centre[std::size_t(p)];
+          const float r = radius[std::size_t(p)];
+          for (const SupportLevel& level : grid.levels_on_host())
+            level.grid.for_each_near(c, r, [&](vec3 s, int) { inside[std::size_t(p)] += glm::length(s - c) <= r; });
+        });
+      });
   out.mesh.origin = cloud.origin;
-  // Which side is out is a guess where the normals were estimated, and where the file's
-  // disagreed among themselves (some turned: the side kept is a vote's). A file that faces
-  // one way throughout, none turned, keeps its side (a room's scan faces into the room). The closed
-  // parts' volume tells it where they are most of the mesh; where most is open (an aerial
-  // scan's ground and roofs), a few closed blobs would decide by chance, and the guess (the
-  // highest sample facing up) stands.
-  // Then each closed part faces out by its depth (face_closed_parts_outward), from the same
-  // components and volumes.
-  const bool guessed = out.normals == NormalsUsed::estimated || out.normals_turned > 0;
-  if (guessed && !out.mesh.triangles.empty()) {
-    mesh_detail::Incidence in = mesh_detail::incidence(out.mesh.triangles);
-    mesh_detail::ComponentVolumes parts = mesh_detail::component_volumes(out.mesh, in);
-    double closed_share = 0;
-    if (mesh_detail::enclosed_volume(parts, &closed_share) < 0 && closed_share >= kClosedShareToTurn) {
-      turn_inside_out(out.mesh);
-      for (double& volume : parts.volume) volume = -volume;
-      out.turned_outward = true;
-    }
-    out.counts.closed_parts_turned = mesh_detail::face_closed_parts_outward(out.mesh, in, parts);
-  }
-  if (out.mesh.triangles.empty())
-    throw Error("the surface gave no triangle with h = " + format_number(projection.h) + ", rho = " +
-                format_number(projection.rho) +
-                ": either is likely too small for the sample spacing (pss info suggests h; rho is 2h by default), or "
-                "the cell too large");
+  finish_cloud_mesh(out, projection);
   return out;
 }
 

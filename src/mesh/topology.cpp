@@ -201,7 +201,7 @@ double enclosed_volume(const TriangleMesh& mesh, double* closed_share) {
   return mesh_detail::enclosed_volume(mesh_detail::component_volumes(mesh, in), closed_share);
 }
 
-void drop_unused_vertices(TriangleMesh& mesh) {
+void drop_unused_vertices(TriangleMesh& mesh, std::vector<float>* follow) {
   std::vector<int> renumber(mesh.positions.size(), -1);
   for (const auto& t : mesh.triangles)
     for (int v : t) renumber[std::size_t(v)] = 0;
@@ -211,9 +211,11 @@ void drop_unused_vertices(TriangleMesh& mesh) {
       renumber[v] = next;
       mesh.positions[std::size_t(next)] = mesh.positions[v];
       if (!mesh.normals.empty()) mesh.normals[std::size_t(next)] = mesh.normals[v];
+      if (follow != nullptr) (*follow)[std::size_t(next)] = (*follow)[v];
       ++next;
     }
   mesh.positions.resize(std::size_t(next));
+  if (follow != nullptr) follow->resize(std::size_t(next));
   if (!mesh.normals.empty()) mesh.normals.resize(std::size_t(next));
   for (auto& t : mesh.triangles)
     for (int& v : t) v = renumber[std::size_t(v)];

@@ -1,16 +1,15 @@
-#include "unsupported_parts.hpp"
+#include "pss/mesh/mesh_cloud.hpp"
 
 #include <algorithm>
 #include <vector>
 
 #include <glm/geometric.hpp>
 
-#include "pss/backend/cpu/parallel_for.hpp"
 #include "pss/core/connected_components.hpp"
 
-namespace pss::mesh_detail {
+namespace pss {
 
-std::int64_t remove_unsupported_parts(TriangleMesh& mesh, const SupportGrid& samples) {
+std::int64_t remove_unsupported_parts(TriangleMesh& mesh, const CountSamples& count) {
   const std::size_t nv = mesh.positions.size();
   std::vector<int> part(nv, -1);  // each vertex's part, numbered densely
   int parts = 0;
@@ -38,15 +37,16 @@ std::int64_t remove_unsupported_parts(TriangleMesh& mesh, const SupportGrid& sam
     const auto p = std::size_t(part[v]);
     radius[p] = std::max(radius[p], glm::length(glm::dvec3(mesh.positions[v]) - centre[p]));
   }
+  std::vector<vec3> at(static_cast<std::size_t>(parts));
+  std::vector<float> within(static_cast<std::size_t>(parts));
+  for (std::size_t p = 0; p < std::size_t(parts); ++p) {
+    at[p] = vec3(centre[p]);
+    within[p] = float(radius[p]);
+  }
+  std::vector<int> inside(std::size_t(parts), 0);
+  count(at, within, inside);
   std::vector<char> held(std::size_t(parts), 0);
-  cpu::parallel_for(std::int64_t(parts), [&](std::int64_t p) {
-    const vec3 c(centre[std::size_t(p)]);
-    const float r = float(radius[std::size_t(p)]);
-    int inside = 0;
-    for (const SupportLevel& level : samples.levels_on_host())
-      level.grid.for_each_near(c, r, [&](vec3 s, int) { inside += glm::length(s - c) <= r; });
-    held[std::size_t(p)] = inside >= kMinPartSamples;
-  });
+  for (std::size_t p = 0; p < std::size_t(parts); ++p) held[p] = inside[p] >= kMinPartSamples;
   const auto removed = std::int64_t(std::count(held.begin(), held.end(), char(0)));
   if (removed == 0) return 0;
   std::erase_if(mesh.triangles, [&](const std::array<int, 3>& t) { return !held[std::size_t(part[std::size_t(t[0])])]; });
@@ -54,4 +54,4 @@ std::int64_t remove_unsupported_parts(TriangleMesh& mesh, const SupportGrid& sam
   return removed;
 }
 
-}  // namespace pss::mesh_detail
+}  // namespace pss

@@ -20,6 +20,8 @@ std::vector<std::byte> tile_work(TileStep step, std::span<const std::byte> reque
       return work_widths(request);
     case TileStep::sample_normals:
       return work_sample_normals(request);
+    case TileStep::mesh:
+      return work_mesh(request);
   }
   throw Error("a tile's work names no step");
 }

@@ -15,6 +15,7 @@
 #include "pss/spatial/grid_mirror.hpp"
 #include "pss/spatial/support_grid.hpp"
 #include "pss/spatial/uniform_grid.hpp"
+#include "tile_arrays.hpp"
 #include "tile_bytes.hpp"
 
 namespace pss {
@@ -29,8 +30,6 @@ std::vector<std::uint64_t> own_points(std::span<const std::byte> notes) {
   return ByteReader(notes).get_array<std::uint64_t>();
 }
 
-namespace {
-
 void put_tile(ByteWriter& out, const UnitTile& tile) {
   if (tile.layout == nullptr) throw Error("a tile's work needs the cloud's layout");
   out.put(*tile.layout);
@@ -42,17 +41,6 @@ void put_tile(ByteWriter& out, const UnitTile& tile) {
   out.put_array(tile.into);
   out.put_array(tile.normals);
 }
-
-struct TileArrays {
-  SupportLayout layout;
-  std::size_t own;
-  std::vector<vec3> unit;
-  std::vector<float> h;
-  std::vector<int> samples;
-  std::vector<vec3> sample_at;
-  std::vector<int> into;
-  std::vector<vec3> normals;
-};
 
 TileArrays get_tile(ByteReader& in) {
   TileArrays t{in.get<SupportLayout>(), std::size_t(in.get<std::uint64_t>()), in.get_array<vec3>(), in.get_array<float>(),
@@ -67,14 +55,14 @@ TileArrays get_tile(ByteReader& in) {
   return t;
 }
 
-// The grid of the tile's samples, merged ones at their cubes' means with their masses, with
-// their normals where the surface fits them.
 SupportGrid grid_of_tile(const TileArrays& t) {
   SupportGrid grid(t.sample_at.empty() ? t.unit : t.sample_at, t.h, t.samples, t.layout);
   grid.set_members(t.into);
   if (!t.normals.empty()) grid.set_normals(gathered<vec3>(t.normals, grid.original_index()));
   return grid;
 }
+
+namespace {
 
 // The projection of `points` onto the grid's surface, on `backend`.
 std::vector<ProjectedPoint> project_on(const SupportGrid& grid, std::span<const vec3> points,

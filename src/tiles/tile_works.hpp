@@ -10,6 +10,7 @@
 
 #include "pss/backend/backend.hpp"
 #include "pss/io/tiled_cloud.hpp"
+#include "pss/mesh/mesh_cloud_piece.hpp"
 #include "pss/points/orient_normals.hpp"
 #include "pss/points/project_points.hpp"
 #include "pss/points/support_steps.hpp"
@@ -129,5 +130,19 @@ struct TileWidths {
   std::vector<char> merged;  // likewise (support.hpp, merges_samples)
 };
 TileWidths widths_result(std::span<const std::byte> result, std::size_t own);
+
+// The piece of a cloud's mesh in the cubes `kept` of `lattice` (mesh/mesh_cloud_piece.hpp),
+// from the tile's samples, their oriented normals and its halo's, in the unit frame.
+struct MeshPieceInputs {
+  Lattice lattice;
+  CubeBox kept;
+  float crease_angle = 30;
+  float asked_cell = 0;  // the cell each vertex takes, or 0: its nearest covering sample's share
+  float least_cell = 0;
+};
+std::vector<std::byte> mesh_request(const UnitTile& tile, const ProjectionParams& unit_params,
+                                    const MeshPieceInputs& inputs, Backend backend);
+std::vector<std::byte> work_mesh(std::span<const std::byte> request);
+CloudMeshPiece mesh_result(std::span<const std::byte> result);
 
 }  // namespace pss

@@ -58,9 +58,13 @@ class TiledCloud {
   // The tiles that hold points, in their numbers' order.
   std::vector<int> tiles_with_points() const;
 
- private:
+  // The tile a point lies in, by its place in the grid of tiles: a point outside the box lies
+  // in the nearest tile.
   int tile_of(vec3 p) const;
+  ivec3 tile_cell_of(vec3 p) const;
   ivec3 tile_cell(int tile) const;  // its place in the grid of tiles
+
+ private:
 
   std::uint64_t points_ = 0;
   glm::dvec3 origin_{0.0};

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <functional>
 #include <span>
+#include <vector>
 
 #include <glm/ext/vector_double3.hpp>
 
@@ -104,9 +105,38 @@ TriangleMesh march_tetrahedra(const Lattice& lattice, std::span<const vec3> seed
                               float max_slope, float crease_angle, MarchCounts& counts,
                               std::int64_t expected_corners = 0);
 
+// The cubes lo <= c < hi, axis by axis.
+struct CubeBox {
+  ivec3 lo{0}, hi{0};
+  bool holds(ivec3 c) const {
+    return c.x >= lo.x && c.y >= lo.y && c.z >= lo.z && c.x < hi.x && c.y < hi.y && c.z < hi.z;
+  }
+};
+
+// A piece of a march (`pss mesh` tile by tile, issue 28), keyed for welding to its
+// neighbours: each vertex's key (an edge's root: the edge's lower corner's Lattice::key << 3 |
+// its direction, 1..7; a crease's fan centre: its cube's key << 3) and each triangle's cube
+// and place among the cube's triangles. Its pinches are not removed and its normals not yet
+// turned to follow the winding: both look past the piece (MeshWelder, mesh/weld.hpp).
+struct MarchedPiece {
+  TriangleMesh mesh;
+  std::vector<std::uint64_t> vertex_key;
+  std::vector<std::uint64_t> triangle_cube;
+  std::vector<std::int32_t> triangle_place;
+};
+
+// march_tetrahedra's march over the cubes of `marched` only, keeping the triangles of the
+// cubes of `kept` (within `marched`), and their vertices. Where `marched` reaches a few cubes
+// past `kept` on every side, pieces of neighbouring `kept` boxes agree where they meet: the
+// same vertices on the same edges, the same crease fans.
+MarchedPiece march_piece(const Lattice& lattice, std::span<const vec3> seeds, const ImplicitSurface& implicit,
+                         float max_slope, float crease_angle, const CubeBox& marched, const CubeBox& kept,
+                         MarchCounts& counts);
+
 // Removes the triangles of every fan but the largest at each vertex where a mesh's
 // triangles meet in more than one fan (touching at a vertex only), until none does; then
-// the vertices no triangle uses. Returns how many triangles it removed.
-std::int64_t remove_pinches(TriangleMesh& mesh);
+// the vertices no triangle uses (dropped from `follow` too, one value a vertex, where given).
+// Returns how many triangles it removed.
+std::int64_t remove_pinches(TriangleMesh& mesh, std::vector<float>* follow = nullptr);
 
 }  // namespace pss

@@ -5,6 +5,8 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <span>
 
 #include "pss/backend/backend.hpp"
 #include "pss/core/stats.hpp"
@@ -61,5 +63,21 @@ struct CloudMesh {
 // number or too small for the cloud's extent or surface (band_cube_limit), a cloud of
 // fewer than three points or on a line, and a cloud that gives no triangle.
 CloudMesh mesh_cloud(const PointCloud& cloud, const MeshParams& params, Backend backend, Stats& stats);
+
+// What mesh_cloud and its tiles (tiles/mesh.hpp) share:
+// The cubes' side; throws Error for invalid parameters, as mesh_cloud.
+float mesh_cell(const MeshParams& params);
+
+// Adds to inside[p] the samples within radius[p] of centre[p], for each p.
+using CountSamples =
+    std::function<void(std::span<const vec3> centre, std::span<const float> radius, std::span<int> inside)>;
+// Removes every part (vertices joined by triangles) whose bounding sphere, about its
+// vertices' mean, holds fewer than kMinPartSamples samples as `count` counts them, and the
+// vertices left unused. Returns the number of parts removed.
+std::int64_t remove_unsupported_parts(TriangleMesh& mesh, const CountSamples& count);
+
+// Where out.normals were a guess, turns the mesh to face out as mesh_cloud says, and each
+// closed part by its depth; throws Error where the mesh has no triangle.
+void finish_cloud_mesh(CloudMesh& out, const ProjectionParams& projection);
 
 }  // namespace pss

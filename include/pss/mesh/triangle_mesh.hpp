@@ -47,8 +47,9 @@ MeshTopology topology(const TriangleMesh& mesh);
 // counted closed.
 double enclosed_volume(const TriangleMesh& mesh, double* closed_share = nullptr);
 
-// Removes the vertices no triangle uses, keeping the others' order.
-void drop_unused_vertices(TriangleMesh& mesh);
+// Removes the vertices no triangle uses, keeping the others' order, and their values in
+// `follow` (one a vertex), where given.
+void drop_unused_vertices(TriangleMesh& mesh, std::vector<float>* follow = nullptr);
 
 // Every triangle's winding reversed and every normal negated.
 void turn_inside_out(TriangleMesh& mesh);

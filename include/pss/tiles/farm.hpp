@@ -11,7 +11,15 @@
 
 namespace pss {
 
-enum class TileStep : int { outliers = 1, projection = 2, orientation = 3, spacing = 4, widths = 5, sample_normals = 6 };
+enum class TileStep : int {
+  outliers = 1,
+  projection = 2,
+  orientation = 3,
+  spacing = 4,
+  widths = 5,
+  sample_normals = 6,
+  mesh = 7
+};
 
 // The result's bytes of a tile's work. Throws Error where the request does not hold together.
 std::vector<std::byte> tile_work(TileStep step, std::span<const std::byte> request);

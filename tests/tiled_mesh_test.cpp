@@ -1,0 +1,112 @@
+// pss mesh tile by tile (include/pss/tiles/mesh.hpp, issue 28): each tile marches the cubes
+// whose centres lie in it, and the pieces weld at the seams by their vertices' keys into the
+// one mesh whatever the tiles: a single tile's (no seam) to the last bit, closed where the
+// surface is, with its creases; beside the in-core mesh, the same surface.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "pss/core/error.hpp"
+#include "pss/io/point_cloud_file.hpp"
+#include "pss/tiles/memory_plan.hpp"
+#include "pss/tiles/mesh.hpp"
+#include "support/cli.hpp"
+#include "support/file_bytes.hpp"
+#include "support/mesh_checks.hpp"
+#include "support/render_truth.hpp"
+#include "support/shapes.hpp"
+
+namespace pss {
+namespace {
+
+using TiledMeshTest = test::CliTest;
+
+MeshParams mesh_params(const std::string& file, SurfaceOperator surface) {
+  MeshParams params;
+  params.projection = ProjectionParams::from_h(test::suggested_h(read_point_cloud(file)));
+  params.projection.support = Support::adaptive;
+  params.projection.surface = surface;
+  params.projection.borders = BorderMode::extend;
+  return params;
+}
+
+// The file's mesh in tiles of about `per_tile` points, and how many tiles there were.
+std::pair<TiledCloudMesh, int> mesh_tiled(const std::string& file, const std::filesystem::path& dir,
+                                          const MeshParams& params, std::uint64_t per_tile) {
+  Stats stats;
+  const TiledCloud tiles(file, dir, per_tile, 1 << 16);
+  return {mesh_in_tiles(tiles, params, Backend::cpu, dir, 4096, 1 << 16, stats), tiles.tiles()};
+}
+
+void expect_same_mesh(const TriangleMesh& a, const TriangleMesh& b) {
+  ASSERT_EQ(a.positions.size(), b.positions.size());
+  ASSERT_EQ(a.triangles.size(), b.triangles.size());
+  std::size_t moved = 0, turned = 0, rewound = 0;
+  for (std::size_t v = 0; v < a.positions.size(); ++v) {
+    moved += a.positions[v] != b.positions[v];
+    turned += a.normals[v] != b.normals[v];
+  }
+  for (std::size_t t = 0; t < a.triangles.size(); ++t) rewound += a.triangles[t] != b.triangles[t];
+  EXPECT_EQ(moved, 0u);
+  EXPECT_EQ(turned, 0u);
+  EXPECT_EQ(rewound, 0u);
+  EXPECT_EQ(a.origin, b.origin);
+}
+
+// A box with a bore: creases at every edge and rim, cut by the tiles' seams.
+TEST_F(TiledMeshTest, TilesOfAnySizeWeldIntoOneTilesMeshWithItsCreases) {
+  const PointCloud box = test::sample(test::BoredBox{}, 0.04f);
+  const std::string file = write("box.xyz", test::xyz_text(box.positions));
+  const MeshParams params = mesh_params(file, SurfaceOperator::rimls);
+  const auto [whole, one] = mesh_tiled(file, dir_, params, 1u << 30);
+  ASSERT_EQ(one, 1);
+  test::expect_one_closed_surface(whole.mesh.mesh, 0);
+  EXPECT_GT(whole.mesh.counts.crease_vertices, 0);
+  for (const std::uint64_t per_tile : {600u, 2500u}) {
+    SCOPED_TRACE(per_tile);
+    const auto [tiled, tiles] = mesh_tiled(file, dir_, params, per_tile);
+    EXPECT_GE(tiles, per_tile == 600 ? 8 : 2);
+    expect_same_mesh(tiled.mesh.mesh, whole.mesh.mesh);
+    EXPECT_EQ(tiled.mesh.counts.crease_vertices, whole.mesh.counts.crease_vertices);
+    EXPECT_EQ(tiled.mesh.counts.cubes_crossed, whole.mesh.counts.cubes_crossed);
+    EXPECT_GT(tiled.mesh.counts.corners, whole.mesh.counts.corners) << "the tiles' margins are marched twice";
+  }
+}
+
+// The georeferenced torus of torus_xyz (R = 1, r = 0.35 about (596700, 4000000, 0)): in tiles,
+// one watertight surface of genus one on the torus, as the in-core mesh is.
+TEST_F(TiledMeshTest, ATorusInTilesIsTheInCoreSurface) {
+  const std::string file = write("torus.xyz", test::torus_xyz(20000, false, 0));
+  const MeshParams params = mesh_params(file, SurfaceOperator::rimls);
+  Stats stats;
+  const CloudMesh in_core = mesh_cloud(read_point_cloud(file), params, Backend::cpu, stats);
+  const auto [tiled, tiles] = mesh_tiled(file, dir_, params, 3000);
+  EXPECT_GE(tiles, 6);
+  const CloudMesh& m = tiled.mesh;
+  test::expect_one_closed_surface(m.mesh, 0);
+  EXPECT_EQ(m.mesh.origin, in_core.mesh.origin);
+  EXPECT_NEAR(double(m.mesh.triangles.size()), double(in_core.mesh.triangles.size()),
+              0.01 * double(in_core.mesh.triangles.size()));
+  double worst = 0;
+  for (std::size_t v = 0; v < m.mesh.positions.size(); ++v) {
+    const glm::dvec3 p = glm::dvec3(m.mesh.positions[v]) + m.mesh.origin - glm::dvec3(596700, 4000000, 0);
+    const double ring = std::hypot(p.x, p.y) - 1;
+    worst = std::max(worst, std::abs(std::hypot(ring, p.z) - 0.35));
+  }
+  EXPECT_LT(worst, 0.05 * params.projection.h) << "a vertex off the torus";
+  EXPECT_EQ(tiled.points_per_rank.size(), 1u);
+  EXPECT_EQ(tiled.points_per_rank[0], 20000u);
+}
+
+TEST_F(TiledMeshTest, TheFilesNormalsAreNotTakenInTilesYet) {
+  const std::string file = write("torus.xyz", test::torus_xyz(3000, false, 1));
+  MeshParams params = mesh_params(file, SurfaceOperator::rimls);
+  params.projection.normals = NormalSource::file;
+  Stats stats;
+  const TiledCloud tiles(file, dir_, 1000, 1 << 16);
+  EXPECT_THROW(mesh_in_tiles(tiles, params, Backend::cpu, dir_, 4096, 1 << 16, stats), NotTiled);
+}
+
+}  // namespace
+}  // namespace pss
