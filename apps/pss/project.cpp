@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "in_tiles_or_core.hpp"
 #include "numbers.hpp"
 #include "output_options.hpp"
 #include "pss/core/error.hpp"
@@ -165,27 +166,13 @@ void run_project(const ProjectOptions& o) {
   OutputSet outputs({o.input}, {o.output, o.compute.stats_path});
   const Backend backend = start_compute(o.compute);
   Stats stats;
-  // Formats read whole (OBJ, STL, OFF, PCD) have no stream to tile: in core.
-  MemoryPlan plan;
-  plan.budget = memory_budget(o.memory);
   const MemoryCosts& costs = o.surface.surface.surface == "mls" ? kProjectCosts : kProjectCostsWithNormals;
-  if (has_point_stream(o.input)) plan = plan_memory(o.input, plan.budget, costs);
-  // Under mpirun, a cloud that fits in core is tiled all the same, for the ranks to share.
-  const MemoryPlan needed = plan;
-  plan = spread_over_ranks(plan, rank_count());
   ProjectionParams params;
   ProjectRun run;
-  try {
-    run = plan.tiled ? project_in_tiles(o, plan, backend, stats, params) : project_in_core(o, backend, stats, params);
-  } catch (const NotTiled& e) {
-    if (needed.tiled)
-      throw file_error(o.input, std::string(e.what()) + "; in core it needs about " +
-                                    byte_size(double(plan.points * costs.in_core)) + " (--memory)");
-    stats = Stats();  // rank 0 alone, in core
-    plan = needed;
-    run_alone();
-    run = project_in_core(o, backend, stats, params);
-  }
+  const MemoryPlan plan = in_tiles_or_core(
+      o.input, o.memory, costs, stats,
+      [&](const MemoryPlan& tiles) { run = project_in_tiles(o, tiles, backend, stats, params); },
+      [&] { run = project_in_core(o, backend, stats, params); });
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   stats.add_time("total", total);
 

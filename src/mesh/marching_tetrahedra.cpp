@@ -172,7 +172,7 @@ void check_band(double expected_cubes, double cell, const char* data) {
   throw Error(std::string(message) + "; use a larger cell");
 }
 
-Lattice lattice_over(vec3 lo, vec3 hi, double margin, double cell, const char* what) {
+Lattice lattice_over(vec3 lo, vec3 hi, double margin, double cell, const char* what, double shown_scale) {
   Lattice l;
   l.cell = cell;
   l.origin = glm::dvec3(lo) - margin;
@@ -183,7 +183,8 @@ Lattice lattice_over(vec3 lo, vec3 hi, double margin, double cell, const char* w
     char message[300];
     std::snprintf(message, sizeof message,
                   "%s %g is too small for the data's extent (%g x %g x %g): more than %.0f cells along an axis",
-                  what, cell, extent.x, extent.y, extent.z, most);
+                  what, cell * shown_scale, extent.x * shown_scale, extent.y * shown_scale, extent.z * shown_scale,
+                  most);
     throw Error(message);
   }
   l.size = ivec3(corners);

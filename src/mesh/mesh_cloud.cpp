@@ -15,6 +15,7 @@
 #include "pss/mesh/coarsen.hpp"
 #include "pss/mesh/cloud_implicit.hpp"
 #include "pss/points/project_cloud.hpp"
+#include "pss/points/unit_frame.hpp"
 #include "pss/spatial/grid_mirror.hpp"
 
 namespace pss {
@@ -23,15 +24,6 @@ namespace {
 
 // The share of a mesh's area its closed parts must have for their volume to turn it.
 constexpr double kClosedShareToTurn = 0.5;
-
-// The band holds about one cube per cell² of surface, and each sample stands for about
-// h_i² of it (h_i is its distance to the 15th neighbour: about 2.2 spacings): Σ (h_i/cell)²
-// overestimates the cubes about 3-fold (the bunny: 144,000 for 42,000).
-double expected_band_cubes(std::span<const float> widths, float cell) {
-  double cubes = 0;
-  for (const float h : widths) cubes += double(h) * double(h) / (double(cell) * double(cell));
-  return cubes / 3;
-}
 
 // Points on a line (or all but coincident) define no surface: MLS would fit a tube of its
 // weights' width around them. Refused where every point lies within 10⁻⁶ of the cloud's
@@ -97,6 +89,17 @@ void finish_cloud_mesh(CloudMesh& out, const ProjectionParams& projection) {
                 "the cell too large");
 }
 
+double expected_band_cubes(std::span<const float> widths, double cell) {
+  double cubes = 0;
+  for (const float h : widths) cubes += double(h) * double(h) / (cell * cell);
+  return cubes / 3;
+}
+
+Lattice cloud_lattice(const Aabb& box, const UnitFrame& frame, double reach, double cell, bool cell_given) {
+  return lattice_over(frame.to_unit(box.lo), frame.to_unit(box.hi), std::max(2.0 * cell, reach) + 0.5 * cell, cell,
+                      cell_given ? "the cell size" : "the cell size (h/2, from h)", frame.scale);
+}
+
 float mesh_cell(const MeshParams& params) {
   const ProjectionParams& projection = params.projection;
   validate(projection);
@@ -124,36 +127,44 @@ CloudMesh mesh_cloud(const PointCloud& cloud, const MeshParams& params, Backend 
   out.cell = mesh_cell(params);
   if (cloud.size() < 3)
     throw Error("a mesh needs at least 3 points (the cloud has " + std::to_string(cloud.size()) + ")");
-  const Aabb box = cloud.bounds();
-  check_neighbourhood(projection, double(glm::length(box.extent())), cloud.size());
+  // The mesh is made in the cloud's unit frame (points/unit_frame.hpp), as project_cloud's
+  // projections are and as tile by tile (tiles/mesh.hpp), from the same floats: so the tiles'
+  // mesh is this one to the last bit. Its vertices are mapped back at the end.
+  const UnitFrame frame = unit_frame(cloud.positions);
+  check_neighbourhood(projection, frame.diagonal, cloud.size());
   check_not_a_line(cloud.positions);
+  const ProjectionParams unit_params = in_unit_frame(projection, frame.scale);
+  const double cell = double(out.cell) / frame.scale;
+  const float asked = params.cell > 0 ? float(double(params.cell) / frame.scale) : 0.0f;
   {
     ScopedPhase phase(stats, "support widths", projection.support == Support::global);
-    out.widths = support_widths(cloud.positions, projection);
+    out.widths = support_widths(cloud.positions, projection);  // from the points as read, as in tiles
   }
+  for (float& w : out.widths.h) w = float(double(w) / frame.scale);
+  const std::vector<vec3> unit = to_unit(cloud.positions, frame);
   // The lattice reaches past the samples as far as the surface may: with extended borders,
   // the largest support ρ_i past the box (the projection's reach), else two cubes.
-  const double reach = projection.borders == BorderMode::extend
-                           ? double(out.widths.largest) * double(projection.rho / projection.h) + double(out.cell)
-                           : 0.0;
-  // A default cell comes from h, which the message then names.
-  const Lattice lattice = lattice_over(box.lo, box.hi, std::max(2.0 * double(out.cell), reach), double(out.cell),
-                                       params.cell > 0 ? "the cell size" : "the cell size (h/2, from h)");
-  const double band_cubes = expected_band_cubes(out.widths.h, out.cell);
-  check_band(band_cubes, out.cell, "cloud");
-  SupportGrid grid = grid_of_samples(cloud.positions, out.widths.h, out.widths.merged, projection.rho / projection.h,
-                                     projection.outliers, backend, stats, out.outliers);
+  const float kappa = unit_params.rho / unit_params.h;
+  const double reach =
+      projection.borders == BorderMode::extend
+          ? double(kappa) * double(*std::max_element(out.widths.h.begin(), out.widths.h.end())) + cell
+          : 0.0;
+  const Lattice lattice = cloud_lattice(cloud.bounds(), frame, reach, cell, params.cell > 0);
+  const double band_cubes = expected_band_cubes(out.widths.h, cell);
+  check_band(band_cubes, double(out.cell), "cloud");
+  SupportGrid grid = grid_of_samples(unit, out.widths.h, out.widths.merged, kappa, projection.outliers, backend,
+                                     stats, out.outliers);
   out.widths.h = {};
   out.widths.merged = {};
   // Every operator's mesh needs the samples' oriented normals: they say which side is out.
-  const FileNormals file = file_normals(grid, cloud.normals, projection, stats);
+  const FileNormals file = file_normals(grid, cloud.normals, unit_params, stats);
   out.normals_turned = file.turned;
   out.file_normals_off = file.off_the_points;
-  grid.set_normals(sample_normals(grid, file, projection, backend, stats, out.normals));
+  grid.set_normals(sample_normals(grid, file, unit_params, backend, stats, out.normals));
 
   const GridMirror g(backend, grid);
   const ImplicitSurface implicit =
-      mesh_detail::implicit_surface(backend, CloudImplicit{g.view(), projection}, out.cell, stats);
+      mesh_detail::implicit_surface(backend, CloudImplicit{g.view(), unit_params}, float(cell), stats);
   {
     ScopedPhase phase(stats, "mesh", false);  // its kernels show their progress
     out.mesh = march_tetrahedra(lattice, grid.sorted_points(), implicit, mesh_detail::kMaxSlope,
@@ -161,7 +172,7 @@ CloudMesh mesh_cloud(const PointCloud& cloud, const MeshParams& params, Backend 
   }
   {
     ScopedPhase phase(stats, "coarsen", true);
-    coarsen_mesh(out.mesh, mesh_detail::vertex_cells(out.mesh.positions, grid, params.cell, out.cell), out.counts);
+    coarsen_mesh(out.mesh, mesh_detail::vertex_cells(out.mesh.positions, grid, asked, float(cell)), out.counts);
   }
   out.counts.unsupported_parts = remove_unsupported_parts(
       out.mesh, [&](std::span<const vec3> centre, std::span<const float> radius, std::span<int> inside) {
@@ -172,6 +183,7 @@ CloudMesh mesh_cloud(const PointCloud& cloud, const MeshParams& params, Backend 
             level.grid.for_each_near(c, r, [&](vec3 s, int) { inside[std::size_t(p)] += glm::length(s - c) <= r; });
         });
       });
+  for (vec3& p : out.mesh.positions) p = frame.from_unit(p);
   out.mesh.origin = cloud.origin;
   finish_cloud_mesh(out, projection);
   return out;

@@ -58,13 +58,6 @@ std::vector<int> tiles_to_mesh(const TiledCloud& cloud, double reach) {
   return tiles;
 }
 
-// mesh_cloud's estimate of its band (about a third of Σ (h_i/cell)²).
-double expected_band_cubes(std::span<const float> widths, double cell) {
-  double cubes = 0;
-  for (const float h : widths) cubes += double(h) * double(h) / (cell * cell);
-  return cubes / 3;
-}
-
 // The parts of the mesh held by fewer than kMinPartSamples samples (remove_unsupported_parts),
 // counted over each tile's own samples, as the in-core grid holds them.
 CountSamples count_in_tiles(const TiledCloud& cloud, const TiledSamples& samples) {
@@ -116,9 +109,7 @@ TiledCloudMesh mesh_in_tiles(const TiledCloud& cloud, const MeshParams& params, 
 
   // The lattice as mesh_cloud's (in the unit frame): past the samples as far as the surface may reach.
   const double reach = projection.borders == BorderMode::extend ? samples.reach + cell : 0.0;
-  const Lattice lattice =
-      lattice_over(frame.to_unit(cloud.bounds().lo), frame.to_unit(cloud.bounds().hi), std::max(2.0 * cell, reach),
-                   cell, params.cell > 0 ? "the cell size" : "the cell size (h/2, from h)");
+  const Lattice lattice = cloud_lattice(cloud.bounds(), frame, reach, cell, params.cell > 0);
   check_band(expected_band_cubes(samples.h, cell), double(out.cell), "cloud");
   const CubeOwners owners(cloud, frame, lattice);
 

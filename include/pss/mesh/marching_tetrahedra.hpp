@@ -68,8 +68,9 @@ inline constexpr double kCornersPerBandCube = 2;
 void check_band(double expected_cubes, double cell, const char* data);
 
 // The lattice over the box [lo, hi] grown by `margin` on every side; `what` names the
-// cell size in the error where the box holds too many cells ("--cell").
-Lattice lattice_over(vec3 lo, vec3 hi, double margin, double cell, const char* what);
+// cell size in the error where the box holds too many cells ("--cell"), its lengths
+// multiplied by `shown_scale` (a lattice in a cloud's unit frame names the data's).
+Lattice lattice_over(vec3 lo, vec3 hi, double margin, double cell, const char* what, double shown_scale = 1.0);
 
 struct MarchCounts {
   std::int64_t corners = 0;          // corners evaluated
