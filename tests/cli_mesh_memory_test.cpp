@@ -26,7 +26,7 @@ TEST_F(MeshMemory, TileByTileTheInCoreMeshsBytes) {
   const test::CliResult in_core = test::run_pss("mesh " + file + " -o " + path("core.ply"));
   ASSERT_EQ(in_core.exit_code, 0) << in_core.err;
   const ScratchFolder scratch(dir_ / "scratch");
-  const test::CliResult tiled = test::run_pss("mesh " + file + " -o " + path("tiled.ply") + " --memory 45M --stats " +
+  const test::CliResult tiled = test::run_pss("mesh " + file + " -o " + path("tiled.ply") + " --memory 57M --stats " +
                                               path("tiled.json") + " --progress always");
   ASSERT_EQ(tiled.exit_code, 0) << tiled.err;
   EXPECT_TRUE(scratch.empty()) << "the tiles' scratch files are left behind";
@@ -49,12 +49,12 @@ TEST_F(MeshMemory, TileByTileTheInCoreMeshsBytes) {
 TEST_F(MeshMemory, TheFilesNormalsInTilesAreRefusedInOneLine) {
   const std::string file = write("torus.xyz", test::torus_xyz(60000, false, 1));
   const ScratchFolder scratch(dir_ / "scratch");
-  expect_clean_failure("mesh " + file + " -o " + path("m.ply") + " --memory 45M", "torus.xyz", path("m.ply"));
-  const test::CliResult r = test::run_pss("mesh " + file + " -o " + path("m.ply") + " --memory 45M");
+  expect_clean_failure("mesh " + file + " -o " + path("m.ply") + " --memory 57M", "torus.xyz", path("m.ply"));
+  const test::CliResult r = test::run_pss("mesh " + file + " -o " + path("m.ply") + " --memory 57M");
   EXPECT_NE(r.err.find("file's normals"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("--memory"), std::string::npos) << r.err;
   EXPECT_TRUE(scratch.empty());
-  EXPECT_EQ(test::run_pss("mesh " + file + " -o " + path("e.ply") + " --memory 45M --normals estimate").exit_code, 0);
+  EXPECT_EQ(test::run_pss("mesh " + file + " -o " + path("e.ply") + " --memory 57M --normals estimate").exit_code, 0);
 }
 
 TEST_F(MeshMemory, AVolumeTakesNoMemoryFlag) {

@@ -157,7 +157,7 @@ TEST_F(ProjectRanks, TheRanksMeshOneProcesssMeshInTilesOfAnotherSize) {
   SKIP_WITHOUT_MPI();
   const std::string file = write("torus.xyz", test::torus_xyz(60000, false, 0));
   const ScratchFolder scratch(dir_ / "scratch");
-  const test::CliResult one = test::run_pss("mesh " + file + " -o " + path("one.ply") + " --memory 45M");
+  const test::CliResult one = test::run_pss("mesh " + file + " -o " + path("one.ply") + " --memory 57M");
   ASSERT_EQ(one.exit_code, 0) << one.err;
   ASSERT_NE(one.out.find("tile by tile: "), std::string::npos) << one.out;
   const test::CliResult r = run_ranks(2, "mesh " + file + " -o " + path("two.ply") + " --stats " + path("two.json"));

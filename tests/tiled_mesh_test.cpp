@@ -100,6 +100,26 @@ TEST_F(TiledMeshTest, ATorusInTilesIsTheInCoreMesh) {
   EXPECT_EQ(tiled.points_per_rank[0], 20000u);
 }
 
+// A sheet with a ball above it: the tiles over the sheet, away from the ball, lie within the
+// halo of the sheet's tiles but hold no sample in their own (at 1M points a torus's hole
+// did, and its tile's empty work was refused); they give no piece, and the mesh is the
+// in-core one.
+TEST_F(TiledMeshTest, ATileNearTheSurfaceWithNoSampleInItsHaloGivesNoPiece) {
+  test::SampleOptions o;
+  o.count = 12000;
+  PointCloud cloud = test::sample_plane(1.0f, o);
+  o.count = 1000;
+  const PointCloud ball = test::sample(test::Sphere{vec3(0.5f, 0.5f, 2.5f), 0.3f}, o);
+  cloud.positions.insert(cloud.positions.end(), ball.positions.begin(), ball.positions.end());
+  const std::string file = write("sheet.xyz", test::xyz_text(cloud.positions));
+  const MeshParams params = mesh_params(file, SurfaceOperator::rimls);
+  Stats stats;
+  const CloudMesh in_core = mesh_cloud(read_point_cloud(file), params, Backend::cpu, stats);
+  const auto [tiled, tiles] = mesh_tiled(file, dir_, params, 2000);
+  EXPECT_GE(tiles, 12) << tiles;
+  expect_same_mesh(tiled.mesh.mesh, in_core.mesh);
+}
+
 TEST_F(TiledMeshTest, TheFilesNormalsAreNotTakenInTilesYet) {
   const std::string file = write("torus.xyz", test::torus_xyz(3000, false, 1));
   MeshParams params = mesh_params(file, SurfaceOperator::rimls);

@@ -44,10 +44,11 @@ struct MeshOptions {
 };
 
 // Bytes a point (tiles/memory_plan.hpp): in core, the mesh's band at its peak (the 10^6-point
-// noisy torus: 980 MiB, docs/benchmarks.md); beside the tiles, each point's width and flags and
-// the welded mesh, held whole (about 3 triangles and 1.5 vertices a point before the
-// coarsening, 36 bytes each); a tile's point and its halo's as project's, with its band.
-constexpr MemoryCosts kMeshCosts{1024, 192, 1536};
+// noisy torus: 980 MiB once, 424 MiB now; docs/benchmarks.md); beside the tiles, each point's
+// width and flags and the welded mesh, held whole for its coarsening (that torus's: 1.23 M
+// vertices and 2.46 M triangles before it, whose weld and coarsening took 387 MiB); a tile's
+// point and its halo's as project's, with its band.
+constexpr MemoryCosts kMeshCosts{1024, 448, 1536};
 
 // The flags that only a cloud's PSS, or only a volume's, takes.
 constexpr const char* kCloudFlags[] = {"--rho",        "--support", "--surface",      "--normals", "--outliers",

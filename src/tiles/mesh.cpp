@@ -146,7 +146,10 @@ TiledCloudMesh mesh_in_tiles(const TiledCloud& cloud, const MeshParams& params, 
         });
   }
   std::vector<float> cells;
-  out.mesh = welder.weld(cells, out.counts);
+  {
+    ScopedPhase phase(stats, "weld", true);
+    out.mesh = welder.weld(cells, out.counts);
+  }
   {
     ScopedPhase phase(stats, "coarsen", true);
     coarsen_mesh(out.mesh, cells, out.counts);

@@ -45,11 +45,12 @@ std::vector<std::byte> work_mesh(std::span<const std::byte> request) {
   const auto inputs = in.get<MeshPieceInputs>();
   const auto backend = in.get<Backend>();
   const Lattice& lattice = inputs.lattice;
-  if (t.normals.empty() || !(lattice.cell > 0) || !inside(inputs.kept, lattice))
+  if (t.normals.size() != t.unit.size() || !(lattice.cell > 0) || !inside(inputs.kept, lattice))
     throw Error("a tile's work does not hold together: a mesh needs the samples' normals and a box in its lattice");
-  const SupportGrid grid = grid_of_tile(t);
   CloudMeshPiece done;
-  {
+  // A tile near the surface whose halo holds no sample (its neighbour's points all far) has no piece.
+  if (!t.samples.empty()) {
+    const SupportGrid grid = grid_of_tile(t);
     const QuietProgress quiet;
     done = mesh_cloud_piece(grid, params, lattice, inputs.kept, inputs.crease_angle, inputs.asked_cell,
                             inputs.least_cell, backend);
