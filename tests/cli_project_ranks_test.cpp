@@ -166,6 +166,9 @@ TEST_F(ProjectRanks, TheRanksMeshOneProcesssMeshInTilesOfAnotherSize) {
   EXPECT_NE(one.out.substr(one.out.find("tile by tile"), 40), r.out.substr(r.out.find("tile by tile"), 40))
       << "the same tiles: the test would not tell seams apart";
   EXPECT_EQ(read(path("two.ply")), read(path("one.ply"))) << "the ranks' mesh differs from one process's";
+  const test::CliResult three = run_ranks(3, "mesh " + file + " -o " + path("three.ply"));
+  ASSERT_EQ(three.exit_code, 0) << three.err;
+  EXPECT_EQ(read(path("three.ply")), read(path("one.ply"))) << "3 ranks' mesh differs from one process's";
   const nlohmann::json v = nlohmann::json::parse(read(path("two.json")));
   EXPECT_EQ(v["ranks"], 2);
   EXPECT_GT(v["points_per_rank"][1].get<std::uint64_t>(), 0u);
