@@ -700,12 +700,7 @@ TEST(MeshCloud, AFewClosedBlobsDoNotTurnAMostlyOpenMesh) {
 TEST(MeshCloud, AFlatFaceOnTheBoxIsMeshed) {
   for (const float z : {0.05f, 0.3337f}) {
     SCOPED_TRACE(z);
-    test::SampleOptions o;
-    o.count = 4000;
-    PointCloud cloud = test::sample_plane(1.0f, o);
-    o.count = 400;
-    const PointCloud ball = test::sample(test::Sphere{vec3(0, 0, 0.6f), 0.15f}, o);
-    cloud.positions.insert(cloud.positions.end(), ball.positions.begin(), ball.positions.end());
+    PointCloud cloud = test::sheet_and_ball(4000, test::Sphere{vec3(0, 0, 0.6f), 0.15f}, 400);
     for (vec3& p : cloud.positions) p.z += z;
     const CloudMesh m = mesh_of(cloud);
     std::size_t on_face = 0;

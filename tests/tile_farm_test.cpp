@@ -4,9 +4,11 @@
 // counted; a request that does not hold together is an error, not a read past its end.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstring>
 #include <vector>
 
+#include "../src/tiles/tile_bytes.hpp"
 #include "../src/tiles/tile_works.hpp"
 #include "pss/core/error.hpp"
 #include "pss/io/point_cloud_file.hpp"
@@ -126,6 +128,27 @@ TEST(TileWork, ARequestCutShortOrOfNoStepIsAnError) {
   // A sample that is not in the tile.
   const std::vector<int> beyond = {0, 4};
   EXPECT_THROW(tile_work(TileStep::outliers, outliers_request({unit, h, beyond, 2, {}, {}, {}, &layout})), Error);
+}
+
+// A tile's piece of a mesh (mesh_work.cpp) that does not hold together is an error, not a
+// vertex read past its arrays.
+TEST(TileWork, AMeshPieceThatDoesNotHoldTogetherIsAnError) {
+  const auto piece = [](std::size_t keys, int corner) {
+    ByteWriter out;
+    out.put(MarchCounts{});
+    out.put_array<std::uint64_t>(std::vector<std::uint64_t>(keys, 9));
+    const std::vector<vec3> three(3, vec3(0));
+    out.put_array<vec3>(three);  // positions
+    out.put_array<vec3>(three);  // normals
+    out.put_array<float>(std::vector<float>(3, 1.0f));
+    out.put_array<std::array<int, 3>>(std::vector<std::array<int, 3>>{{0, 1, corner}});
+    out.put_array<std::uint64_t>(std::vector<std::uint64_t>{1});
+    out.put_array<std::int32_t>(std::vector<std::int32_t>{0});
+    return out.take();
+  };
+  EXPECT_EQ(mesh_result(piece(3, 2)).piece.mesh.triangles.size(), 1u);
+  EXPECT_THROW(mesh_result(piece(2, 2)), Error) << "a key for each vertex";
+  EXPECT_THROW(mesh_result(piece(3, 3)), Error) << "a triangle's corner past the vertices";
 }
 
 }  // namespace

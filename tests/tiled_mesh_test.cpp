@@ -101,16 +101,11 @@ TEST_F(TiledMeshTest, ATorusInTilesIsTheInCoreMesh) {
 }
 
 // A sheet with a ball above it: the tiles over the sheet, away from the ball, lie within the
-// halo of the sheet's tiles but hold no sample in their own (at 1M points a torus's hole
-// did, and its tile's empty work was refused); they give no piece, and the mesh is the
+// halo of the sheet's tiles but hold no sample in their own (at 10⁶ points some of a torus's
+// tiles did, and their empty work was refused); they give no piece, and the mesh is the
 // in-core one.
 TEST_F(TiledMeshTest, ATileNearTheSurfaceWithNoSampleInItsHaloGivesNoPiece) {
-  test::SampleOptions o;
-  o.count = 12000;
-  PointCloud cloud = test::sample_plane(1.0f, o);
-  o.count = 1000;
-  const PointCloud ball = test::sample(test::Sphere{vec3(0.5f, 0.5f, 2.5f), 0.3f}, o);
-  cloud.positions.insert(cloud.positions.end(), ball.positions.begin(), ball.positions.end());
+  const PointCloud cloud = test::sheet_and_ball(12000, test::Sphere{vec3(0.5f, 0.5f, 2.5f), 0.3f}, 1000);
   const std::string file = write("sheet.xyz", test::xyz_text(cloud.positions));
   const MeshParams params = mesh_params(file, SurfaceOperator::rimls);
   Stats stats;

@@ -113,6 +113,16 @@ PointCloud sample_plane(float half_size, const SampleOptions& o) {
   return cloud;
 }
 
+PointCloud sheet_and_ball(std::size_t sheet_points, const Sphere& ball, std::size_t ball_points) {
+  SampleOptions o;
+  o.count = sheet_points;
+  PointCloud cloud = sample_plane(1.0f, o);
+  o.count = ball_points;
+  const PointCloud on_ball = sample(ball, o);
+  cloud.positions.insert(cloud.positions.end(), on_ball.positions.begin(), on_ball.positions.end());
+  return cloud;
+}
+
 float ShapeCase::radius() const { return torus ? Torus{}.minor : Sphere{}.radius; }
 
 PointCloud ShapeCase::sample() const {

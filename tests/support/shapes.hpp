@@ -50,6 +50,8 @@ struct SampleOptions {
 PointCloud sample(const Sphere& s, const SampleOptions& o);
 PointCloud sample(const Torus& t, const SampleOptions& o);
 PointCloud sample_plane(float half_size, const SampleOptions& o);  // square [-a, a]² at z = 0
+// The square [-1, 1]² at z = 0 of `sheet_points` points and `ball_points` on the sphere `ball`.
+PointCloud sheet_and_ball(std::size_t sheet_points, const Sphere& ball, std::size_t ball_points);
 // 12,000 samples of the unit sphere with noise 0.02, and `strays` more: the samples 0, every,
 // 2·every, ... each moved up to 30 % along its radius (seeded by `seed`).
 std::vector<vec3> noisy_sphere_with_strays(std::size_t strays, std::size_t every, unsigned seed);
