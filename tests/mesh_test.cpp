@@ -500,7 +500,8 @@ TEST(MeshCloud, EveryVertexIsARootOnItsEdge) {
   sphere.normals = sphere.positions;
   const CloudMesh m = mesh_of(sphere, SurfaceOperator::apss);
   const UnitFrame frame = unit_frame(sphere.positions);
-  const Lattice lattice = cloud_lattice(sphere.bounds(), frame, 0, double(m.cell) / frame.scale, false);
+  const Lattice lattice =
+      cloud_lattice(sphere.bounds(), frame, BorderMode::clip, 0, double(m.cell) / frame.scale, false);
   float worst = 0, worst_clamped = 0;
   std::size_t clamped = 0;
   for (const vec3& p : m.mesh.positions) {

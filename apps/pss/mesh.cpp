@@ -2,6 +2,7 @@
 // volume (issue 27), its vertices on the surface with the surface's normals.
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <optional>
 #include <span>
@@ -125,6 +126,13 @@ void summarise_cloud_mesh(const MeshOptions& o, const CloudMesh& result, const M
   if (!o.compute.stats_path.empty()) record_cloud_mesh(stats, result, params, shape);
 }
 
+// A cloud of fewer than 3 points, before any work.
+void check_mesh_points(const std::string& input, std::uint64_t points) {
+  if (points < 3)
+    throw file_error(input, "has " + std::to_string(points) + (points == 1 ? " point" : " points") +
+                                ": a mesh needs at least 3");
+}
+
 MeshParams mesh_params(const MeshOptions& o, ProjectionParams projection, bool mesh_vertices) {
   MeshParams params;
   params.projection = projection;
@@ -138,9 +146,7 @@ MeshParams mesh_params(const MeshOptions& o, ProjectionParams projection, bool m
 void mesh_cloud_in_core(const MeshOptions& o, Backend backend, Stats& stats,
                         std::chrono::steady_clock::time_point start) {
   const PointCloud cloud = read_cloud(o.input, stats);
-  if (cloud.size() < 3)
-    throw file_error(o.input, "has " + std::to_string(cloud.size()) + (cloud.size() == 1 ? " point" : " points") +
-                                  ": a mesh needs at least 3");
+  check_mesh_points(o.input, cloud.size());
   check_mesh_origin(o.output, cloud.origin);  // before the work, not after
   const MeshParams params = mesh_params(
       o, projection_params(o.surface, cloud, o.input, PlaneFitMethod::mls, stats), cloud.mesh_vertices);
@@ -163,9 +169,7 @@ void mesh_cloud_in_tiles(const MeshOptions& o, const MemoryPlan& plan, Backend b
     read.emplace(o.input, scratch_folder(), plan.points_per_tile, plan.buffer_bytes);
   }
   const TiledCloud& tiles = *read;
-  if (tiles.size() < 3)
-    throw file_error(o.input, "has " + std::to_string(tiles.size()) + (tiles.size() == 1 ? " point" : " points") +
-                                  ": a mesh needs at least 3");
+  check_mesh_points(o.input, tiles.size());
   check_mesh_origin(o.output, tiles.origin());
   const ProjectionParams projection = projection_params(
       o.surface, [&] { return naming_input(o.input, [&] { return float(estimate_spacing(tiles).suggested_h); }); },

@@ -95,7 +95,9 @@ double expected_band_cubes(std::span<const float> widths, double cell) {
   return cubes / 3;
 }
 
-Lattice cloud_lattice(const Aabb& box, const UnitFrame& frame, double reach, double cell, bool cell_given) {
+Lattice cloud_lattice(const Aabb& box, const UnitFrame& frame, BorderMode borders, double widest_rho, double cell,
+                      bool cell_given) {
+  const double reach = borders == BorderMode::extend ? widest_rho + cell : 0.0;
   return lattice_over(frame.to_unit(box.lo), frame.to_unit(box.hi), std::max(2.0 * cell, reach) + 0.5 * cell, cell,
                       cell_given ? "the cell size" : "the cell size (h/2, from h)", frame.scale);
 }
@@ -142,14 +144,9 @@ CloudMesh mesh_cloud(const PointCloud& cloud, const MeshParams& params, Backend 
   }
   for (float& w : out.widths.h) w = float(double(w) / frame.scale);
   const std::vector<vec3> unit = to_unit(cloud.positions, frame);
-  // The lattice reaches past the samples as far as the surface may: with extended borders,
-  // the largest support ρ_i past the box (the projection's reach), else two cubes.
   const float kappa = unit_params.rho / unit_params.h;
-  const double reach =
-      projection.borders == BorderMode::extend
-          ? double(kappa) * double(*std::max_element(out.widths.h.begin(), out.widths.h.end())) + cell
-          : 0.0;
-  const Lattice lattice = cloud_lattice(cloud.bounds(), frame, reach, cell, params.cell > 0);
+  const double widest_rho = double(kappa) * double(*std::max_element(out.widths.h.begin(), out.widths.h.end()));
+  const Lattice lattice = cloud_lattice(cloud.bounds(), frame, projection.borders, widest_rho, cell, params.cell > 0);
   const double band_cubes = expected_band_cubes(out.widths.h, cell);
   check_band(band_cubes, double(out.cell), "cloud");
   SupportGrid grid = grid_of_samples(unit, out.widths.h, out.widths.merged, kappa, projection.outliers, backend,

@@ -108,8 +108,8 @@ TiledCloudMesh mesh_in_tiles(const TiledCloud& cloud, const MeshParams& params, 
   const float asked = params.cell > 0 ? float(double(params.cell) / frame.scale) : 0.0f;
 
   // The lattice as mesh_cloud's (in the unit frame): past the samples as far as the surface may reach.
-  const double reach = projection.borders == BorderMode::extend ? samples.reach + cell : 0.0;
-  const Lattice lattice = cloud_lattice(cloud.bounds(), frame, reach, cell, params.cell > 0);
+  const Lattice lattice =
+      cloud_lattice(cloud.bounds(), frame, projection.borders, samples.reach, cell, params.cell > 0);
   check_band(expected_band_cubes(samples.h, cell), double(out.cell), "cloud");
   const CubeOwners owners(cloud, frame, lattice);
 

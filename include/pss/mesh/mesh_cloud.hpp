@@ -72,12 +72,14 @@ float mesh_cell(const MeshParams& params);
 // about h_i² of it (h_i is its distance to the 15th neighbour: about 2.2 spacings);
 // Σ (h_i/cell)² overestimates them about 3-fold (the bunny: 144,000 for 42,000).
 double expected_band_cubes(std::span<const float> widths, double cell);
-// The lattice in `frame` (unit: `reach`, `cell`) over the cloud's box `box`, past it as far
-// as the surface may reach (at least two cubes), its planes half a cube off the box's faces:
+// The lattice in `frame` (unit: `widest_rho`, the samples' widest support ρ_i, and `cell`)
+// over the cloud's box `box`, past it as far as the surface may reach (with extended
+// borders, the widest ρ_i and a cube; at least two cubes), its planes half a cube off the box's faces:
 // a flat face on the box (a CAD part's base) would lie on a plane of corners, where f is 0
 // give or take its rounding, and the march found no cube it crossed. `cell_given`: --cell,
 // which an error then names (else h/2).
-Lattice cloud_lattice(const Aabb& box, const UnitFrame& frame, double reach, double cell, bool cell_given);
+Lattice cloud_lattice(const Aabb& box, const UnitFrame& frame, BorderMode borders, double widest_rho, double cell,
+                      bool cell_given);
 
 // Adds to inside[p] the samples within radius[p] of centre[p], for each p.
 using CountSamples =
