@@ -130,6 +130,45 @@ TEST(TileWork, ARequestCutShortOrOfNoStepIsAnError) {
   EXPECT_THROW(tile_work(TileStep::outliers, outliers_request({unit, h, beyond, 2, {}, {}, {}, &layout})), Error);
 }
 
+// The seams' turn's three steps (seam_turn_work.cpp): each needs the samples' normals, and
+// its patches or their settling for each point of the set; a step past the three, a request
+// cut short and a result whose arrays disagree are errors.
+TEST(TileWork, TheSeamsTurnsStepsNeedTheirArrays) {
+  const std::vector<vec3> unit = {{0, 0, 0}, {0.01f, 0, 0}, {0, 0.01f, 0}, {0.01f, 0.01f, 0}};
+  const std::vector<float> h(unit.size(), 0.01f);
+  const std::vector<int> samples = {0, 1, 2, 3};
+  SupportTally tally;
+  tally.least = 0.01f;
+  for (const vec3& p : unit) tally.add(p, 0.01f);
+  const SupportLayout layout = support_layout(tally, 2);
+  const std::vector<vec3> normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, -1}, {0, 0, -1}};
+  const UnitTile tile{unit, h, samples, 2, {}, {}, normals, &layout};
+  const std::vector<std::uint32_t> patch = {0, 0, 1, 1};
+  const std::vector<char> settled = {0, 1, 1, 1};
+  const TileSeamTurn joins =
+      seam_turn_result(tile_work(TileStep::seam_turn, seam_turn_request(tile, SeamStep::joins)), SeamStep::joins);
+  EXPECT_EQ(joins.joined, std::vector<int>{1}) << "own samples 0 and 1 agree side by side; 2 and 3 are no own";
+  EXPECT_EQ(joins.root, std::vector<int>{0});
+  const std::vector<std::byte> evidence = seam_turn_request(tile, SeamStep::evidence, patch);
+  const TileSeamTurn seen = seam_turn_result(tile_work(TileStep::seam_turn, evidence), SeamStep::evidence);
+  ASSERT_EQ(seen.evidence.size(), 1u);
+  EXPECT_EQ(seen.evidence.begin()->first, std::uint64_t(1)) << "patches 0 and 1";
+  const TileSeamTurn says = seam_turn_result(
+      tile_work(TileStep::seam_turn, seam_turn_request(tile, SeamStep::stragglers, {}, settled)), SeamStep::stragglers);
+  EXPECT_EQ(says.straggler, std::vector<int>{0}) << "own sample 1 is settled";
+  const UnitTile without_normals{unit, h, samples, 2, {}, {}, {}, &layout};
+  EXPECT_THROW(tile_work(TileStep::seam_turn, seam_turn_request(without_normals, SeamStep::joins)), Error);
+  EXPECT_THROW(tile_work(TileStep::seam_turn, seam_turn_request(tile, SeamStep::evidence)), Error) << "no patches";
+  EXPECT_THROW(tile_work(TileStep::seam_turn, seam_turn_request(tile, SeamStep::stragglers)), Error) << "no settling";
+  EXPECT_THROW(tile_work(TileStep::seam_turn, seam_turn_request(tile, SeamStep(3))), Error);
+  for (const std::size_t cut : {std::size_t(0), evidence.size() / 2, evidence.size() - 1})
+    EXPECT_THROW(tile_work(TileStep::seam_turn, std::span<const std::byte>(evidence.data(), cut)), Error) << cut;
+  ByteWriter uneven;
+  uneven.put_array<int>(std::vector<int>{1, 2});
+  uneven.put_array<int>(std::vector<int>{0});
+  EXPECT_THROW(seam_turn_result(uneven.take(), SeamStep::joins), Error);
+}
+
 // A tile's piece of a mesh (mesh_work.cpp) that does not hold together is an error, not a
 // vertex read past its arrays.
 TEST(TileWork, AMeshPieceThatDoesNotHoldTogetherIsAnError) {

@@ -22,6 +22,8 @@ std::vector<std::byte> tile_work(TileStep step, std::span<const std::byte> reque
       return work_sample_normals(request);
     case TileStep::mesh:
       return work_mesh(request);
+    case TileStep::seam_turn:
+      return work_seam_turn(request);
   }
   throw Error("a tile's work names no step");
 }

@@ -31,7 +31,8 @@ struct OrientedInTiles {
   std::unique_ptr<BucketFile> ordered;  // Oriented, a bucket a window: each own record and halo votes
   std::unique_ptr<BucketFile> by_tile;  // Oriented, each tile's own records; empty unless asked
   std::vector<char> flip;               // per piece, whether it turns
-  bool turned(const Oriented& r) const { return flip[r.piece] != 0; }
+  std::vector<char> seam;               // empty, or per point of the cloud: the seams' turn turns it
+  bool turned(const Oriented& r) const { return (flip[r.piece] != 0) != (!seam.empty() && seam[r.index] != 0); }
 };
 
 // The records oriented, in windows of `window_points` (and by tile, where `by_tile`), in

@@ -13,6 +13,7 @@
 #include "pss/mesh/mesh_cloud_piece.hpp"
 #include "pss/points/orient_normals.hpp"
 #include "pss/points/project_points.hpp"
+#include "pss/points/seam_turn.hpp"
 #include "pss/points/support_steps.hpp"
 #include "pss/spatial/support_layout.hpp"
 
@@ -144,5 +145,22 @@ std::vector<std::byte> mesh_request(const UnitTile& tile, const ProjectionParams
                                     const MeshPieceInputs& inputs, Backend backend);
 std::vector<std::byte> work_mesh(std::span<const std::byte> request);
 CloudMeshPiece mesh_result(std::span<const std::byte> result);
+
+// The seams' turn of the samples' oriented normals (points/seam_turn.hpp) over a tile's own
+// samples, with its halo's (their normals in the tile): which samples join a patch, the
+// evidence between the patches (`patch`: each point's patch, kNoPatch where it is no
+// sample), or, after the groups' turn, the stragglers' says (`settled`: each point's patch
+// holds kFewestPerPatch samples or more).
+enum class SeamStep : std::uint8_t { joins = 0, evidence = 1, stragglers = 2 };
+std::vector<std::byte> seam_turn_request(const UnitTile& tile, SeamStep step, std::span<const std::uint32_t> patch = {},
+                                         std::span<const char> settled = {});
+std::vector<std::byte> work_seam_turn(std::span<const std::byte> request);
+struct TileSeamTurn {
+  std::vector<int> joined, root;  // joins: each point of the set in a patch of the tile's joins, and its least point
+  PatchEvidence evidence;
+  std::vector<int> straggler;  // stragglers: each own straggling sample, and its say
+  std::vector<double> say;
+};
+TileSeamTurn seam_turn_result(std::span<const std::byte> result, SeamStep step);
 
 }  // namespace pss

@@ -166,9 +166,8 @@ std::vector<char> samples_kept(const TiledCloud& cloud, const UnitFrame& frame, 
 
 // APSS's and RIMLS's samples' normals (points/sample_normals.hpp) tile by tile, as in core:
 // each own sample's WLS plane at its place (a merged one at its cube's mean), then oriented
-// over the tiles as the projections' normals are, linked within the samples' ρ_i. Not yet as
-// in core: the seams' turn after the orientation (turn_flipped_normals.hpp), so where it
-// turns any sample's normal in core, the tiles' differ there (docs/architecture.md).
+// over the tiles as the projections' normals are, linked within the samples' ρ_i (the seams'
+// turn follows: turn_seams_in_tiles).
 OrientedInTiles sample_normals_in_tiles(const UnitSets& sets, float kappa, const ProjectionParams& unit_params,
                                         Backend backend, std::size_t window_points, const std::filesystem::path& folder,
                                         std::size_t buffer_bytes, TileFarm& farm) {
@@ -292,6 +291,7 @@ TiledSamples tiled_samples(const TiledCloud& cloud, const ProjectionParams& para
     s.normals = sample_normals_in_tiles(s.sets(cloud), s.kappa, s.unit_params, backend, window_points, folder,
                                         buffer_bytes, farm);
     s.normals.ordered.reset();  // its votes are counted
+    turn_seams_in_tiles(s.sets(cloud), s.normals, farm);  // where the tree crossed a fold, as in core
   }
   return s;
 }

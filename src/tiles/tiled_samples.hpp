@@ -62,6 +62,10 @@ UnitTile unit_tile(const UnitSet& set);
 // of the tile, and its normal is left zero.
 std::vector<vec3> normals_of_set(const OrientedInTiles& samples, const UnitSets& sets, int tile, const UnitSet& set);
 
+// The seams' turn of the samples' oriented normals over the tiles, as in core
+// (points/seam_turn.hpp): sets samples.seam; how many normals it turned.
+std::size_t turn_seams_in_tiles(const UnitSets& sets, OrientedInTiles& samples, TileFarm& farm);
+
 struct TiledSamples {
   UnitFrame frame;
   ProjectionParams unit_params;  // the projection's, in the unit frame

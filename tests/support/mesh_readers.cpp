@@ -169,4 +169,33 @@ TriangleMesh read_mesh(const std::filesystem::path& path) {
   return m;
 }
 
+ScanMesh read_scan_mesh(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::size_t vertices = 0, faces = 0;
+  for (std::string line; std::getline(in, line) && line != "end_header";) {
+    if (line.rfind("element vertex ", 0) == 0) vertices = std::stoul(line.substr(15));
+    if (line.rfind("element face ", 0) == 0) faces = std::stoul(line.substr(13));
+  }
+  ScanMesh m;
+  for (std::size_t i = 0; i < vertices; ++i) {
+    float p[3];
+    in.read(reinterpret_cast<char*>(p), sizeof p);
+    m.positions.push_back(glm::dvec3(p[0], p[1], p[2]));
+  }
+  m.normals.assign(vertices, glm::dvec3(0.0));
+  for (std::size_t f = 0; f < faces; ++f) {
+    unsigned char count = 0;
+    std::int32_t v[3];
+    in.read(reinterpret_cast<char*>(&count), 1);
+    in.read(reinterpret_cast<char*>(v), sizeof v);
+    EXPECT_EQ(count, 3);
+    const glm::dvec3 a = m.positions[std::size_t(v[0])], b = m.positions[std::size_t(v[1])],
+                     c = m.positions[std::size_t(v[2])];
+    for (const int k : v) m.normals[std::size_t(k)] += glm::cross(b - a, c - a);
+  }
+  EXPECT_TRUE(in.good()) << path;
+  return m;
+}
+
+
 }  // namespace pss::test

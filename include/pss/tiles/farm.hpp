@@ -18,7 +18,8 @@ enum class TileStep : int {
   spacing = 4,
   widths = 5,
   sample_normals = 6,
-  mesh = 7
+  mesh = 7,
+  seam_turn = 8
 };
 
 // The result's bytes of a tile's work. Throws Error where the request does not hold together.
