@@ -91,14 +91,19 @@ TEST_F(ProjectMemory, TileByTileTheSamePointsInTheSameOrderWithTheirColoursAndSc
   EXPECT_TRUE(scratch.empty());
 }
 
+// A cloud sampled in rows, whose adaptive widths are not tiled yet.
 TEST_F(ProjectMemory, WhatTilesDoNotDoYetIsOneLineNamingTheFile) {
-  const std::string normals = write("normals.xyz", test::torus_xyz(50000, false, 1.0));
+  std::string text;  // rows 2 apart, each sampled every 0.1
+  for (int r = 0; r < 250; ++r)
+    for (int s = 0; s < 400; ++s) text += std::to_string(0.1 * s) + " " + std::to_string(2.0 * r) + " 0\n";
+  const std::string rows = write("rows.xyz", text);
   const ScratchFolder scratch(dir_ / "scratch");
-  const test::CliResult r = test::run_pss("project " + normals + " -o " + path("o.ply") + " --memory 7400K");
+  const test::CliResult r = test::run_pss("project " + rows + " -o " + path("o.ply") + " --memory 9M");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(test::line_count(r.err), 1) << r.err;
-  EXPECT_NE(r.err.find("pss: error: " + normals), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("tile by tile"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("pss: error: " + rows), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("sampled in rows"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("in core only; in core it needs about"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(path("o.ply")));
   EXPECT_TRUE(scratch.empty());
 }
@@ -137,30 +142,51 @@ TEST_F(ProjectMemory, ApssAndRimlsTileByTileFitTheSamplesNormalsAsInCore) {
   }
 }
 
-// A file's normals are not taken tile by tile yet (WhatTilesDoNotDoYet...), and the refusal
-// says how to go on: with --normals estimate they are left out, in tiles as in core.
-TEST_F(ProjectMemory, WithNormalsEstimateACloudWithNormalsIsTiledAsInCore) {
-  const std::string file = write("normals.xyz", test::torus_xyz(50000, false, 1.0));
+// A cloud with normals tile by tile as in core: the file's (those of x > 0.3 flipped, and
+// turned back over the tiles, as the summary says), or with --normals estimate, estimated and
+// oriented.
+TEST_F(ProjectMemory, ACloudWithNormalsIsTiledAsInCore) {
+  std::istringstream torus(test::torus_xyz(50000, false, 1.0));
+  std::string text;
+  for (std::string line; std::getline(torus, line);) {
+    double x, y, z, nx, ny, nz;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%lf %lf %lf %lf %lf %lf", &x, &y, &z, &nx, &ny, &nz), 6);
+    const double sign = x > 596700.3 ? -1 : 1;
+    char flipped[240];
+    std::snprintf(flipped, sizeof flipped, "%.12f %.12f %.12f %g %g %g\n", x, y, z, sign * nx, sign * ny, sign * nz);
+    text += flipped;
+  }
+  const std::string file = write("normals.xyz", text);
   const ScratchFolder scratch(dir_ / "scratch");
-  const test::CliResult refused = test::run_pss("project " + file + " -o " + path("o.ply") + " --memory 7400K");
-  EXPECT_NE(refused.err.find("--normals estimate"), std::string::npos) << refused.err;
-  const test::CliResult in_core = test::run_pss("project " + file + " -o " + path("core.ply") +
-                                                " --normals estimate --stats " + path("core.json"));
-  ASSERT_EQ(in_core.exit_code, 0) << in_core.err;
-  const test::CliResult tiled =
-      test::run_pss("project " + file + " -o " + path("tiled.ply") + " --normals estimate --memory 7400K");
-  ASSERT_EQ(tiled.exit_code, 0) << tiled.err;
-  EXPECT_NE(tiled.out.find("; tile by tile: "), std::string::npos) << tiled.out;
-  EXPECT_TRUE(scratch.empty());
-  const nlohmann::json core_stats = nlohmann::json::parse(read(path("core.json")));
-  const test::PlyColumns core = test::read_ply_columns(path("core.ply")), ply = test::read_ply_columns(path("tiled.ply"));
-  const std::size_t n = core.columns.at("x").size();
-  ASSERT_EQ(ply.columns.at("x").size(), n);
-  const test::ProjectedApart c =
-      test::compare_projected(ply, core, 2 * core_stats["params"]["t_tolerance"].get<double>());
-  EXPECT_EQ(c.apart, 0u) << "points whose projections in core and in tiles lie apart";
-  EXPECT_EQ(c.facing_apart, 0u) << "normals that face otherwise than in core";
-  EXPECT_LE(c.status_differ, n / 200);
+  for (const std::string normals : {"file", "estimate"}) {
+    SCOPED_TRACE(normals);
+    const std::string flags = " --normals " + normals;
+    const test::CliResult in_core =
+        test::run_pss("project " + file + " -o " + path("core.ply") + flags + " --stats " + path("core.json"));
+    ASSERT_EQ(in_core.exit_code, 0) << in_core.err;
+    const test::CliResult tiled = test::run_pss("project " + file + " -o " + path("tiled.ply") + flags +
+                                                " --memory 7400K --progress always");
+    ASSERT_EQ(tiled.exit_code, 0) << tiled.err;
+    EXPECT_NE(tiled.out.find("; tile by tile: "), std::string::npos) << tiled.out;
+    EXPECT_NE(tiled.out.find(normals == "file" ? "(the file's normals)" : "(estimated normals)"), std::string::npos)
+        << tiled.out;
+    EXPECT_EQ(tiled.err.find("file normals: done") != std::string::npos, normals == "file") << tiled.err;
+    const std::size_t turned = in_core.out.find("turned ");
+    EXPECT_EQ(turned != std::string::npos, normals == "file") << in_core.out;
+    if (turned != std::string::npos)
+      EXPECT_NE(tiled.out.find(in_core.out.substr(turned, in_core.out.find('\n', turned) - turned)), std::string::npos)
+          << tiled.out;
+    EXPECT_TRUE(scratch.empty());
+    const nlohmann::json core_stats = nlohmann::json::parse(read(path("core.json")));
+    const test::PlyColumns core = test::read_ply_columns(path("core.ply")), ply = test::read_ply_columns(path("tiled.ply"));
+    const std::size_t n = core.columns.at("x").size();
+    ASSERT_EQ(ply.columns.at("x").size(), n);
+    const test::ProjectedApart c =
+        test::compare_projected(ply, core, 2 * core_stats["params"]["t_tolerance"].get<double>());
+    EXPECT_EQ(c.apart, 0u) << "points whose projections in core and in tiles lie apart";
+    EXPECT_EQ(c.facing_apart, 0u) << "normals that face otherwise than in core";
+    EXPECT_LE(c.status_differ, n / 200);
+  }
 }
 
 // A disk that fills (a file-size limit) while the tiles are written, or no temporary folder:

@@ -82,10 +82,13 @@ TEST_F(ProjectRanks, ACloudThatFitsInCoreIsSharedInTilesWithTheInCorePoints) {
   EXPECT_LE(apart.status_differ, in_core.columns.at("x").size() / 200);
 }
 
-// A file's normals are not taken tile by tile yet.
+// A cloud sampled in rows (its adaptive widths are not tiled yet) runs in core on rank 0.
 TEST_F(ProjectRanks, WhatTilesDoNotDoRunsInCoreOnRankZero) {
   SKIP_WITHOUT_MPI();
-  const std::string file = write("torus.xyz", test::torus_xyz(20000, false, 1.0));
+  std::string text;  // rows 2 apart, each sampled every 0.1
+  for (int r = 0; r < 50; ++r)
+    for (int s = 0; s < 400; ++s) text += std::to_string(0.1 * s) + " " + std::to_string(2.0 * r) + " 0\n";
+  const std::string file = write("rows.xyz", text);
   ASSERT_EQ(test::run_pss("project " + file + " -o " + path("one.ply") + " --stats " + path("one.json")).exit_code, 0);
   const test::CliResult r = run_ranks(2, "project " + file + " -o " + path("ranks.ply") + " --stats " + path("s.json"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -95,6 +98,20 @@ TEST_F(ProjectRanks, WhatTilesDoNotDoRunsInCoreOnRankZero) {
   EXPECT_EQ(v["points_per_rank"], nlohmann::json::array({20000, 0}));
   EXPECT_EQ(v["threads"], nlohmann::json::parse(read(path("one.json")))["threads"])
       << "rank 0 alone takes all the machine's cores";
+}
+
+// A file's normals, their seams turned over the ranks' tiles: one process's bytes.
+TEST_F(ProjectRanks, AFilesNormalsAreSharedByTheRanks) {
+  SKIP_WITHOUT_MPI();
+  const std::string file = write("torus.xyz", test::torus_xyz(20000, false, 1.0));
+  ASSERT_EQ(test::run_pss("project " + file + " -o " + path("one.ply")).exit_code, 0);
+  const test::CliResult r = run_ranks(2, "project " + file + " -o " + path("ranks.ply") + " --stats " + path("s.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("; tile by tile: "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("(the file's normals)"), std::string::npos) << r.out;
+  EXPECT_EQ(read(path("ranks.ply")), read(path("one.ply")));
+  const nlohmann::json v = nlohmann::json::parse(read(path("s.json")));
+  EXPECT_GT(v["points_per_rank"][1].get<std::uint64_t>(), 0u);
 }
 
 // APSS and RIMLS under mpirun: the samples' normals' steps shared by the ranks too.

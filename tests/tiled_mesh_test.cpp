@@ -115,13 +115,33 @@ TEST_F(TiledMeshTest, ATileNearTheSurfaceWithNoSampleInItsHaloGivesNoPiece) {
   expect_same_mesh(tiled.mesh.mesh, in_core.mesh);
 }
 
-TEST_F(TiledMeshTest, TheFilesNormalsAreNotTakenInTilesYet) {
-  const std::string file = write("torus.xyz", test::torus_xyz(3000, false, 1));
+// A CAD part's exact normals in its file, those beyond x = 0.3 flipped: the seams' turn over
+// the tiles mends them as in core, and the pieces weld, creases across the seams, into the
+// in-core mesh.
+TEST_F(TiledMeshTest, AFilesNormalsMeshInTilesAsInCore) {
+  const PointCloud box = test::sample(test::BoredBox{}, 0.04f);
+  std::string text;
+  char line[200];
+  for (std::size_t i = 0; i < box.positions.size(); ++i) {
+    const vec3 p = box.positions[i], n = p.x > 0.3f ? -box.normals[i] : box.normals[i];
+    std::snprintf(line, sizeof line, "%.9g %.9g %.9g %.9g %.9g %.9g\n", double(p.x), double(p.y), double(p.z),
+                  double(n.x), double(n.y), double(n.z));
+    text += line;
+  }
+  const std::string file = write("box.xyz", text);
   MeshParams params = mesh_params(file, SurfaceOperator::rimls);
   params.projection.normals = NormalSource::file;
   Stats stats;
-  const TiledCloud tiles(file, dir_, 1000, 1 << 16);
-  EXPECT_THROW(mesh_in_tiles(tiles, params, Backend::cpu, dir_, 4096, 1 << 16, stats), NotTiled);
+  const CloudMesh in_core = mesh_cloud(read_point_cloud(file), params, Backend::cpu, stats);
+  ASSERT_EQ(in_core.normals, NormalsUsed::file);
+  EXPECT_GT(in_core.normals_turned, 1000u);
+  test::expect_one_closed_surface(in_core.mesh, 0);
+  const auto [tiled, tiles] = mesh_tiled(file, dir_, params, 1500);
+  EXPECT_GE(tiles, 4);
+  EXPECT_EQ(tiled.mesh.normals, NormalsUsed::file);
+  EXPECT_EQ(tiled.mesh.normals_turned, in_core.normals_turned);
+  expect_same_mesh(tiled.mesh.mesh, in_core.mesh);
+  EXPECT_EQ(tiled.mesh.counts.crease_vertices, in_core.counts.crease_vertices);
 }
 
 }  // namespace

@@ -271,11 +271,99 @@ TEST(PieceSigns, TiesInHeightGoByTheRootsIndex) {
   EXPECT_EQ(alone.turns(), (std::vector<char>{0}));
 }
 
-TEST_F(TiledProjectTest, TilesRefuseWhatTheyDoNotDoYet) {
-  const std::string file = write("normals.xyz", "0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n1 1 0 0 0 1\n");
-  const TiledCloud tiles(file, dir_, 2, 1 << 16);
-  Stats stats;
-  EXPECT_THROW(TiledProjection(tiles, ProjectionParams::from_h(1), Backend::cpu, dir_, 100, 1 << 16, stats), Error);
+// Points with normals as XYZ text: six columns.
+std::string xyz_with_normals(const std::vector<vec3>& points, const std::vector<vec3>& normals) {
+  std::string text;
+  char line[200];
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const vec3 p = points[i], n = normals[i];
+    std::snprintf(line, sizeof line, "%.9g %.9g %.9g %.9g %.9g %.9g\n", double(p.x), double(p.y), double(p.z),
+                  double(n.x), double(n.y), double(n.z));
+    text += line;
+  }
+  return text;
+}
+
+// A file's normals tile by tile, as in core: each tile's own samples' (a merged sample's the
+// mean of its cube's, summed in the cloud's order), checked against their neighbours' planes,
+// their seams turned over the tiles (the torus's far half flipped), then fitted by RIMLS and
+// orienting MLS's projections, strays set aside with a hint from their nearest sample; and a
+// torus noisy enough that its samples merge. The same points and normals, to the last bit.
+TEST_F(TiledProjectTest, AFilesNormalsProjectInTilesAsInCore) {
+  const test::Torus torus;
+  const test::Sphere sphere{vec3(3, 0, 0.5f), 0.5f};
+  // The surfaces' own normals (the strays' random), those beyond x = `flip_beyond` flipped.
+  const auto normals_of = [&](const std::vector<vec3>& points, float flip_beyond, float stray_beyond) {
+    std::vector<vec3> normals;
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> any(-1, 1);
+    for (const vec3& p : points) {
+      vec3 n = std::abs(sphere.distance(p)) < 0.05f ? sphere.normal(p) : torus.normal(p);
+      if (std::abs(sphere.distance(p)) >= stray_beyond && std::abs(torus.distance(p)) >= stray_beyond)
+        n = vec3(any(rng), any(rng), 1);
+      normals.push_back(p.x > flip_beyond ? -n : n);
+    }
+    return normals;
+  };
+  const std::vector<vec3> apart = torus_and_sphere_apart();
+  test::SampleOptions o;
+  o.count = 20000;
+  o.noise = 0.05f;
+  const std::vector<vec3> noisy = test::sample(torus, o).positions;
+  const std::string files[] = {write("apart.xyz", xyz_with_normals(apart, normals_of(apart, 0.3f, 0.05f))),
+                               write("noisy.xyz", xyz_with_normals(noisy, normals_of(noisy, kInfinity, kInfinity)))};
+  for (const std::string& file : files)
+    for (const SurfaceOperator surface : {SurfaceOperator::mls, SurfaceOperator::rimls}) {
+      SCOPED_TRACE(file + " " + std::to_string(int(surface)));
+      const auto [params, in_core] = projected_in_core(file, surface);
+      ASSERT_EQ(in_core.normals, surface == SurfaceOperator::mls ? NormalsUsed::none : NormalsUsed::file);
+      EXPECT_GT(in_core.outliers.set_aside, 0);
+      if (file == files[0]) EXPECT_GT(in_core.normals_turned, 2000u);
+      if (file == files[1]) EXPECT_GT(in_core.widths.merged_count, 10000);
+      Stats stats;
+      const TiledCloud tiles(file, dir_, 2500, 1 << 16);
+      const TiledProjection tiled(tiles, params, Backend::cpu, dir_, 7001, 1 << 16, stats);
+      EXPECT_EQ(tiled.normals_turned(), in_core.normals_turned);
+      EXPECT_EQ(tiled.file_normals_off(), 0u);
+      const Compared c = compare(in_core, file, dir_, params, 2500, 7001);
+      EXPECT_GT(c.tiles, 8u);
+      EXPECT_EQ(c.apart, 0u) << "points projected otherwise than in core, as far as " << c.farthest;
+      EXPECT_EQ(c.status_differ, 0u);
+      EXPECT_EQ(c.facing_apart, 0u) << "normals face otherwise than in core";
+    }
+}
+
+// Normals that do not follow the points (random) are left out in tiles as in core, and
+// estimated; so are all of a file that gives a sample no direction.
+TEST_F(TiledProjectTest, AFilesNormalsLeftOutInCoreAreLeftOutInTiles) {
+  test::SampleOptions o;
+  o.count = 6000;
+  const std::vector<vec3> points = test::sample(test::Sphere{}, o).positions;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> any(-1, 1);
+  std::vector<vec3> random(points.size()), one_zero(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    random[i] = vec3(any(rng), any(rng), any(rng));
+    one_zero[i] = i == 77 ? vec3(0.0f) : points[i];
+  }
+  const std::string files[] = {write("random.xyz", xyz_with_normals(points, random)),
+                               write("zero.xyz", xyz_with_normals(points, one_zero))};
+  for (const std::string& file : files) {
+    SCOPED_TRACE(file);
+    const auto [params, in_core] = projected_in_core(file, SurfaceOperator::rimls);
+    ASSERT_EQ(in_core.normals, NormalsUsed::estimated);
+    Stats stats;
+    const TiledCloud tiles(file, dir_, 700, 1 << 16);
+    const TiledProjection tiled(tiles, params, Backend::cpu, dir_, 7001, 1 << 16, stats);
+    EXPECT_EQ(tiled.file_normals_off(), in_core.file_normals_off);
+    EXPECT_EQ(tiled.normals_without_direction(), file == files[1] ? 1u : 0u);
+    const Compared c = compare(in_core, file, dir_, params, 700, 7001);
+    EXPECT_GT(c.tiles, 6u);
+    EXPECT_EQ(c.apart, 0u);
+    EXPECT_EQ(c.facing_apart, 0u);
+  }
+  const auto [params, in_core] = projected_in_core(files[0], SurfaceOperator::rimls);
+  EXPECT_GT(in_core.file_normals_off, points.size() / 2);
 }
 
 }  // namespace

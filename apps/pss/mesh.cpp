@@ -190,6 +190,9 @@ void mesh_cloud_in_tiles(const MeshOptions& o, const MemoryPlan& plan, Backend b
     stats.values()["points_per_rank"] = result.points_per_rank;
   }
   summarise_cloud_mesh(o, result.mesh, params, shape, stats);
+  print_normals_turned(result.mesh.normals_turned, std::size_t(tiles.size()));
+  print_file_normals_off(result.mesh.file_normals_off, std::size_t(tiles.size()));
+  print_file_normals_left_out(std::size_t(result.normals_without_direction), std::size_t(tiles.size()));
 }
 
 void run_cloud_mesh(const MeshOptions& o, Stats& stats, std::chrono::steady_clock::time_point start) {

@@ -157,7 +157,8 @@ ProjectRun project_in_tiles(const ProjectOptions& o, const MemoryPlan& plan, Bac
     if (stream->read(part, 1) > 0) throw file_error(o.input, "changed while it was read: it has more points than before");
     writer.commit();
   }
-  return {tiles.size(), tiles.origin(), projected.counts(), projected.widths(), projected.normals_used(), 0, 0, 0,
+  return {tiles.size(), tiles.origin(), projected.counts(), projected.widths(), projected.normals_used(),
+          projected.normals_turned(), projected.file_normals_off(), std::size_t(projected.normals_without_direction()),
           projected.outliers().set_aside, "tile by tile: " + tiles_text(tiles), projected.points_per_rank()};
 }
 

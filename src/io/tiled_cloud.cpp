@@ -41,7 +41,7 @@ TiledCloud::TiledCloud(const std::filesystem::path& input, const std::filesystem
   // (in core, one without makes all left out and estimated: sample_normals.hpp).
   glm::dvec3 lo(0.0), hi(0.0);
   BulkSample sample;  // the in-core reader's (cloud.hpp: bulk_origin)
-  bool any_normals = false, directed_normals = true;
+  bool any_normals = false;
   {
     const auto stream = open_point_stream(input);
     // A text file declares no count: its first reading shows none.
@@ -59,13 +59,13 @@ TiledCloud::TiledCloud(const std::filesystem::path& input, const std::filesystem
       }
       any_normals = any_normals || !part.normals.empty();
       colors_ = colors_ || !part.colors.empty();
-      for (const vec3& n : part.normals) directed_normals = directed_normals && is_finite(n) && n != vec3(0.0f);
+      for (const vec3& n : part.normals) normals_without_direction_ += !(is_finite(n) && n != vec3(0.0f));
       part.clear();
     }
   }
   origin_ = bulk_origin(sample, lo, hi);
 
-  normals_ = any_normals && directed_normals;
+  normals_ = any_normals && normals_without_direction_ == 0;
   // Rounding to float keeps order: the box of the rounded positions is the rounded box.
   bounds_.lo = vec3(lo - origin_);
   bounds_.hi = vec3(hi - origin_);

@@ -75,18 +75,6 @@ void check_some_projected(const StatusCounts& c, const ProjectionParams& params)
 
 namespace {
 
-// A point set aside as an outlier is no sample, so the turn of the file's normals
-// (turn_flipped_normals.hpp) did not see it: its own normal, unit length, on the side of the
-// nearest sample's whose support holds it; none where it has no direction.
-vec3 set_aside_hint(const SupportGrid& grid, const FileNormals& file, vec3 position, vec3 normal) {
-  const float length = glm::length(normal);
-  if (!(length > 0) || !std::isfinite(length)) return vec3(0.0f);
-  normal /= length;
-  const int nearest = grid.view().nearest_covering(position);
-  const vec3 beside = nearest < 0 ? vec3(0.0f) : file.sorted[std::size_t(nearest)];
-  return glm::dot(normal, beside) < 0 ? -normal : normal;
-}
-
 // Where samples were merged (merged_samples.hpp), each merged sample's cube holds tens of
 // points within h_i of one another, and each point's ρ_i, as wide as the noise, links it to
 // thousands: the tree over every point took 30 of `pss project`'s 46 s on a 300,000-point
@@ -184,7 +172,8 @@ CloudProjection project_cloud(PointCloud input, const ProjectionParams& params, 
     for (std::size_t k = 0; k < other_count; ++k) {
       const std::size_t i = other_index(k);
       if (!every_point) others.push_back(positions[i]);
-      if (file_hints) other_hints.push_back(set_aside_hint(grid, file, positions[i], input.normals[i]));
+      // A point set aside is no sample, so the turn of the file's normals did not see it.
+      if (file_hints) other_hints.push_back(hint_beside(grid.view(), file.sorted, positions[i], input.normals[i]));
     }
     release(input.normals);  // their hints are taken
     out.cloud.normals.resize(n);

@@ -23,43 +23,67 @@ constexpr float kFollowsCos = 0.70710678f;
 constexpr std::size_t kOffShareDenominator = 3;
 
 // How many of the grid's samples (of those with 3 neighbours or more) have their normal
-// more than 45° off the plane of their neighbours (the outliers' plane: points/outliers.hpp).
+// more than 45° off the plane of their neighbours.
 std::size_t normals_off_the_points(const SupportGrid& grid, std::span<const vec3> normals) {
   const SupportGridView view = grid.view();
   std::atomic<std::size_t> off{0};
   cpu::parallel_for(std::int64_t(normals.size()), [&](std::int64_t k) {
-    const NeighboursPlane plane = neighbours_plane(view, int(k));
-    if (plane.fitted && std::abs(glm::dot(plane.normal, normals[std::size_t(k)])) < kFollowsCos)
-      off.fetch_add(1, std::memory_order_relaxed);
+    if (off_its_neighbours(view, int(k), normals[std::size_t(k)])) off.fetch_add(1, std::memory_order_relaxed);
   });
   return off.load();
 }
 
 }  // namespace
 
+vec3 file_normal_of(const SupportGrid& grid, std::span<const vec3> input_normals, std::size_t k,
+                    std::span<const std::uint64_t> cloud_index) {
+  vec3 n = input_normals[std::size_t(grid.original_index()[k])];
+  const std::span<const int> members = grid.members(k);
+  if (!members.empty()) {  // merged: the mean of its points' normals, each turned to the sample's own side
+    const vec3 own = n;
+    n = vec3(0.0f);
+    // Summed in the cloud's order, whatever the input's (a tile's set: its own points first).
+    thread_local std::vector<std::pair<std::uint64_t, int>> in_order;
+    in_order.clear();
+    for (const int j : members)
+      in_order.push_back({cloud_index.empty() ? std::uint64_t(j) : cloud_index[std::size_t(j)], j});
+    std::sort(in_order.begin(), in_order.end());
+    for (const auto& [index, j] : in_order) {
+      const vec3 m = input_normals[std::size_t(j)];
+      n += glm::dot(m, own) < 0 ? -m : m;
+    }
+  }
+  return has_direction(n) ? n / glm::length(n) : vec3(0.0f);
+}
+
+bool off_its_neighbours(const SupportGridView& view, int k, vec3 normal) {
+  const NeighboursPlane plane = neighbours_plane(view, k);
+  return plane.fitted && std::abs(glm::dot(plane.normal, normal)) < kFollowsCos;
+}
+
+bool too_many_off(std::size_t off, std::size_t samples) { return off * kOffShareDenominator > samples; }
+
+vec3 hint_beside(const SupportGridView& view, std::span<const vec3> sorted_normals, vec3 position, vec3 normal) {
+  const float length = glm::length(normal);
+  if (!(length > 0) || !std::isfinite(length)) return vec3(0.0f);
+  normal /= length;
+  const int nearest = view.nearest_covering(position);
+  const vec3 beside = nearest < 0 ? vec3(0.0f) : sorted_normals[std::size_t(nearest)];
+  return glm::dot(normal, beside) < 0 ? -normal : normal;
+}
+
 FileNormals file_normals(const SupportGrid& grid, std::span<const vec3> input_normals, const ProjectionParams& params,
                          Stats& stats) {
   FileNormals file;
   if (input_normals.empty() || params.normals != NormalSource::file) return file;
-  const std::span<const int> original = grid.original_index();
-  file.sorted.resize(original.size());
-  for (std::size_t i = 0; i < file.sorted.size(); ++i) {
-    vec3 n = input_normals[std::size_t(original[i])];
-    const std::span<const int> members = grid.members(i);
-    if (!members.empty()) {  // merged: the mean of its points' normals, each turned to the sample's own side
-      const vec3 own = n;
-      n = vec3(0.0f);
-      for (const int j : members) {
-        const vec3 m = input_normals[std::size_t(j)];
-        n += glm::dot(m, own) < 0 ? -m : m;
-      }
-    }
-    if (!has_direction(n)) return {};
-    file.sorted[i] = n / glm::length(n);
+  file.sorted.resize(grid.original_index().size());
+  for (std::size_t k = 0; k < file.sorted.size(); ++k) {
+    file.sorted[k] = file_normal_of(grid, input_normals, k, {});
+    if (!has_direction(file.sorted[k])) return {};
   }
   ScopedPhase phase(stats, "check file normals");
   file.off_the_points = normals_off_the_points(grid, file.sorted);
-  if (file.off_the_points * kOffShareDenominator > file.sorted.size()) return {{}, 0, file.off_the_points};
+  if (too_many_off(file.off_the_points, file.sorted.size())) return {{}, 0, file.off_the_points};
   file.off_the_points = 0;
   file.turned = turn_flipped_normals(grid, file.sorted);
   return file;

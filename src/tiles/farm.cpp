@@ -24,6 +24,8 @@ std::vector<std::byte> tile_work(TileStep step, std::span<const std::byte> reque
       return work_mesh(request);
     case TileStep::seam_turn:
       return work_seam_turn(request);
+    case TileStep::file_normals:
+      return work_file_normals(request);
   }
   throw Error("a tile's work names no step");
 }

@@ -8,7 +8,6 @@
 #include "pss/core/progress.hpp"
 #include "pss/mesh/coarsen.hpp"
 #include "pss/mesh/weld.hpp"
-#include "pss/tiles/memory_plan.hpp"
 #include "tile_records.hpp"
 #include "tiled_samples.hpp"
 
@@ -95,14 +94,16 @@ TiledCloudMesh mesh_in_tiles(const TiledCloud& cloud, const MeshParams& params, 
   out.cell = mesh_cell(params);
   if (cloud.size() < 3)
     throw Error("a mesh needs at least 3 points (the cloud has " + std::to_string(cloud.size()) + ")");
-  if (cloud.has_normals() && projection.normals == NormalSource::file)
-    throw NotTiled("tile by tile, pss mesh does not take a file's normals so far (--normals estimate leaves them out)");
-  // Every operator's mesh needs the samples' oriented normals: they say which side is out.
+  // Every operator's mesh needs the samples' oriented normals, the file's or estimated: they
+  // say which side is out.
   TiledSamples samples =
       tiled_samples(cloud, projection, true, backend, window_points, folder, buffer_bytes, stats, farm);
   out.widths = samples.widths;
   out.outliers = samples.outliers;
-  out.normals = NormalsUsed::estimated;
+  out.normals = samples.normals_used;
+  out.normals_turned = samples.normals_turned;
+  out.file_normals_off = samples.file_normals_off;
+  result.normals_without_direction = samples.without_direction;
   const UnitFrame& frame = samples.frame;
   const double cell = double(out.cell) / frame.scale;  // unit
   const float asked = params.cell > 0 ? float(double(params.cell) / frame.scale) : 0.0f;

@@ -27,8 +27,8 @@ std::vector<std::uint64_t> own_samples(const UnitSet& s, const std::vector<char>
   return sample;
 }
 
-// APSS's and RIMLS's projections are one piece, never turned (their normals follow the
-// samples' oriented ones).
+// APSS's and RIMLS's projections, and those the file's normals orient, are one piece, never
+// turned (their normals follow the samples' oriented ones).
 constexpr std::uint32_t kUnturned = 0;
 
 }  // namespace
@@ -38,22 +38,22 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
                                  std::size_t buffer_bytes, Stats& stats, TileFarm& farm)
     : cloud_(cloud), window_points_(std::max<std::size_t>(window_points, 1)) {
   validate(params);
-  // The file's normals orient MLS's and are fitted by APSS and RIMLS, after their flips are
-  // turned over the whole cloud (turn_flipped_normals.hpp); --normals estimate leaves them out,
-  // as in core.
-  if (cloud.has_normals() && params.normals == NormalSource::file)
-    throw NotTiled("tile by tile, pss project does not take a file's normals so far (--normals estimate leaves them "
-                   "out)");
   const std::uint64_t n = cloud.size();
-  // APSS and RIMLS fit the samples' normals, estimated and oriented first, as in core; their
-  // projections' normals follow those, so they need no orientation of their own.
+  // APSS and RIMLS fit the samples' normals, the file's or estimated and oriented first, as in
+  // core; the file's (their seams turned over the tiles) orient MLS's projections too. Then
+  // the projections' normals follow those, and need no orientation of their own.
   const bool fits_normals = params.surface != SurfaceOperator::mls;
   TiledSamples prepared =
       tiled_samples(cloud, params, fits_normals, backend, window_points_, folder, buffer_bytes, stats, farm);
   frame_ = prepared.frame;
   widths_ = prepared.widths;
   outliers_ = prepared.outliers;
-  if (fits_normals) normals_ = NormalsUsed::estimated;
+  if (fits_normals) normals_ = prepared.normals_used;
+  normals_turned_ = prepared.normals_turned;
+  file_normals_off_ = prepared.file_normals_off;
+  without_direction_ = prepared.without_direction;
+  const bool file_hints = prepared.file_hints();
+  const bool follows_samples = fits_normals || file_hints;
   const ProjectionParams& unit_params = prepared.unit_params;
   const float kappa = prepared.kappa;
   std::vector<float>& h = prepared.h;
@@ -68,7 +68,7 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
   // tile for their orientation; APSS's and RIMLS's go to their windows.
   const std::size_t windows = std::size_t((n + window_points_ - 1) / window_points_);
   std::optional<BucketFile> projected;
-  if (fits_normals)
+  if (follows_samples)
     ordered_ = std::make_unique<BucketFile>(folder, int(std::max<std::size_t>(windows, 1)), sizeof(Oriented), buffer_bytes);
   else
     projected.emplace(folder, cloud.tiles(), sizeof(Projected), buffer_bytes);
@@ -81,12 +81,13 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
         TileStep::projection, cloud.tiles_with_points(),
         [&](int t) {
           UnitSet set = sets.load(t);
-          if (fits_normals) set.normals = normals_of_set(samples, sets, t, set);
+          if (follows_samples) set.normals = normals_of_set(samples, sets, t, set);
           ByteWriter notes;  // the own points' indices, unit positions and samples
           notes.put_array(std::span<const std::uint64_t>(set.points.index).first(set.points.own));
           notes.put_array(std::span<const vec3>(set.unit).first(set.points.own));
           notes.put_array(std::span<const std::uint64_t>(own_samples(set, kept)));
-          return TileRequest{projection_request(unit_tile(set), unit_params, backend), notes.take()};
+          const std::span<const vec3> hints = file_hints ? std::span<const vec3>(set.points.normals) : std::span<const vec3>();
+          return TileRequest{projection_request(unit_tile(set), unit_params, backend, hints), notes.take()};
         },
         [&](int t, std::span<const std::byte> result, std::span<const std::byte> notes, int rank) {
           const TileProjections done = projection_result(result);
@@ -102,7 +103,7 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
             if (i >= count) throw Error("a tile's projections do not hold together");
             const ProjectedPoint& p = done.projected[k];
             moved[std::size_t(t)] = std::max(moved[std::size_t(t)], double(glm::length(p.point - unit[i])));
-            if (fits_normals) {
+            if (follows_samples) {
               const Oriented o{index[i], p.point, p.normal, kUnturned, p.status, true};
               ordered_->append(int(index[i] / window_points_), &o);
             } else {
@@ -118,7 +119,7 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
   release(h);
   release(kept);
   release(merge);
-  if (fits_normals) {
+  if (follows_samples) {
     ordered_->flush();
     flip_.assign(kUnturned + 1, 0);
     return;

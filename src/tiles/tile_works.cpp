@@ -66,13 +66,15 @@ namespace {
 
 // The projection of `points` onto the grid's surface, on `backend`.
 std::vector<ProjectedPoint> project_on(const SupportGrid& grid, std::span<const vec3> points,
-                                       const ProjectionParams& params, Backend backend) {
+                                       std::span<const vec3> hints, const ProjectionParams& params, Backend backend) {
   const GridMirror g(backend, grid);
   const Mirror<vec3> at(backend, points);
+  const Mirror<vec3> hint(backend, hints);
   Mirror<ProjectedPoint> out(backend, points.size());
   Stats stats;  // the caller times and shows the step whole
   parallel_for(backend, "projection", std::int64_t(points.size()),
-               ProjectPointsKernel{g.view(), at.data(), nullptr, out.data(), params}, stats, nullptr, false);
+               ProjectPointsKernel{g.view(), at.data(), hints.empty() ? nullptr : hint.data(), out.data(), params},
+               stats, nullptr, false);
   return out.take();
 }
 
@@ -120,12 +122,13 @@ TileOutliers outliers_result(std::span<const std::byte> result) {
   return o;
 }
 
-std::vector<std::byte> projection_request(const UnitTile& tile, const ProjectionParams& unit_params,
-                                          Backend backend) {
+std::vector<std::byte> projection_request(const UnitTile& tile, const ProjectionParams& unit_params, Backend backend,
+                                          std::span<const vec3> file_normals) {
   ByteWriter out;
   put_tile(out, tile);
   out.put(unit_params);
   out.put(backend);
+  out.put_array(file_normals);
   return out.take();
 }
 
@@ -135,8 +138,11 @@ std::vector<std::byte> work_projection(std::span<const std::byte> request) {
   const TileArrays t = get_tile(in);
   const auto params = in.get<ProjectionParams>();
   const auto backend = in.get<Backend>();
+  const std::vector<vec3> file_normals = in.get_array<vec3>();
   if (params.surface != SurfaceOperator::mls && t.normals.empty())
     throw Error("a tile's work does not hold together: APSS and RIMLS need the samples' normals");
+  if (!file_normals.empty() && (file_normals.size() != t.unit.size() || t.normals.empty()))
+    throw Error("a tile's work does not hold together: the file's normals need the samples' turned ones");
   const SupportGrid grid = grid_of_tile(t);
   // The own points in the grid's order, then the rest (set aside, or merged into samples) in
   // its cells' order: neighbouring threads gather neighbouring samples, as in core (a file's
@@ -151,7 +157,16 @@ std::vector<std::byte> work_projection(std::span<const std::byte> request) {
     }
   for (const int i : grid.cell_order(std::span<const vec3>(t.unit).first(t.own)))
     if (!placed[std::size_t(i)]) order.push_back(i);
-  const std::vector<ProjectedPoint> done = project_on(grid, gathered<vec3>(t.unit, order), params, backend);
+  // The file's normals orient the projections, as in core (project_cloud.cpp): a sample's
+  // turned one, and every other point's own on the side of its nearest sample's (where
+  // samples were merged, every point's).
+  std::vector<vec3> hints;
+  for (std::size_t k = 0; k < order.size() && !file_normals.empty(); ++k) {
+    const auto i = std::size_t(order[k]);
+    hints.push_back(placed[i] && t.into.empty() ? t.normals[i]
+                                                : hint_beside(grid.view(), grid.normals(), t.unit[i], file_normals[i]));
+  }
+  const std::vector<ProjectedPoint> done = project_on(grid, gathered<vec3>(t.unit, order), hints, params, backend);
   std::vector<vec3> point(done.size()), normal(done.size());
   std::vector<ProjectionStatus> status(done.size());
   for (std::size_t k = 0; k < done.size(); ++k) {
@@ -180,9 +195,58 @@ TileProjections projection_result(std::span<const std::byte> result) {
   return p;
 }
 
+std::vector<std::byte> file_normals_request(const UnitTile& tile, std::span<const vec3> file_normals,
+                                            std::span<const std::uint64_t> cloud_index) {
+  ByteWriter out;
+  put_tile(out, tile);
+  out.put_array(file_normals);
+  out.put_array(cloud_index);
+  return out.take();
+}
+
+std::vector<std::byte> work_file_normals(std::span<const std::byte> request) {
+  ByteReader in(request);
+  const TileArrays t = get_tile(in);
+  const std::vector<vec3> file_normals = in.get_array<vec3>();
+  const std::vector<std::uint64_t> cloud_index = in.get_array<std::uint64_t>();
+  if (file_normals.size() != t.unit.size() || cloud_index.size() != t.unit.size())
+    throw Error("a tile's work does not hold together: a file normal and an index a point of the set");
+  const SupportGrid grid = grid_of_tile(t);
+  const std::span<const int> original = grid.original_index();
+  std::vector<int> sorted;  // the own samples' places in the grid
+  for (std::size_t k = 0; k < original.size(); ++k)
+    if (std::size_t(original[k]) < t.own) sorted.push_back(int(k));
+  std::vector<int> sample(sorted.size());
+  std::vector<vec3> normal(sorted.size());
+  std::vector<char> off(sorted.size());
+  cpu::parallel_for(std::int64_t(sorted.size()), [&](std::int64_t m) {
+    const auto k = std::size_t(sorted[std::size_t(m)]);
+    sample[std::size_t(m)] = original[k];
+    normal[std::size_t(m)] = file_normal_of(grid, file_normals, k, cloud_index);
+    off[std::size_t(m)] = off_its_neighbours(grid.view(), int(k), normal[std::size_t(m)]);
+  });
+  ByteWriter result;
+  result.put_array<int>(sample);
+  result.put_array<vec3>(normal);
+  result.put_array<char>(off);
+  return result.take();
+}
+
+TileFileNormals file_normals_result(std::span<const std::byte> result) {
+  ByteReader in(result);
+  TileFileNormals f{in.get_array<int>(), in.get_array<vec3>(), in.get_array<char>()};
+  if (f.normal.size() != f.sample.size() || f.off.size() != f.sample.size())
+    throw Error("a tile's file normals do not hold together");
+  return f;
+}
+
 std::vector<std::byte> sample_normals_request(const UnitTile& tile, const ProjectionParams& unit_params,
                                               Backend backend) {
-  return projection_request(tile, sample_plane_params(unit_params), backend);
+  ByteWriter out;
+  put_tile(out, tile);
+  out.put(sample_plane_params(unit_params));
+  out.put(backend);
+  return out.take();
 }
 
 // At the samples' places in the grid (a merged one at its cube's mean), in its order.
@@ -200,7 +264,7 @@ std::vector<std::byte> work_sample_normals(std::span<const std::byte> request) {
       sample.push_back(original[k]);
     }
   const std::vector<ProjectedPoint> done =
-      project_on(grid, gathered<vec3>(grid.sorted_points(), sorted), params, backend);
+      project_on(grid, gathered<vec3>(grid.sorted_points(), sorted), {}, params, backend);
   std::vector<vec3> normal(done.size());
   std::vector<ProjectionStatus> status(done.size());
   for (std::size_t k = 0; k < done.size(); ++k) {

@@ -52,9 +52,11 @@ struct TileOutliers {
 };
 TileOutliers outliers_result(std::span<const std::byte> result);
 
-// The projection of each own point (at `unit`) of the tile onto the MLS surface of its samples.
-std::vector<std::byte> projection_request(const UnitTile& tile, const ProjectionParams& unit_params,
-                                          Backend backend);
+// The projection of each own point (at `unit`) of the tile onto the surface of its samples;
+// where the file's normals orient it (`file_normals`: each point's in the set, the samples'
+// turned ones in `tile.normals`), with their hints, as in core.
+std::vector<std::byte> projection_request(const UnitTile& tile, const ProjectionParams& unit_params, Backend backend,
+                                          std::span<const vec3> file_normals = {});
 std::vector<std::byte> work_projection(std::span<const std::byte> request);
 struct TileProjections {
   std::vector<int> order;  // the own points in the grid's order, as they were projected
@@ -73,6 +75,19 @@ struct TileSampleNormals {
   std::vector<ProjectionStatus> status;  // whether its plane was fitted
 };
 TileSampleNormals sample_normals_result(std::span<const std::byte> result);
+
+// The file's normal of each own sample of the tile, as in core (points/sample_normals.hpp:
+// file_normal_of, off_its_neighbours), from `file_normals` and `cloud_index`, each point's in
+// the set.
+std::vector<std::byte> file_normals_request(const UnitTile& tile, std::span<const vec3> file_normals,
+                                            std::span<const std::uint64_t> cloud_index);
+std::vector<std::byte> work_file_normals(std::span<const std::byte> request);
+struct TileFileNormals {
+  std::vector<int> sample;   // each own sample's place in the set
+  std::vector<vec3> normal;  // unit length, or zero where it has no direction
+  std::vector<char> off;     // more than 45° off its neighbours' plane
+};
+TileFileNormals file_normals_result(std::span<const std::byte> result);
 
 // The orientation of a tile's projected points and its halo's (points/orient_normals.hpp:
 // orient_normals_in_parts), in the unit frame. Where samples were merged, `sample` holds, for

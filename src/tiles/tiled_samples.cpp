@@ -286,12 +286,24 @@ TiledSamples tiled_samples(const TiledCloud& cloud, const ProjectionParams& para
     ScopedPhase phase(stats, "outliers", false);  // its Progress shows it
     s.kept = samples_kept(cloud, s.frame, s.h, s.merge, s.kappa, s.halo, farm, s.outliers, s.layout);
   }
-  if (with_normals) {
+  if (params.normals == NormalSource::file) s.without_direction = cloud.normals_without_direction();
+  if (cloud.has_normals() && params.normals == NormalSource::file) {
+    ScopedPhase phase(stats, "file normals", false);  // its Progress shows it
+    FileNormalsInTiles file = file_normals_in_tiles(s.sets(cloud), folder, buffer_bytes, farm);
+    s.normals_turned = file.turned;
+    s.file_normals_off = file.off_the_points;
+    if (file.normals.by_tile) {
+      s.normals = std::move(file.normals);
+      s.normals_used = NormalsUsed::file;
+    }
+  }
+  if (with_normals && !s.file_hints()) {
     ScopedPhase phase(stats, "sample normals", false);  // its Progress shows it
     s.normals = sample_normals_in_tiles(s.sets(cloud), s.kappa, s.unit_params, backend, window_points, folder,
                                         buffer_bytes, farm);
     s.normals.ordered.reset();  // its votes are counted
     turn_seams_in_tiles(s.sets(cloud), s.normals, farm);  // where the tree crossed a fold, as in core
+    s.normals_used = NormalsUsed::estimated;
   }
   return s;
 }

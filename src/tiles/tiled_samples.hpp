@@ -15,6 +15,7 @@
 #include "pss/io/tiled_cloud.hpp"
 #include "pss/points/outliers.hpp"
 #include "pss/points/project_cloud.hpp"
+#include "pss/points/sample_normals.hpp"
 #include "pss/points/projection.hpp"
 #include "pss/points/support.hpp"
 #include "pss/points/unit_frame.hpp"
@@ -66,6 +67,16 @@ std::vector<vec3> normals_of_set(const OrientedInTiles& samples, const UnitSets&
 // (points/seam_turn.hpp): sets samples.seam; how many normals it turned.
 std::size_t turn_seams_in_tiles(const UnitSets& sets, OrientedInTiles& samples, TileFarm& farm);
 
+// The file's normals of the samples over the tiles, as in core (points/sample_normals.hpp:
+// file_normals), their seams turned; `normals` empty where they are left out.
+struct FileNormalsInTiles {
+  OrientedInTiles normals;  // by tile, one piece that does not turn
+  std::size_t off_the_points = 0;       // where they were left out for that: how many samples' were off
+  std::size_t turned = 0;
+};
+FileNormalsInTiles file_normals_in_tiles(const UnitSets& sets, const std::filesystem::path& folder,
+                                         std::size_t buffer_bytes, TileFarm& farm);
+
 struct TiledSamples {
   UnitFrame frame;
   ProjectionParams unit_params;  // the projection's, in the unit frame
@@ -78,14 +89,20 @@ struct TiledSamples {
   double halo = 0;               // unit: a halo that holds every sample within reach, merged ones whole
   SupportWidths widths;          // least, median, largest (h is above)
   OutlierReport outliers;
-  OrientedInTiles normals;       // the samples' oriented normals, by tile, where asked for
+  OrientedInTiles normals;       // the samples' oriented normals, by tile, where asked for or in the file
+  NormalsUsed normals_used = NormalsUsed::none;  // whose those are
+  std::size_t normals_turned = 0;                // the file's, contradicting the points
+  std::size_t file_normals_off = 0;              // where the file's were left out for not following the points
+  std::uint64_t without_direction = 0;           // points whose file normal has none
+  bool file_hints() const { return normals_used == NormalsUsed::file; }
   UnitSets sets(const TiledCloud& cloud) const {
     return {cloud, frame, h, kept, merge, reach, halo, layout};
   }
 };
 
 // The steps above over `cloud`'s tiles for `params` (in the data's units), the samples'
-// normals where `with_normals`. Throws Error as project_cloud does.
+// normals where the file has them (and params.normals takes them) or `with_normals` (then
+// estimated where the file's are left out). Throws Error as project_cloud does.
 TiledSamples tiled_samples(const TiledCloud& cloud, const ProjectionParams& params, bool with_normals,
                            Backend backend, std::size_t window_points, const std::filesystem::path& folder,
                            std::size_t buffer_bytes, Stats& stats, TileFarm& farm);

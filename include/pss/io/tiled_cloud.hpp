@@ -45,7 +45,10 @@ class TiledCloud {
   const Aabb& bounds() const { return bounds_; }  // of the positions about the origin
   // The in-core cloud's unit frame (points/unit_frame.hpp), from the same sample.
   UnitFrame unit_frame() const;
-  bool has_normals() const { return normals_; }
+  bool has_normals() const { return normals_; }  // the file's, every one with a direction
+  // The file's normals that have none (zero, not finite): where any do, has_normals is false
+  // (in core, one makes all left out and estimated: points/sample_normals.hpp).
+  std::uint64_t normals_without_direction() const { return normals_without_direction_; }
   bool has_colors() const { return colors_; }  // the file's (a tile does not carry them)
   int tiles() const { return int(counts_.x) * counts_.y * counts_.z; }
   std::uint64_t tile_size(int tile) const { return store_->records(tile); }
@@ -71,6 +74,7 @@ class TiledCloud {
   Aabb bounds_;
   glm::dvec3 bulk_centre_{0.0};  // the unit frame's centre, about the origin
   bool normals_ = false;
+  std::uint64_t normals_without_direction_ = 0;
   bool colors_ = false;
   float side_ = 1;
   ivec3 counts_{1};

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -39,6 +40,24 @@ struct FileNormals {
 };
 FileNormals file_normals(const SupportGrid& grid, std::span<const vec3> input_normals, const ProjectionParams& params,
                          Stats& stats);
+
+// The steps of file_normals, for tiles (src/tiles/file_normals_in_tiles.cpp) as for core:
+// sorted sample k's file normal, unit length (a merged sample's the mean of its points',
+// each turned to the sample's own side, summed in the cloud's order: `cloud_index` of each
+// input point, or empty where the input is in it), or zero where it has no direction;
+vec3 file_normal_of(const SupportGrid& grid, std::span<const vec3> input_normals, std::size_t k,
+                    std::span<const std::uint64_t> cloud_index);
+// whether it lies more than 45° off the plane of its neighbours (the outliers' plane:
+// points/outliers.hpp), where they fit one;
+bool off_its_neighbours(const SupportGridView& view, int k, vec3 normal);
+// whether `off` of `samples` so off leave the file's normals out.
+bool too_many_off(std::size_t off, std::size_t samples);
+
+// The file's normal of a point that is no sample of its own (set aside, or merged into one),
+// a hint of which side its projection faces: its own, unit length, on the side of the nearest
+// sample's whose support holds it (`sorted_normals`, the grid's samples' file normals); zero
+// where it has no direction.
+vec3 hint_beside(const SupportGridView& view, std::span<const vec3> sorted_normals, vec3 position, vec3 normal);
 
 // The projection that estimates a sample's normal: its WLS plane's (Eq. 1) at the sample,
 // wherever the sample lies (no border).

@@ -19,7 +19,8 @@ enum class TileStep : int {
   widths = 5,
   sample_normals = 6,
   mesh = 7,
-  seam_turn = 8
+  seam_turn = 8,
+  file_normals = 9
 };
 
 // The result's bytes of a tile's work. Throws Error where the request does not hold together.
