@@ -73,15 +73,28 @@ TEST_F(TileFarmTest, TilesWorkedElsewhereInAnotherOrderGiveTheSameBitsAndCountEa
   EXPECT_EQ(farmed.points_per_rank(), per_rank);
 }
 
+// Four samples 0.01 apart, each 0.01 wide, two of them the tile's own, and their layout.
+struct FourSamples {
+  explicit FourSamples(float lift) : unit{{0, 0, 0}, {0.01f, 0, 0}, {0, 0.01f, 0}, {0.01f, 0.01f, lift}} {
+    SupportTally tally;
+    tally.least = 0.01f;
+    for (const vec3& p : unit) tally.add(p, 0.01f);
+    layout = support_layout(tally, 2);
+  }
+  UnitTile tile(std::span<const vec3> normals = {}) const { return {unit, h, samples, 2, {}, {}, normals, &layout}; }
+  std::vector<vec3> unit;
+  std::vector<float> h = std::vector<float>(4, 0.01f);
+  std::vector<int> samples = {0, 1, 2, 3};
+  SupportLayout layout;
+};
+
 TEST(TileWork, ARequestCutShortOrOfNoStepIsAnError) {
-  const std::vector<vec3> unit = {{0, 0, 0}, {0.01f, 0, 0}, {0, 0.01f, 0}, {0.01f, 0.01f, 0.001f}};
-  const std::vector<float> h(unit.size(), 0.01f);
-  const std::vector<int> samples = {0, 1, 2, 3};
-  SupportTally tally;
-  tally.least = 0.01f;
-  for (const vec3& p : unit) tally.add(p, 0.01f);
-  const SupportLayout layout = support_layout(tally, 2);
-  const UnitTile tile{unit, h, samples, 2, {}, {}, {}, &layout};
+  const FourSamples four(0.001f);
+  const std::vector<vec3>& unit = four.unit;
+  const std::vector<float>& h = four.h;
+  const std::vector<int>& samples = four.samples;
+  const SupportLayout& layout = four.layout;
+  const UnitTile tile = four.tile();
   EXPECT_THROW(outliers_request(UnitTile{unit, h, samples, 2}), Error) << "no layout";
   const std::vector<std::byte> outliers = outliers_request(tile);
   const std::vector<std::byte> projection = projection_request(tile, ProjectionParams::from_h(0.01f), Backend::cpu);
@@ -109,9 +122,16 @@ TEST(TileWork, ARequestCutShortOrOfNoStepIsAnError) {
   EXPECT_EQ(w.h.size(), 2u);
   EXPECT_THROW(tile_work(TileStep::spacing, spacing_request({unit, id, {}, 2, 8, 1.0}, 1)), Error)
       << "an index past the cloud's size";
+  // The file's normals: each own sample's, and a point's whose set lacks its index refused.
+  const std::vector<vec3> up(unit.size(), vec3(0, 0, 1));
+  const std::vector<std::byte> file_normals = file_normals_request(tile, up, id);
+  const TileFileNormals f = file_normals_result(tile_work(TileStep::file_normals, file_normals));
+  EXPECT_EQ(f.sample, (std::vector<int>{0, 1}));
+  EXPECT_EQ(f.normal, (std::vector<vec3>(2, vec3(0, 0, 1))));
+  EXPECT_THROW(tile_work(TileStep::file_normals, file_normals_request(tile, up, {})), Error);
   const std::pair<TileStep, const std::vector<std::byte>*> requests[] = {
       {TileStep::outliers, &outliers},       {TileStep::projection, &projection}, {TileStep::orientation, &orientation},
-      {TileStep::spacing, &spacing},         {TileStep::widths, &widths}};
+      {TileStep::spacing, &spacing},         {TileStep::widths, &widths},         {TileStep::file_normals, &file_normals}};
   for (const auto& [step, request] : requests)
     for (const std::size_t cut : {std::size_t(0), std::size_t(3), request->size() / 2, request->size() - 1}) {
       const std::span<const std::byte> part(request->data(), cut);
@@ -134,15 +154,9 @@ TEST(TileWork, ARequestCutShortOrOfNoStepIsAnError) {
 // its patches or their settling for each point of the set; a step past the three, a request
 // cut short and a result whose arrays disagree are errors.
 TEST(TileWork, TheSeamsTurnsStepsNeedTheirArrays) {
-  const std::vector<vec3> unit = {{0, 0, 0}, {0.01f, 0, 0}, {0, 0.01f, 0}, {0.01f, 0.01f, 0}};
-  const std::vector<float> h(unit.size(), 0.01f);
-  const std::vector<int> samples = {0, 1, 2, 3};
-  SupportTally tally;
-  tally.least = 0.01f;
-  for (const vec3& p : unit) tally.add(p, 0.01f);
-  const SupportLayout layout = support_layout(tally, 2);
+  const FourSamples four(0.0f);
   const std::vector<vec3> normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, -1}, {0, 0, -1}};
-  const UnitTile tile{unit, h, samples, 2, {}, {}, normals, &layout};
+  const UnitTile tile = four.tile(normals);
   const std::vector<std::uint32_t> patch = {0, 0, 1, 1};
   const std::vector<char> settled = {0, 1, 1, 1};
   const TileSeamTurn joins =
@@ -156,8 +170,7 @@ TEST(TileWork, TheSeamsTurnsStepsNeedTheirArrays) {
   const TileSeamTurn says = seam_turn_result(
       tile_work(TileStep::seam_turn, seam_turn_request(tile, SeamStep::stragglers, {}, settled)), SeamStep::stragglers);
   EXPECT_EQ(says.straggler, std::vector<int>{0}) << "own sample 1 is settled";
-  const UnitTile without_normals{unit, h, samples, 2, {}, {}, {}, &layout};
-  EXPECT_THROW(tile_work(TileStep::seam_turn, seam_turn_request(without_normals, SeamStep::joins)), Error);
+  EXPECT_THROW(tile_work(TileStep::seam_turn, seam_turn_request(four.tile(), SeamStep::joins)), Error);
   EXPECT_THROW(tile_work(TileStep::seam_turn, seam_turn_request(tile, SeamStep::evidence)), Error) << "no patches";
   EXPECT_THROW(tile_work(TileStep::seam_turn, seam_turn_request(tile, SeamStep::stragglers)), Error) << "no settling";
   EXPECT_THROW(tile_work(TileStep::seam_turn, seam_turn_request(tile, SeamStep(3))), Error);
