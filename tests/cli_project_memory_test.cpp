@@ -13,8 +13,10 @@
 #include <fstream>
 #include <iterator>
 #include <memory>
+#include <random>
 #include <sstream>
 #include <string>
+#include <tuple>
 
 #include <nlohmann/json.hpp>
 
@@ -186,6 +188,38 @@ TEST_F(ProjectMemory, ACloudWithNormalsIsTiledAsInCore) {
     EXPECT_EQ(c.apart, 0u) << "points whose projections in core and in tiles lie apart";
     EXPECT_EQ(c.facing_apart, 0u) << "normals that face otherwise than in core";
     EXPECT_LE(c.status_differ, n / 200);
+  }
+}
+
+// Normals that do not follow the points (random) are left out tile by tile as in core, and
+// the summary says so in the same line; so is a file with a normal of no direction.
+TEST_F(ProjectMemory, AFilesNormalsLeftOutAreSaidSoTileByTile) {
+  std::istringstream torus(test::torus_xyz(50000, false, 0));
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> any(-1, 1);
+  std::string random_text, zero_text;
+  int k = 0;
+  for (std::string line; std::getline(torus, line); ++k) {
+    random_text += line + " " + std::to_string(any(rng)) + " " + std::to_string(any(rng)) + " " +
+                   std::to_string(any(rng)) + "\n";
+    zero_text += line + (k == 77 ? " 0 0 0\n" : " 0 0 1\n");
+  }
+  for (const auto& [name, text, said] :
+       {std::tuple<std::string, std::string, std::string>{"random.xyz", random_text, "lie more than 45 degrees off"},
+        {"zero.xyz", zero_text, "1 of 50000 have no direction"}}) {
+    SCOPED_TRACE(name);
+    const std::string file = write(name, text);
+    const test::CliResult in_core = test::run_pss("project " + file + " -o " + path("core.ply"));
+    const test::CliResult tiled = test::run_pss("project " + file + " -o " + path("tiled.ply") + " --memory 7400K");
+    ASSERT_EQ(in_core.exit_code, 0) << in_core.err;
+    ASSERT_EQ(tiled.exit_code, 0) << tiled.err;
+    EXPECT_NE(tiled.out.find("; tile by tile: "), std::string::npos) << tiled.out;
+    const std::size_t at = in_core.out.find("left out the file's normals");
+    ASSERT_NE(at, std::string::npos) << in_core.out;
+    const std::string line = in_core.out.substr(at, in_core.out.find('\n', at) - at);
+    EXPECT_NE(line.find(said), std::string::npos) << line;
+    EXPECT_NE(tiled.out.find(line), std::string::npos) << tiled.out;
+    EXPECT_NE(tiled.out.find("(estimated normals)"), std::string::npos) << tiled.out;
   }
 }
 
