@@ -35,7 +35,8 @@ def projected_normals(ply):
         while (line := f.readline().strip()) != b'end_header':
             w = line.split()
             if w[:2] == [b'element', b'vertex']: count = int(w[2])
-            if w[0] == b'property': names.append((w[2].decode(), {b'float': '<f4', b'double': '<f8', b'int': '<i4'}[w[1]]))
+            types = {b'float': '<f4', b'double': '<f8', b'int': '<i4'}
+            if w[0] == b'property': names.append((w[2].decode(), types[w[1]]))
         rows = np.frombuffer(f.read(count * np.dtype(names).itemsize), np.dtype(names))
     return np.stack([rows['nx'], rows['ny'], rows['nz']], 1).astype(float)
 
@@ -43,7 +44,8 @@ def projected_normals(ply):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument('meshes', nargs='+'); ap.add_argument('--pss', required=True)
-    ap.add_argument('--noise', type=float, nargs='+', default=[0, 0.5, 1, 2]); ap.add_argument('--seed', type=int, default=3)
+    ap.add_argument('--noise', type=float, nargs='+', default=[0, 0.5, 1, 2])
+    ap.add_argument('--seed', type=int, default=3)
     ap.add_argument('--json')
     a = ap.parse_args()
     rng = np.random.default_rng(a.seed)
@@ -62,7 +64,8 @@ def main():
                     given = np.where((v[:, 0] > np.median(v[:, 0]))[:, None] & flipped, -n, n)
                     cloud, out, stats = (os.path.join(tmp, x) for x in ('c.xyz', 'o.ply', 's.json'))
                     np.savetxt(cloud, np.hstack([moved, given]), fmt='%.7g')
-                    subprocess.run([a.pss, 'project', cloud, '-o', out, '--stats', stats], check=True, capture_output=True)
+                    subprocess.run([a.pss, 'project', cloud, '-o', out, '--stats', stats], check=True,
+                                   capture_output=True)
                     turned = json.load(open(stats))['normals_turned']
                     against = float(((projected_normals(out) * n).sum(1) < 0).mean() * 100)
                     rows.append({'mesh': os.path.basename(mesh), 'noise_spacings': noise, 'flipped_half': flipped,

@@ -180,7 +180,8 @@ TEST_F(ProjectMemory, ACloudWithNormalsIsTiledAsInCore) {
           << tiled.out;
     EXPECT_TRUE(scratch.empty());
     const nlohmann::json core_stats = nlohmann::json::parse(read(path("core.json")));
-    const test::PlyColumns core = test::read_ply_columns(path("core.ply")), ply = test::read_ply_columns(path("tiled.ply"));
+    const test::PlyColumns core = test::read_ply_columns(path("core.ply"));
+    const test::PlyColumns ply = test::read_ply_columns(path("tiled.ply"));
     const std::size_t n = core.columns.at("x").size();
     ASSERT_EQ(ply.columns.at("x").size(), n);
     const test::ProjectedApart c =

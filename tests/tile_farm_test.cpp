@@ -130,8 +130,8 @@ TEST(TileWork, ARequestCutShortOrOfNoStepIsAnError) {
   EXPECT_EQ(f.normal, (std::vector<vec3>(2, vec3(0, 0, 1))));
   EXPECT_THROW(tile_work(TileStep::file_normals, file_normals_request(tile, up, {})), Error);
   const std::pair<TileStep, const std::vector<std::byte>*> requests[] = {
-      {TileStep::outliers, &outliers},       {TileStep::projection, &projection}, {TileStep::orientation, &orientation},
-      {TileStep::spacing, &spacing},         {TileStep::widths, &widths},         {TileStep::file_normals, &file_normals}};
+      {TileStep::outliers, &outliers}, {TileStep::projection, &projection}, {TileStep::orientation, &orientation},
+      {TileStep::spacing, &spacing},   {TileStep::widths, &widths},         {TileStep::file_normals, &file_normals}};
   for (const auto& [step, request] : requests)
     for (const std::size_t cut : {std::size_t(0), std::size_t(3), request->size() / 2, request->size() - 1}) {
       const std::span<const std::byte> part(request->data(), cut);

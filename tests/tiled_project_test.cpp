@@ -215,7 +215,8 @@ TEST_F(TiledProjectTest, TheSeamsTurnMendsARealScanInTilesAsInCore) {
   ASSERT_EQ(scan.normals.size(), in_core.cloud.size());
   const auto against_the_scan = [&](std::size_t i, vec3 n) { return glm::dot(scan.normals[i], glm::dvec3(n)) < 0; };
   std::size_t in_core_against = 0;
-  for (std::size_t i = 0; i < scan.normals.size(); ++i) in_core_against += against_the_scan(i, in_core.cloud.normals[i]);
+  for (std::size_t i = 0; i < scan.normals.size(); ++i)
+    in_core_against += against_the_scan(i, in_core.cloud.normals[i]);
   Stats stats;
   const TiledCloud tiles(dragon, dir_, 3000, 1 << 16);
   ASSERT_GT(tiles.tiles(), 6);

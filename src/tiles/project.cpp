@@ -86,7 +86,8 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
           notes.put_array(std::span<const std::uint64_t>(set.points.index).first(set.points.own));
           notes.put_array(std::span<const vec3>(set.unit).first(set.points.own));
           notes.put_array(std::span<const std::uint64_t>(own_samples(set, kept)));
-          const std::span<const vec3> hints = file_hints ? std::span<const vec3>(set.points.normals) : std::span<const vec3>();
+          const std::span<const vec3> hints =
+              file_hints ? std::span<const vec3>(set.points.normals) : std::span<const vec3>();
           return TileRequest{projection_request(unit_tile(set), unit_params, backend, hints), notes.take()};
         },
         [&](int t, std::span<const std::byte> result, std::span<const std::byte> notes, int rank) {

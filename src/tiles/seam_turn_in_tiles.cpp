@@ -104,9 +104,11 @@ std::size_t turn_seams_in_tiles(const UnitSets& sets, OrientedInTiles& samples, 
     return index[std::size_t(i)];
   };
   const auto nothing = [](const std::vector<std::uint64_t>&, std::vector<std::uint32_t>&, std::vector<char>&) {};
-  pass("seams' patches", SeamStep::joins, nothing, [&](const TileSeamTurn& done, const std::vector<std::uint64_t>& index) {
-    for (std::size_t k = 0; k < done.joined.size(); ++k) patch.join(in_set(index, done.joined[k]), in_set(index, done.root[k]));
-  });
+  pass("seams' patches", SeamStep::joins, nothing,
+       [&](const TileSeamTurn& done, const std::vector<std::uint64_t>& index) {
+         for (std::size_t k = 0; k < done.joined.size(); ++k)
+           patch.join(in_set(index, done.joined[k]), in_set(index, done.root[k]));
+       });
   const std::size_t patches = patch.number();
   // As in core: normals so scattered that they form no patches of a few samples weigh nothing.
   if (patches > sample_count / kFewestPerPatch) return 0;
@@ -120,7 +122,8 @@ std::size_t turn_seams_in_tiles(const UnitSets& sets, OrientedInTiles& samples, 
       },
       [&](const TileSeamTurn& done, const std::vector<std::uint64_t>&) {
         for (const auto& [key, e] : done.evidence) {
-          if (std::max(key >> 32, key & 0xffffffffu) >= patches) throw Error("a tile's seams' turn does not hold together");
+          if (std::max(key >> 32, key & 0xffffffffu) >= patches)
+            throw Error("a tile's seams' turn does not hold together");
           between[key].flip += e.flip;
           between[key].keep += e.keep;
         }
@@ -149,7 +152,8 @@ std::size_t turn_seams_in_tiles(const UnitSets& sets, OrientedInTiles& samples, 
     pass(
         "seams' stragglers", SeamStep::stragglers,
         [&](const std::vector<std::uint64_t>& index, std::vector<std::uint32_t>&, std::vector<char>& settled) {
-          for (const std::uint64_t i : index) settled.push_back(patch[i] != kNoPatch && patch_size[patch[i]] >= kFewestPerPatch);
+          for (const std::uint64_t i : index)
+            settled.push_back(patch[i] != kNoPatch && patch_size[patch[i]] >= kFewestPerPatch);
         },
         [&](const TileSeamTurn& done, const std::vector<std::uint64_t>& index) {
           for (std::size_t k = 0; k < done.straggler.size(); ++k) {
