@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numeric>
 
+#include <omp.h>
+
 #include "pss/fit/weights.hpp"
 
 namespace pss {
@@ -158,6 +160,26 @@ void add_evidence(const SupportGridView& view, std::span<const vec3> normals, st
   }
 }
 
+void add_to(PatchEvidence& into, const PatchEvidence& from) {
+  for (const auto& [key, e] : from) {
+    into[key].flip += e.flip;
+    into[key].keep += e.keep;
+  }
+}
+
+EvidenceTallies::EvidenceTallies() : tallies_(std::size_t(std::max(1, omp_get_max_threads()))) {}
+
+void EvidenceTallies::add(const SupportGridView& view, std::span<const vec3> normals,
+                          std::span<const std::uint32_t> patch, int i) {
+  add_evidence(view, normals, patch, i, tallies_[std::size_t(omp_get_thread_num())]);
+}
+
+PatchEvidence EvidenceTallies::sum() const {
+  PatchEvidence between;
+  for (const PatchEvidence& tally : tallies_) add_to(between, tally);
+  return between;
+}
+
 // A straggler is such as a sample on a crease whose normal lies between its faces' (a CAD
 // file's): it agrees with no neighbour within 45°, and its pairs with them are neither side by
 // side nor plainly one behind the other's face, so they weigh nothing or mislead (cube.pwn:
@@ -203,13 +225,12 @@ PatchGroups::PatchGroups(std::span<const std::uint64_t> patch_size, const PatchE
   std::vector<char> odd_weighs(count, 0), even_weighs(count, 0);
   for (std::size_t p = 0; p < count; ++p)
     if (patch_size[p] >= kFewestPerPatch) (side_[p] ? odd_weighs : even_weighs)[std::size_t(group_[p])] = 1;
-  weighs_.resize(count);
   weighing_.assign(count, -1);
-  for (std::size_t g = 0; g < count; ++g) {
-    weighs_[g] = odd_weighs[g] && even_weighs[g];
-    if (weighs_[g]) weighing_[g] = int(sums_.size());
-    if (weighs_[g]) sums_.emplace_back();
-  }
+  for (std::size_t g = 0; g < count; ++g)
+    if (odd_weighs[g] && even_weighs[g]) {
+      weighing_[g] = int(sums_.size());
+      sums_.emplace_back();
+    }
 }
 
 void PatchGroups::add(std::uint32_t patch, vec3 p, vec3 normal, float inv_h2) {

@@ -5,8 +5,6 @@
 #include <utility>
 #include <vector>
 
-#include <omp.h>
-
 #include "pss/backend/cpu/parallel_for.hpp"
 #include "pss/core/connected_components.hpp"
 #include "pss/points/seam_turn.hpp"
@@ -51,20 +49,12 @@ std::size_t turn_flipped_normals(const SupportGrid& grid, std::span<vec3> normal
   if (patches > n / kFewestPerPatch) return 0;
   std::vector<std::uint64_t> patch_size(patches, 0);
   for (const std::uint32_t p : patch) ++patch_size[p];
-  // The evidence between patches, each pair seen from both its samples (each thread its own
-  // tally, summed after: sums, so the same for any thread count).
-  std::vector<PatchEvidence> tallies(std::size_t(std::max(1, omp_get_max_threads())));
-  cpu::parallel_for(std::int64_t(n), [&](std::int64_t i) {
-    add_evidence(view, normals, patch, int(i), tallies[std::size_t(omp_get_thread_num())]);
-  });
-  PatchEvidence between;
-  for (const auto& tally : tallies)
-    for (const auto& [key, e] : tally) {
-      between[key].flip += e.flip;
-      between[key].keep += e.keep;
-    }
-  tallies.clear();
-  PatchGroups groups(patch_size, between);
+  // The evidence between patches, each pair seen from both its samples.
+  PatchGroups groups(patch_size, [&] {
+    EvidenceTallies tallies;
+    cpu::parallel_for(std::int64_t(n), [&](std::int64_t i) { tallies.add(view, normals, patch, int(i)); });
+    return tallies.sum();
+  }());
   std::vector<char> turned_by_groups(patches, 0);
   if (groups.linked()) {
     for (std::size_t i = 0; i < n; ++i) groups.add(patch[i], points[i], normals[i], inv_h2[i]);

@@ -24,8 +24,6 @@ FileNormalsInTiles file_normals_in_tiles(const UnitSets& sets, const std::filesy
         TileStep::file_normals, cloud.tiles_with_points(),
         [&](int t) {
           const UnitSet set = sets.load(t);
-          if (set.points.normals.size() != set.points.positions.size())
-            throw Error("a tile's points do not hold together: a normal each");
           ByteWriter notes;  // the own points' indices and places as samples
           notes.put_array(std::span(set.points.index).first(set.points.own));
           notes.put_array(std::span<const vec3>(grid_places(set)).first(set.points.own));

@@ -8,7 +8,6 @@
 // the whole cloud: a patch number a point (4 bytes) while the turn runs, and a byte a point
 // after it where it turned any.
 #include <algorithm>
-#include <limits>
 
 #include "pss/core/error.hpp"
 #include "pss/core/progress.hpp"
@@ -121,12 +120,10 @@ std::size_t turn_seams_in_tiles(const UnitSets& sets, OrientedInTiles& samples, 
         for (const std::uint64_t i : index) patches.push_back(patch[i]);
       },
       [&](const TileSeamTurn& done, const std::vector<std::uint64_t>&) {
-        for (const auto& [key, e] : done.evidence) {
+        for (const auto& [key, e] : done.evidence)
           if (std::max(key >> 32, key & 0xffffffffu) >= patches)
             throw Error("a tile's seams' turn does not hold together");
-          between[key].flip += e.flip;
-          between[key].keep += e.keep;
-        }
+        add_to(between, done.evidence);
       });
   PatchGroups groups(patch_size, between);
   between.clear();

@@ -1,6 +1,4 @@
 // The seams' turn tile by tile: a tile's part of each of its steps (tile_works.hpp).
-#include <omp.h>
-
 #include "pss/backend/cpu/parallel_for.hpp"
 #include "pss/core/connected_components.hpp"
 #include "pss/core/error.hpp"
@@ -12,15 +10,6 @@ namespace pss {
 
 namespace {
 
-// The sorted indices of the tile's own samples.
-std::vector<int> own_samples(const SupportGrid& grid, std::size_t own) {
-  std::vector<int> sorted;
-  const std::span<const int> original = grid.original_index();
-  for (std::size_t k = 0; k < original.size(); ++k)
-    if (std::size_t(original[k]) < own) sorted.push_back(int(k));
-  return sorted;
-}
-
 void put_joins(ByteWriter& result, const SupportGrid& grid, std::span<const int> own) {
   const std::span<const int> original = grid.original_index();
   ConnectedComponents joined(original.size());
@@ -30,14 +19,13 @@ void put_joins(ByteWriter& result, const SupportGrid& grid, std::span<const int>
     patch_joins(grid.view(), grid.normals(), i, with);
     for (const int j : with) joined.join(i, j);
   });
-  std::vector<int> point, root;  // in the set
+  std::vector<int> point, root;  // in the set; a root is joined to itself, and needs no pair
   for (std::size_t k = 0; k < original.size(); ++k) {
     const int r = joined.find(int(k));
     if (r == int(k)) continue;
     point.push_back(original[k]);
     root.push_back(original[std::size_t(r)]);
   }
-  // A root with no member before it in the set is joined to itself: it needs no pair.
   result.put_array<int>(point);
   result.put_array<int>(root);
 }
@@ -45,16 +33,11 @@ void put_joins(ByteWriter& result, const SupportGrid& grid, std::span<const int>
 void put_evidence(ByteWriter& result, const SupportGrid& grid, std::span<const int> own,
                   std::span<const std::uint32_t> patch_of_point) {
   const std::vector<std::uint32_t> patch = gathered<std::uint32_t>(patch_of_point, grid.original_index());
-  std::vector<PatchEvidence> tallies(std::size_t(std::max(1, omp_get_max_threads())));
+  EvidenceTallies tallies;
   cpu::parallel_for(std::int64_t(own.size()), [&](std::int64_t m) {
-    add_evidence(grid.view(), grid.normals(), patch, own[std::size_t(m)], tallies[std::size_t(omp_get_thread_num())]);
+    tallies.add(grid.view(), grid.normals(), patch, own[std::size_t(m)]);
   });
-  PatchEvidence between;
-  for (const auto& tally : tallies)
-    for (const auto& [key, e] : tally) {
-      between[key].flip += e.flip;
-      between[key].keep += e.keep;
-    }
+  const PatchEvidence between = tallies.sum();
   std::vector<std::uint64_t> key;
   std::vector<std::int64_t> flip, keep;
   for (const auto& [k, e] : between) {
@@ -105,7 +88,7 @@ std::vector<std::byte> work_seam_turn(std::span<const std::byte> request) {
                      (step != SeamStep::stragglers || settled.size() == m) && std::uint8_t(step) <= 2;
   if (!whole) throw Error("a tile's work does not hold together: the seams' turn needs the samples' normals");
   const SupportGrid grid = grid_of_tile(t);
-  const std::vector<int> own = own_samples(grid, t.own);
+  const std::vector<int> own = own_sorted_samples(grid, t.own);
   ByteWriter result;
   if (step == SeamStep::joins) put_joins(result, grid, own);
   if (step == SeamStep::evidence) put_evidence(result, grid, own, patch);

@@ -32,4 +32,8 @@ TileArrays get_tile(ByteReader& in);
 // their normals where the surface fits them.
 SupportGrid grid_of_tile(const TileArrays& t);
 
+// The sorted indices of the grid's samples that are the tile's own (their places in the set
+// below `own`), in the grid's order.
+std::vector<int> own_sorted_samples(const SupportGrid& grid, std::size_t own);
+
 }  // namespace pss

@@ -62,6 +62,14 @@ SupportGrid grid_of_tile(const TileArrays& t) {
   return grid;
 }
 
+std::vector<int> own_sorted_samples(const SupportGrid& grid, std::size_t own) {
+  std::vector<int> sorted;
+  const std::span<const int> original = grid.original_index();
+  for (std::size_t k = 0; k < original.size(); ++k)
+    if (std::size_t(original[k]) < own) sorted.push_back(int(k));
+  return sorted;
+}
+
 namespace {
 
 // The projection of `points` onto the grid's surface, on `backend`.
@@ -93,9 +101,7 @@ std::vector<std::byte> work_outliers(std::span<const std::byte> request) {
   const TileArrays t = get_tile(in);
   const SupportGrid grid = grid_of_tile(t);
   const std::span<const int> original = grid.original_index();
-  std::vector<int> own;  // the tile's own samples, by sorted index
-  for (std::size_t k = 0; k < original.size(); ++k)
-    if (std::size_t(original[k]) < t.own) own.push_back(int(k));
+  const std::vector<int> own = own_sorted_samples(grid, t.own);
   std::vector<float> out(original.size()), held_out(original.size());
   const OutlierDistanceKernel kernel{grid.view(), out.data(), held_out.data()};
   cpu::parallel_for(std::int64_t(own.size()), [&](std::int64_t m) { kernel(own[std::size_t(m)]); });
@@ -213,9 +219,7 @@ std::vector<std::byte> work_file_normals(std::span<const std::byte> request) {
     throw Error("a tile's work does not hold together: a file normal and an index a point of the set");
   const SupportGrid grid = grid_of_tile(t);
   const std::span<const int> original = grid.original_index();
-  std::vector<int> sorted;  // the own samples' places in the grid
-  for (std::size_t k = 0; k < original.size(); ++k)
-    if (std::size_t(original[k]) < t.own) sorted.push_back(int(k));
+  const std::vector<int> sorted = own_sorted_samples(grid, t.own);
   std::vector<int> sample(sorted.size());
   std::vector<vec3> normal(sorted.size());
   std::vector<char> off(sorted.size());
@@ -256,13 +260,8 @@ std::vector<std::byte> work_sample_normals(std::span<const std::byte> request) {
   const auto params = in.get<ProjectionParams>();
   const auto backend = in.get<Backend>();
   const SupportGrid grid = grid_of_tile(t);
-  std::vector<int> sorted, sample;  // the own samples: their places in the grid and in the set
-  const std::span<const int> original = grid.original_index();
-  for (std::size_t k = 0; k < original.size(); ++k)
-    if (std::size_t(original[k]) < t.own) {
-      sorted.push_back(int(k));
-      sample.push_back(original[k]);
-    }
+  const std::vector<int> sorted = own_sorted_samples(grid, t.own);  // their places in the grid
+  const std::vector<int> sample = gathered<int>(grid.original_index(), sorted);  // and in the set
   const std::vector<ProjectedPoint> done =
       project_on(grid, gathered<vec3>(grid.sorted_points(), sorted), {}, params, backend);
   std::vector<vec3> normal(done.size());

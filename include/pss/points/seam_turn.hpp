@@ -1,5 +1,5 @@
 // The steps of the seams' turn (turn_flipped_normals.hpp), each over any of a grid's samples,
-// so that tiles take them one tile at a time (src/tiles/turn_in_tiles.cpp) and add up to the
+// so that tiles take them one tile at a time (src/tiles/seam_turn_in_tiles.cpp) and add up to the
 // turn in core: the joins and the evidence are a sample's alone, with its neighbours in its
 // support; the patches are numbered by their least sample in the cloud, not in a grid's
 // order; the groups' and the stragglers' sums are kept in fixed point, the same in any order.
@@ -37,6 +37,20 @@ using PatchEvidence = std::unordered_map<std::uint64_t, Evidence>;
 // What sorted sample i sees between its patch and its neighbours' (`patch` in sorted order).
 void add_evidence(const SupportGridView& view, std::span<const vec3> normals, std::span<const std::uint32_t> patch,
                   int i, PatchEvidence& tally);
+// `from` added to `into`.
+void add_to(PatchEvidence& into, const PatchEvidence& from);
+
+// add_evidence over any samples from any threads, each thread its own tally, summed after:
+// sums, so the same for any thread count.
+class EvidenceTallies {
+ public:
+  EvidenceTallies();
+  void add(const SupportGridView& view, std::span<const vec3> normals, std::span<const std::uint32_t> patch, int i);
+  PatchEvidence sum() const;
+
+ private:
+  std::vector<PatchEvidence> tallies_;  // a thread's each
+};
 
 // After the groups' turn, what sorted sample i of a straggling patch (fewer than
 // kFewestPerPatch samples) says of its turn: the normals of its settled neighbours (`settled`,
@@ -68,9 +82,8 @@ class PatchGroups {
 
   bool linked_ = false;
   std::vector<int> group_, side_;
-  std::vector<char> weighs_;  // per group: both its sides hold a patch that weighs
-  std::vector<Sums> sums_;    // per group that weighs, by weighing_[group]
-  std::vector<int> weighing_;
+  std::vector<Sums> sums_;     // per group that weighs (both its sides hold a patch that does)
+  std::vector<int> weighing_;  // per group, its place in sums_, or −1
 };
 
 // The stragglers' says per patch, summed in fixed point.
