@@ -288,8 +288,10 @@ TEST_F(MeshCli, BordersClipOrExtendTheOpenEdge) {
 // faced inward, the mesh holed where the two halves met (4,056 boundary edges), and turned
 // "outward" whole by its volume; the seams' turn mends most of it (9 %; 11.8 % of these
 // vertices in the data's frame, 12.1 % in the unit frame with the lattice half a cube off the
-// box: the vertices sampled move with the lattice). Truth: the normals of the scan's own
-// faces at its vertex nearest each of every 16th vertex of the mesh.
+// box: the vertices sampled move with the lattice). The rest were thin parts across which the
+// tree's signs turned; the rays see them (points/visibility.hpp): 1.7 %, 1,951 boundary
+// edges → 1,420. Truth: the normals of the scan's own faces at its vertex nearest each of
+// every 16th vertex of the mesh.
 TEST_F(MeshCli, AMeshOfEstimatedNormalsFacesAsTheScansFaces) {
   const std::string dragon = PSS_SOURCE_DIR "/../shared/data/dragon_21790.ply";
   if (!std::filesystem::exists(dragon)) GTEST_SKIP() << "no " << dragon;
@@ -310,7 +312,7 @@ TEST_F(MeshCli, AMeshOfEstimatedNormalsFacesAsTheScansFaces) {
     ++tried;
     against += glm::dot(scan.normals[nearest], glm::dvec3(m.normals[v])) < 0;
   }
-  EXPECT_LT(double(against), 0.13 * double(tried)) << against << " of " << tried;
+  EXPECT_LT(double(against), 0.04 * double(tried)) << against << " of " << tried;
 }
 
 // cube.pwn, a CAD block with slots and a bore, its file's normals between two faces' on the

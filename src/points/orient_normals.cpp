@@ -10,6 +10,7 @@
 #include "pss/core/memory.hpp"
 #include "pss/core/progress.hpp"
 #include "pss/points/facing_vote.hpp"
+#include "pss/points/visibility.hpp"
 #include "pss/spatial/support_grid.hpp"
 
 namespace pss {
@@ -18,9 +19,11 @@ namespace {
 
 // Orients `sorted`, the normals of the grid's samples in its sorted order, each part from its
 // highest point's +z; rank(k) is sorted point k's place in the cloud. Returns each sorted
-// point's part and each part's root, in sorted indices.
+// point's part and each part's root, in sorted indices; `tree`, where given, gets the tree's
+// edges (visibility.hpp turns its signs where the rays see otherwise).
 template <class Rank>
-OrientedParts orient_sorted(const SupportGrid& grid, std::span<vec3> sorted, Rank rank, Progress* progress) {
+OrientedParts orient_sorted(const SupportGrid& grid, std::span<vec3> sorted, Rank rank, Progress* progress,
+                            SpanningTree* tree = nullptr) {
   const SupportGridView view = grid.view();
   // The tree grows in the grid's order, where a point's neighbours lie near it in memory.
   // Ties go by the cloud's order, so the tree is the one that order gives.
@@ -47,6 +50,11 @@ OrientedParts orient_sorted(const SupportGrid& grid, std::span<vec3> sorted, Ran
   std::size_t oriented = 0;
   OrientedParts parts;
   parts.of_point.assign(n, -1);
+  if (tree) {
+    tree->parent.assign(n, -1);
+    tree->order.clear();
+    tree->order.reserve(n);
+  }
   for (int seed : by_height) {
     if (state[std::size_t(seed)] & kDone) continue;
     parts.root.push_back(seed);
@@ -59,6 +67,7 @@ OrientedParts orient_sorted(const SupportGrid& grid, std::span<vec3> sorted, Ran
       if (state[std::size_t(i)] & kAgainst) sorted[i] = -sorted[i];
       state[std::size_t(i)] = kDone;
       parts.of_point[std::size_t(i)] = int(parts.root.size()) - 1;
+      if (tree) tree->order.push_back(i);
       if (++oriented % 4096 == 0 && progress) progress->advance(4096);
       view.for_each_covering(at[i], [&](vec3 q, float d2, int j) {
         if (state[std::size_t(j)] & kDone) return;
@@ -70,6 +79,7 @@ OrientedParts orient_sorted(const SupportGrid& grid, std::span<vec3> sorted, Ran
         if (!(cost < cheapest[std::size_t(j)])) return;
         cheapest[std::size_t(j)] = cost;
         state[std::size_t(j)] = facing < 0 ? kAgainst : 0;
+        if (tree) tree->parent[std::size_t(j)] = i;
         frontier.lowered(j);
       });
     }
@@ -80,7 +90,8 @@ OrientedParts orient_sorted(const SupportGrid& grid, std::span<vec3> sorted, Ran
 // Turns each part whose converged points vote that it faces inward (facing_vote.hpp); the
 // supports ρ are the grid's κ·h_i (its widths where κ = 1, as the tiles' grids are built).
 template <class Status>
-void face_as_voted(const SupportGrid& grid, std::span<vec3> sorted, const OrientedParts& parts, Status status) {
+void face_as_voted(const SupportGrid& grid, std::span<vec3> sorted, const OrientedParts& parts, Status status,
+                   std::span<const char> seen) {
   const std::span<const vec3> at = grid.sorted_points();
   const std::span<const float> inv_h2 = grid.inv_h2();
   const float kappa2 = grid.kappa() * grid.kappa();
@@ -88,11 +99,22 @@ void face_as_voted(const SupportGrid& grid, std::span<vec3> sorted, const Orient
   for (std::size_t k = 0; k < sorted.size(); ++k)
     votes[std::size_t(parts.of_point[k])].add(at[k], sorted[k], inv_h2[k] / kappa2, status(k));
   std::vector<char> turns(votes.size());
-  for (std::size_t p = 0; p < votes.size(); ++p) turns[p] = votes[p].sign() < 0;
+  for (std::size_t p = 0; p < votes.size(); ++p) turns[p] = !seen[p] && votes[p].sign() < 0;
   release(votes);
   for (std::size_t k = 0; k < sorted.size(); ++k)
     if (turns[std::size_t(parts.of_point[k])]) sorted[k] = -sorted[k];
 }
+
+// The tree's signs turned where the rays see otherwise (visibility.hpp); per part, whether
+// they decided.
+std::vector<char> face_as_seen(const SupportGrid& grid, std::span<vec3> sorted, const OrientedParts& parts,
+                               const SpanningTree& tree) {
+  const std::span<const float> inv_h2 = grid.inv_h2();
+  std::vector<float> radius(inv_h2.size());
+  for (std::size_t k = 0; k < radius.size(); ++k) radius[k] = 0.5f * grid.kappa() / std::sqrt(inv_h2[k]);
+  return face_as_seen(grid.sorted_points(), sorted, radius, parts.of_point, parts.root.size(), tree);
+}
+
 
 std::vector<vec3> sorted_normals(const SupportGrid& grid, std::span<const vec3> normals) {
   const std::span<const int> original = grid.original_index();
@@ -119,8 +141,11 @@ void orient_normals_consistently(std::span<const vec3> points, std::span<vec3> n
   std::vector<vec3> sorted = sorted_normals(grid, normals);
   const std::span<const int> original = grid.original_index();
   Progress progress("orient normals", std::int64_t(points.size()));
-  const OrientedParts parts = orient_sorted(grid, sorted, [&](int k) { return original[std::size_t(k)]; }, &progress);
-  face_as_voted(grid, sorted, parts, [&](std::size_t k) { return status[std::size_t(original[k])]; });
+  SpanningTree tree;
+  const OrientedParts parts =
+      orient_sorted(grid, sorted, [&](int k) { return original[std::size_t(k)]; }, &progress, &tree);
+  const std::vector<char> seen = face_as_seen(grid, sorted, parts, tree);
+  face_as_voted(grid, sorted, parts, [&](std::size_t k) { return status[std::size_t(original[k])]; }, seen);
   for (std::size_t k = 0; k < sorted.size(); ++k) normals[std::size_t(original[k])] = sorted[k];
 }
 
@@ -130,9 +155,11 @@ void orient_grid_normals(const SupportGrid& grid, std::span<vec3> sorted_normals
   check_one_status_per_point(grid.sorted_points().size(), sorted_status.size());
   const std::span<const int> original = grid.original_index();
   Progress progress("orient normals", std::int64_t(original.size()));
+  SpanningTree tree;
   const OrientedParts parts =
-      orient_sorted(grid, sorted_normals, [&](int k) { return original[std::size_t(k)]; }, &progress);
-  face_as_voted(grid, sorted_normals, parts, [&](std::size_t k) { return sorted_status[k]; });
+      orient_sorted(grid, sorted_normals, [&](int k) { return original[std::size_t(k)]; }, &progress, &tree);
+  const std::vector<char> seen = face_as_seen(grid, sorted_normals, parts, tree);
+  face_as_voted(grid, sorted_normals, parts, [&](std::size_t k) { return sorted_status[k]; }, seen);
 }
 
 OrientedParts orient_normals_in_parts(std::span<const vec3> points, std::span<vec3> normals,
@@ -168,8 +195,11 @@ void orient_normals_consistently(std::vector<vec3>& points, std::vector<vec3>& n
   const std::span<const int> original = grid.original_index();
   {
     Progress progress("orient normals", std::int64_t(original.size()));
-    const OrientedParts parts = orient_sorted(grid, sorted, [&](int k) { return original[std::size_t(k)]; }, &progress);
-    face_as_voted(grid, sorted, parts, [&](std::size_t k) { return status[std::size_t(original[k])]; });
+    SpanningTree tree;
+    const OrientedParts parts =
+        orient_sorted(grid, sorted, [&](int k) { return original[std::size_t(k)]; }, &progress, &tree);
+    const std::vector<char> seen = face_as_seen(grid, sorted, parts, tree);
+    face_as_voted(grid, sorted, parts, [&](std::size_t k) { return status[std::size_t(original[k])]; }, seen);
   }
   const std::size_t n = original.size();
   normals.resize(n);

@@ -1,0 +1,264 @@
+// Which side of a sample is outside, as rays see it (points/visibility.hpp), and the
+// orientation that follows them where a spanning tree's signs turned a part inward. Truth:
+// analytic shapes' outward normals.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <random>
+#include <vector>
+
+#include "pss/core/error.hpp"
+#include "pss/points/orient_normals.hpp"
+#include "pss/points/project_cloud.hpp"
+#include "pss/points/visibility.hpp"
+#include "support/mesh_readers.hpp"
+#include "support/shapes.hpp"
+
+namespace pss {
+namespace {
+
+struct Votes {
+  std::size_t out = 0, in = 0, none = 0;
+};
+
+Votes count(const std::vector<std::int8_t>& votes) {
+  Votes v;
+  for (const std::int8_t x : votes) (x > 0 ? v.out : (x < 0 ? v.in : v.none)) += 1;
+  return v;
+}
+
+std::vector<vec3> outward(const std::vector<vec3>& points, const test::Sphere& s) {
+  std::vector<vec3> n;
+  for (const vec3& p : points) n.push_back(s.normal(p));
+  return n;
+}
+
+TEST(Occupancy, ARayFromInsideASphereMeetsItAndOneLeavingItEscapes) {
+  test::SampleOptions o;
+  o.count = 4000;
+  const std::vector<vec3> points = test::sample(test::Sphere{}, o).positions;
+  const Occupancy occupancy(points, outward(points, test::Sphere{}), std::vector<float>(points.size(), 0.1f));
+  for (const vec3 d : {vec3(1, 0, 0), vec3(0, -1, 0), glm::normalize(vec3(1, 2, -3))}) {
+    EXPECT_FALSE(occupancy.escapes(vec3(0.1f, 0, 0), d));
+    EXPECT_TRUE(occupancy.escapes(1.05f * d, d));
+    EXPECT_FALSE(occupancy.escapes(1.05f * d, -d));  // from outside (within the box), toward the sphere
+  }
+  EXPECT_TRUE(occupancy.escapes(vec3(5, 0, 0), vec3(-1, 0, 0)));  // beyond the box: it has left it
+}
+
+// A disc askew to the voxels: no ray crosses it between its voxels, whichever way it leans
+// (its plane sampled every two voxels, 11,212 of 20,000 rays slipped through). Two specks at
+// the box's corners set the voxels' size.
+TEST(Occupancy, NoRaySlipsThroughADiscAskew) {
+  const vec3 n = glm::normalize(vec3(1, 2, 3));
+  const vec3 u = glm::normalize(glm::cross(n, vec3(1, 0, 0))), w = glm::cross(n, u);
+  const std::vector<vec3> points = {vec3(0.0f), vec3(-1.0f), vec3(1.0f)};
+  const std::vector<float> radius = {0.5f, 0.0f, 0.0f};
+  const Occupancy occupancy(points, std::vector<vec3>(3, n), radius);
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<float> across(-0.12f, 0.12f), lean(-0.8f, 0.8f);  // within its 32 voxels
+  std::size_t through = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const vec3 from = across(rng) * u + across(rng) * w - 0.05f * n;
+    through += occupancy.escapes(from, glm::normalize(n + lean(rng) * u + lean(rng) * w)) ? 1 : 0;
+  }
+  EXPECT_EQ(through, 0u);
+}
+
+TEST(Occupancy, OneNormalAndOneRadiusPerPointAreNeeded) {
+  const std::vector<vec3> points(3, vec3(0.0f));
+  EXPECT_THROW(Occupancy(points, std::vector<vec3>(2), std::vector<float>(3, 1.0f)), Error);
+  EXPECT_THROW(Occupancy(points, std::vector<vec3>(3), std::vector<float>(2, 1.0f)), Error);
+}
+
+// A closed surface: every sample votes, out where its normal faces out and in where it faces in.
+TEST(VisibilityVotes, ASpheresNormalsVoteAsTheyFace) {
+  test::SampleOptions o;
+  o.count = 4000;
+  const test::Sphere sphere{vec3(2, -1, 0.5f), 1.0f};
+  const std::vector<vec3> points = test::sample(sphere, o).positions;
+  std::vector<vec3> normals = outward(points, sphere);
+  const std::vector<float> radius(points.size(), 0.1f);
+  const Votes out = count(visibility_votes(points, normals, radius));
+  EXPECT_EQ(out.out, points.size());
+  for (vec3& n : normals) n = -n;
+  const Votes in = count(visibility_votes(points, normals, radius));
+  EXPECT_EQ(in.in, points.size());
+}
+
+// Open ground, flat or hilly, and a thin part's two faces say little: rays escape on both
+// sides of the flat ground and the thin faces, and on the hills' valleys the rays down escape
+// while some up escape too.
+TEST(VisibilityVotes, OpenGroundAndAThinPartSayLittle) {
+  test::SampleOptions o;
+  o.count = 6000;
+  const std::vector<vec3> flat = test::sample_plane(1.0f, o).positions;
+  const Votes ground = count(visibility_votes(flat, std::vector<vec3>(flat.size(), vec3(0, 0, 1)),
+                                              std::vector<float>(flat.size(), 0.04f)));
+  EXPECT_EQ(ground.none, flat.size());
+
+  const test::Pill pill{1.0f, 0.02f};
+  const PointCloud thin = test::sample(pill, o);
+  std::size_t faces = 0, voting = 0;
+  const std::vector<std::int8_t> votes =
+      visibility_votes(thin.positions, thin.normals, std::vector<float>(thin.positions.size(), 0.04f));
+  for (std::size_t i = 0; i < votes.size(); ++i)
+    if (std::abs(thin.normals[i].z) > 0.99f) ++faces, voting += votes[i] != 0;
+  EXPECT_GT(faces, 4000u);
+  EXPECT_EQ(voting, 0u);
+}
+
+// Hills whose valleys' rays up meet the slopes about: a pair of rays alone (escape(d) −
+// escape(−d)) votes there for down, and urban.las's valleys turned 45 % of its normals down.
+std::vector<vec3> hills(std::size_t side) {
+  std::vector<vec3> points;
+  for (std::size_t i = 0; i < side; ++i)
+    for (std::size_t j = 0; j < side; ++j) {
+      const float x = -1 + 2 * float(i) / float(side - 1), y = -1 + 2 * float(j) / float(side - 1);
+      points.push_back(vec3(x, y, 0.25f * std::cos(4 * x) * std::cos(4 * y)));
+    }
+  return points;
+}
+
+TEST(FaceAsSeen, HillyGroundFacingUpStaysUp) {
+  const std::vector<vec3> points = hills(80);
+  std::vector<vec3> normals;
+  for (const vec3& p : points)
+    normals.push_back(glm::normalize(vec3(std::sin(4 * p.x) * std::cos(4 * p.y), std::cos(4 * p.x) * std::sin(4 * p.y),
+                                          1.0f)));
+  const std::vector<vec3> truth = normals;
+  const std::vector<float> radius(points.size(), 0.06f);
+  EXPECT_LT(double(points.size() - count(visibility_votes(points, normals, radius)).none),
+            double(kDecidingShare) * double(points.size()));
+  std::vector<ProjectionStatus> converged(points.size(), ProjectionStatus::converged);
+  orient_normals_consistently(points, normals, radius, converged);
+  std::size_t down = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) down += glm::dot(normals[i], truth[i]) < 0;
+  EXPECT_EQ(down, 0u);
+}
+
+// A tree along a sphere from its top down, whose signs turned at the equator (as a tree's do
+// across a thin part that noise merged into one sheet): the rays turn the lower half back, and
+// the part faces out.
+TEST(FaceAsSeen, ATreesTurnAcrossTheEquatorIsTurnedBack) {
+  test::SampleOptions o;
+  o.count = 3000;
+  const test::Sphere sphere;
+  std::vector<vec3> points = test::sample(sphere, o).positions;
+  std::sort(points.begin(), points.end(), [](vec3 a, vec3 b) { return a.z > b.z; });
+  SpanningTree chain;
+  std::vector<vec3> normals;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    chain.parent.push_back(int(k) - 1);
+    chain.order.push_back(int(k));
+    normals.push_back(points[k].z > 0 ? sphere.normal(points[k]) : -sphere.normal(points[k]));
+  }
+  const std::vector<int> one_part(points.size(), 0);
+  const std::vector<char> decided =
+      face_as_seen(points, normals, std::vector<float>(points.size(), 0.08f), one_part, 1, chain);
+  EXPECT_EQ(decided, std::vector<char>{1});
+  std::size_t inward = 0;
+  for (std::size_t k = 0; k < points.size(); ++k) inward += glm::dot(normals[k], sphere.normal(points[k])) < 0;
+  EXPECT_EQ(inward, 0u);
+  // The whole part inward: the rays turn it all.
+  for (vec3& n : normals) n = -n;
+  face_as_seen(points, normals, std::vector<float>(points.size(), 0.08f), one_part, 1, chain);
+  inward = 0;
+  for (std::size_t k = 0; k < points.size(); ++k) inward += glm::dot(normals[k], sphere.normal(points[k])) < 0;
+  EXPECT_EQ(inward, 0u);
+}
+
+// A part where too few samples vote (an open sheet) is left as its tree turned it: its heights
+// decide after (facing_vote.hpp).
+TEST(FaceAsSeen, APartTooFewOfWhoseSamplesVoteIsLeftAlone) {
+  test::SampleOptions o;
+  o.count = 2000;
+  const std::vector<vec3> points = test::sample_plane(1.0f, o).positions;
+  SpanningTree chain;
+  std::vector<vec3> normals;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    chain.parent.push_back(int(k) - 1);
+    chain.order.push_back(int(k));
+    normals.push_back(vec3(0, 0, k % 2 ? 1.0f : -1.0f));
+  }
+  const std::vector<vec3> before = normals;
+  const std::vector<char> decided =
+      face_as_seen(points, normals, std::vector<float>(points.size(), 0.08f), std::vector<int>(points.size(), 0), 1,
+                   chain);
+  EXPECT_EQ(decided, std::vector<char>{0});
+  EXPECT_EQ(normals, before);
+}
+
+// A sphere with a cap apart below a gap of a fifth of its radius: the cap, a part of its own,
+// an open surface facing down, was turned up by its heights' vote (2,311 of 20,000 normals
+// inward); its rays up meet the sphere above and those down escape, so it faces out.
+TEST(FaceAsSeen, ACapApartFacesOut) {
+  std::mt19937 rng(1);
+  std::normal_distribution<float> gauss;
+  PointCloud cloud;
+  while (cloud.positions.size() < 20000) {
+    const vec3 p = glm::normalize(vec3(gauss(rng), gauss(rng), gauss(rng)));
+    if (!(p.z < -0.55f && p.z > -0.8f)) cloud.positions.push_back(p);
+  }
+  for (const SurfaceOperator surface : {SurfaceOperator::mls, SurfaceOperator::rimls}) {
+    SCOPED_TRACE(int(surface));
+    ProjectionParams params = ProjectionParams::from_h(test::suggested_h(cloud));
+    params.surface = surface;
+    params.support = Support::adaptive;
+    Stats stats;
+    const CloudProjection projected = project_cloud(cloud, params, Backend::cpu, stats);
+    std::size_t cap = 0, inward = 0;
+    for (std::size_t i = 0; i < cloud.positions.size(); ++i) {
+      const vec3 p = projected.cloud.positions[i];
+      cap += p.z < -0.7f;
+      inward += glm::dot(projected.cloud.normals[i], p) < 0;
+    }
+    EXPECT_GT(cap, 2000u);
+    EXPECT_EQ(inward, 0u);
+  }
+}
+
+// The dragon's vertices moved by Gaussian noise of 0.75 of their median spacing, their normals
+// estimated: a thin part that the noise merged into one sheet let the tree's signs across it,
+// and with the seams' turn blind under such noise (docs/paper-notes.md) half the dragon faced
+// inward (27 to 56 % of its normals against its faces, by the noise's draw); the rays bring
+// that to 4 to 8 %. Truth: the scan's faces' normals at each vertex.
+TEST(FaceAsSeen, ANoisyDragonFacesAsItsScansFaces) {
+  const std::string dragon = PSS_SOURCE_DIR "/../shared/data/dragon_21790.ply";
+  if (!std::filesystem::exists(dragon)) GTEST_SKIP() << "no " << dragon;
+  const test::ScanMesh scan = test::read_scan_mesh(dragon);
+  std::vector<vec3> at, truth;
+  for (std::size_t k = 0; k < scan.positions.size(); ++k)
+    if (glm::dot(scan.normals[k], scan.normals[k]) > 0) {
+      at.push_back(vec3(scan.positions[k]));
+      truth.push_back(vec3(glm::normalize(scan.normals[k])));
+    }
+  std::vector<float> nearest;  // of every 40th vertex, by brute force
+  for (std::size_t i = 0; i < at.size(); i += 40) {
+    float best = kInfinity;
+    for (std::size_t j = 0; j < at.size(); ++j)
+      if (j != i) best = std::min(best, glm::length(at[j] - at[i]));
+    nearest.push_back(best);
+  }
+  std::nth_element(nearest.begin(), nearest.begin() + std::ptrdiff_t(nearest.size() / 2), nearest.end());
+  const float noise = 0.75f * nearest[nearest.size() / 2];
+  std::mt19937 rng(5);
+  std::normal_distribution<float> gauss;
+  PointCloud cloud;
+  for (const vec3& p : at) cloud.positions.push_back(p + noise * vec3(gauss(rng), gauss(rng), gauss(rng)));
+  ProjectionParams params = ProjectionParams::from_h(test::suggested_h(cloud));
+  params.surface = SurfaceOperator::rimls;
+  params.support = Support::adaptive;
+  Stats stats;
+  const CloudProjection projected = project_cloud(cloud, params, Backend::cpu, stats);
+  std::size_t against = 0;
+  for (std::size_t i = 0; i < at.size(); ++i) against += glm::dot(projected.cloud.normals[i], truth[i]) < 0;
+  EXPECT_LT(double(against), 0.1 * double(at.size())) << against << " of " << at.size();
+}
+
+}  // namespace
+}  // namespace pss
