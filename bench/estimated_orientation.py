@@ -13,8 +13,7 @@ import argparse, json, os, subprocess, sys, tempfile
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from cloud_quality import read_mesh
-from flipped_normals import median_spacing, projected_normals, vertex_normals
+from flipped_normals import median_spacing, mesh_truth, projected_normals
 
 
 def main():
@@ -28,10 +27,7 @@ def main():
     print(f"{'mesh':<20} {'noise':>6} {'seed':>5} {'against %':>10}")
     with tempfile.TemporaryDirectory() as tmp:
         for mesh in a.meshes:
-            v, tris = read_mesh(mesh)
-            n = vertex_normals(v, np.asarray(tris))
-            keep = (n * n).sum(1) > 0
-            v, n = v[keep], n[keep] / np.linalg.norm(n[keep], axis=1)[:, None]
+            v, n = mesh_truth(mesh)
             spacing = median_spacing(v, np.random.default_rng(0))
             for noise in a.noise:
                 for seed in a.seeds:

@@ -22,6 +22,14 @@ def vertex_normals(v, tris):
     return n
 
 
+def mesh_truth(mesh):
+    """A mesh's vertices that its faces give a normal, with those unit normals."""
+    v, tris = read_mesh(mesh)
+    n = vertex_normals(v, np.asarray(tris))
+    keep = (n * n).sum(1) > 0
+    return v[keep], n[keep] / np.linalg.norm(n[keep], axis=1)[:, None]
+
+
 def median_spacing(v, rng):
     pick = v[rng.choice(len(v), min(len(v), 2000), replace=False)]
     d2 = ((pick[:, None, :] - v[None, :, :]) ** 2).sum(2)
@@ -53,10 +61,7 @@ def main():
     print(f"{'mesh':<20} {'noise':>6} {'flipped':>8} {'turned':>8} {'against %':>10}")
     with tempfile.TemporaryDirectory() as tmp:
         for mesh in a.meshes:
-            v, tris = read_mesh(mesh)
-            n = vertex_normals(v, np.asarray(tris))
-            keep = (n * n).sum(1) > 0
-            v, n = v[keep], n[keep] / np.linalg.norm(n[keep], axis=1)[:, None]
+            v, n = mesh_truth(mesh)
             spacing = median_spacing(v, rng)
             for noise in a.noise:
                 moved = v + rng.normal(size=v.shape) * noise * spacing

@@ -86,6 +86,11 @@ FileNormals file_normals(const SupportGrid& grid, std::span<const vec3> input_no
   if (too_many_off(file.off_the_points, file.sorted.size())) return {{}, 0, file.off_the_points};
   file.off_the_points = 0;
   file.turned = turn_flipped_normals(grid, file.sorted);
+  if (face_file_normals_as_seen(grid, file.sorted) > 0) {  // counted anew: those that face against the file's
+    file.turned = 0;
+    for (std::size_t k = 0; k < file.sorted.size(); ++k)
+      file.turned += glm::dot(file.sorted[k], file_normal_of(grid, input_normals, k, {})) < 0;
+  }
   return file;
 }
 

@@ -172,22 +172,36 @@ TriangleMesh read_mesh(const std::filesystem::path& path) {
 ScanMesh read_scan_mesh(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::size_t vertices = 0, faces = 0;
+  bool ascii = false;
   for (std::string line; std::getline(in, line) && line != "end_header";) {
     if (line.rfind("element vertex ", 0) == 0) vertices = std::stoul(line.substr(15));
     if (line.rfind("element face ", 0) == 0) faces = std::stoul(line.substr(13));
+    ascii = ascii || line.rfind("format ascii", 0) == 0;
   }
   ScanMesh m;
   for (std::size_t i = 0; i < vertices; ++i) {
     float p[3];
-    in.read(reinterpret_cast<char*>(p), sizeof p);
+    if (ascii) {  // x y z first, then whatever else the line holds (the bunny's confidence, intensity)
+      std::string line;
+      std::getline(in, line);
+      std::istringstream(line) >> p[0] >> p[1] >> p[2];
+    } else {
+      in.read(reinterpret_cast<char*>(p), sizeof p);
+    }
     m.positions.push_back(glm::dvec3(p[0], p[1], p[2]));
   }
   m.normals.assign(vertices, glm::dvec3(0.0));
   for (std::size_t f = 0; f < faces; ++f) {
-    unsigned char count = 0;
+    int count = 0;
     std::int32_t v[3];
-    in.read(reinterpret_cast<char*>(&count), 1);
-    in.read(reinterpret_cast<char*>(v), sizeof v);
+    if (ascii) {
+      in >> count >> v[0] >> v[1] >> v[2];
+    } else {
+      unsigned char byte = 0;
+      in.read(reinterpret_cast<char*>(&byte), 1);
+      in.read(reinterpret_cast<char*>(v), sizeof v);
+      count = byte;
+    }
     EXPECT_EQ(count, 3);
     const glm::dvec3 a = m.positions[std::size_t(v[0])], b = m.positions[std::size_t(v[1])],
                      c = m.positions[std::size_t(v[2])];

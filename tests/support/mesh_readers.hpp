@@ -17,8 +17,9 @@ namespace pss::test {
 TriangleMesh read_mesh(const std::filesystem::path& path);
 
 // The vertices of a binary little-endian PLY of float x y z and faces of 3 int indices (the
-// dragon's, as VCG writes it), each with the area-weighted normal of its faces: a scan's
-// truth for the normals of its points.
+// dragon's, as VCG writes it), or of an ASCII PLY whose vertex lines begin x y z (the
+// bunny's), each with the area-weighted normal of its faces: a scan's truth for the normals
+// of its points.
 struct ScanMesh {
   std::vector<glm::dvec3> positions, normals;
 };

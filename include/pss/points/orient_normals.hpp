@@ -40,6 +40,15 @@ void orient_normals_consistently(std::vector<vec3>& points, std::vector<vec3>& n
 void orient_grid_normals(const SupportGrid& grid, std::span<vec3> sorted_normals,
                          std::span<const ProjectionStatus> sorted_status);
 
+// A file's normals of a grid's samples, in its sorted order (after the seams' turn,
+// sample_normals.hpp), turned where the rays see them face in (visibility.hpp): oriented as
+// estimated normals are (a tree over them, its signs turned where the rays see otherwise),
+// then where a part so oriented holds a share of the file's facing against it but not nearly
+// all (a flipped half whose seam noise hid from the turn), the file's turn to it; elsewhere
+// (a file facing one way throughout, in or out), and in parts that the rays do not decide, the
+// file keeps its signs. Returns how many turned.
+std::size_t face_file_normals_as_seen(const SupportGrid& grid, std::span<vec3> sorted_normals);
+
 // The connected parts an orientation grew: each point's part, and each part's first point
 // (its highest), by the points' indices; parts in the order they were grown.
 struct OrientedParts {
