@@ -25,8 +25,9 @@ inline constexpr float kVisibilityTilt = 0.5f;  // radians, about 29°
 // The occupancy's voxels: the longest side of the samples' box in at most this many.
 inline constexpr int kVisibilityCells = 256;
 
-// A bitset of voxels over the samples' bounding box: those that sample discs (radius r_i in
-// the plane of normal n_i, a voxel thick either side) pass through.
+// A bitset of voxels over the samples' bounding box: those that the samples' discs pass
+// through (radius r_i, at most 32 voxels, in the plane of normal n_i; a point whose normal
+// has no direction, its own voxel).
 class Occupancy {
  public:
   Occupancy(std::span<const vec3> points, std::span<const vec3> normals, std::span<const float> radius);
