@@ -106,13 +106,14 @@ void face_as_voted(const SupportGrid& grid, std::span<vec3> sorted, const Orient
 }
 
 // The tree's signs turned where the rays see otherwise (visibility.hpp); per part, whether
-// they decided.
+// they decided. `progress`, where given, takes a step more a sample for the rays.
 std::vector<char> face_as_seen(const SupportGrid& grid, std::span<vec3> sorted, const OrientedParts& parts,
-                               const SpanningTree& tree) {
+                               const SpanningTree& tree, Progress* progress = nullptr) {
   const std::span<const float> inv_h2 = grid.inv_h2();
   std::vector<float> radius(inv_h2.size());
   for (std::size_t k = 0; k < radius.size(); ++k) radius[k] = 0.5f * grid.kappa() / std::sqrt(inv_h2[k]);
-  return face_as_seen(grid.sorted_points(), sorted, radius, parts.of_point, parts.root.size(), tree);
+  if (progress) progress->add_total(std::int64_t(sorted.size()));
+  return face_as_seen(grid.sorted_points(), sorted, radius, parts.of_point, parts.root.size(), tree, progress);
 }
 
 // A part whose file's normals the rays see facing in for fewer than this share of its samples
@@ -150,7 +151,7 @@ void orient_normals_consistently(std::span<const vec3> points, std::span<vec3> n
   SpanningTree tree;
   const OrientedParts parts =
       orient_sorted(grid, sorted, [&](int k) { return original[std::size_t(k)]; }, &progress, &tree);
-  const std::vector<char> seen = face_as_seen(grid, sorted, parts, tree);
+  const std::vector<char> seen = face_as_seen(grid, sorted, parts, tree, &progress);
   face_as_voted(grid, sorted, parts, [&](std::size_t k) { return status[std::size_t(original[k])]; }, seen);
   for (std::size_t k = 0; k < sorted.size(); ++k) normals[std::size_t(original[k])] = sorted[k];
 }
@@ -164,7 +165,7 @@ void orient_grid_normals(const SupportGrid& grid, std::span<vec3> sorted_normals
   SpanningTree tree;
   const OrientedParts parts =
       orient_sorted(grid, sorted_normals, [&](int k) { return original[std::size_t(k)]; }, &progress, &tree);
-  const std::vector<char> seen = face_as_seen(grid, sorted_normals, parts, tree);
+  const std::vector<char> seen = face_as_seen(grid, sorted_normals, parts, tree, &progress);
   face_as_voted(grid, sorted_normals, parts, [&](std::size_t k) { return sorted_status[k]; }, seen);
 }
 
@@ -232,7 +233,7 @@ void orient_normals_consistently(std::vector<vec3>& points, std::vector<vec3>& n
     SpanningTree tree;
     const OrientedParts parts =
         orient_sorted(grid, sorted, [&](int k) { return original[std::size_t(k)]; }, &progress, &tree);
-    const std::vector<char> seen = face_as_seen(grid, sorted, parts, tree);
+    const std::vector<char> seen = face_as_seen(grid, sorted, parts, tree, &progress);
     face_as_voted(grid, sorted, parts, [&](std::size_t k) { return status[std::size_t(original[k])]; }, seen);
   }
   const std::size_t n = original.size();

@@ -113,7 +113,7 @@ bool Occupancy::escapes(vec3 from, vec3 direction) const {
 }
 
 std::vector<std::int8_t> visibility_votes(std::span<const vec3> points, std::span<const vec3> normals,
-                                          std::span<const float> radius) {
+                                          std::span<const float> radius, Progress* progress) {
   const Occupancy occupancy(points, normals, radius);
   std::vector<std::int8_t> votes(points.size(), 0);
   const float past_voxels = 2.0f * occupancy.cell();
@@ -132,14 +132,15 @@ std::vector<std::int8_t> visibility_votes(std::span<const vec3> points, std::spa
       in += occupancy.escapes(points[k] - start * along, -along);
     }
     votes[k] = std::int8_t(in == 0 ? out : (out == 0 ? -in : 0));
-  });
+  }, progress);
   return votes;
 }
 
 std::vector<char> face_as_seen(std::span<const vec3> points, std::span<vec3> normals, std::span<const float> radius,
-                               std::span<const int> part_of, std::size_t parts, const SpanningTree& tree) {
+                               std::span<const int> part_of, std::size_t parts, const SpanningTree& tree,
+                               Progress* progress) {
   if (part_of.size() != points.size()) throw Error("visibility: one part per point is needed");
-  const std::vector<std::int8_t> votes = visibility_votes(points, normals, radius);
+  const std::vector<std::int8_t> votes = visibility_votes(points, normals, radius, progress);
   std::vector<std::int64_t> size(parts, 0), voting(parts, 0);
   for (std::size_t k = 0; k < points.size(); ++k) {
     const auto p = std::size_t(part_of[k]);

@@ -19,6 +19,8 @@
 
 namespace pss {
 
+class Progress;
+
 // Pairs of opposite rays a sample casts: along its normal and four tilted kVisibilityTilt.
 inline constexpr int kVisibilityPairs = 5;
 inline constexpr float kVisibilityTilt = 0.5f;  // radians, about 29°
@@ -53,8 +55,9 @@ class Occupancy {
 // neighbours'; a point whose normal has no direction casts none. (A vote of each pair alone,
 // escape(d) − escape(−d), read urban.las's valleys, whose rays up meet the slopes and whose
 // rays down escape, as facing down: 45 % of its normals.)
+// `progress`, where given, advances a step a point.
 std::vector<std::int8_t> visibility_votes(std::span<const vec3> points, std::span<const vec3> normals,
-                                          std::span<const float> radius);
+                                          std::span<const float> radius, Progress* progress = nullptr);
 
 // Turns the normals (oriented along `tree`) where the rays say otherwise: in each part
 // (`part_of`, numbered 0 to parts − 1) whose rays decide, the signs that agree best with the
@@ -68,6 +71,7 @@ inline constexpr int kCutVotes = 64;
 inline constexpr float kDecidingShare = 0.25f;
 inline constexpr std::int64_t kDecidingVoters = 32;
 std::vector<char> face_as_seen(std::span<const vec3> points, std::span<vec3> normals, std::span<const float> radius,
-                               std::span<const int> part_of, std::size_t parts, const SpanningTree& tree);
+                               std::span<const int> part_of, std::size_t parts, const SpanningTree& tree,
+                               Progress* progress = nullptr);
 
 }  // namespace pss
