@@ -65,7 +65,7 @@ TEST(TreeSigns, TheLeastCostOfAnyLabelling) {
 }
 
 // A chain whose far half votes against: turned where the votes outweigh one cut, not where
-// they do not; a vote of 0 keeps the root as it is and each child as its parent.
+// they do not; a tie keeps the root as it is and each child as its parent.
 TEST(TreeSigns, AChainTurnsWhereItsVotesOutweighACut) {
   SpanningTree chain;
   for (int k = 0; k < 8; ++k) {
@@ -78,6 +78,11 @@ TEST(TreeSigns, AChainTurnsWhereItsVotesOutweighACut) {
   const std::vector<std::int8_t> against = {-1, -1, -1, -1, -1, -1, -1, -1};
   EXPECT_EQ(signs_along_tree(chain, against, 100), (std::vector<char>(8, 1)));
   EXPECT_EQ(signs_along_tree(chain, std::vector<std::int8_t>(8, 0), 1), (std::vector<char>(8, 0)));
+  // Ties: the root kept or turned at the same cost (0), and so its child: both kept.
+  SpanningTree pair;
+  pair.parent = {-1, 0};
+  pair.order = {0, 1};
+  EXPECT_EQ(signs_along_tree(pair, std::vector<std::int8_t>{1, -1}, 2), (std::vector<char>{0, 0}));
 }
 
 TEST(TreeSigns, AnOrderThatIsNoTreesIsRefused) {

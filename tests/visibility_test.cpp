@@ -90,9 +90,8 @@ TEST(VisibilityVotes, ASpheresNormalsVoteAsTheyFace) {
   EXPECT_EQ(in.in, points.size());
 }
 
-// Open ground, flat or hilly, and a thin part's two faces say little: rays escape on both
-// sides of the flat ground and the thin faces, and on the hills' valleys the rays down escape
-// while some up escape too.
+// Flat open ground and a thin part's two faces say nothing: rays escape on both sides of each
+// (hilly ground: FaceAsSeen.HillyGroundFacingUpStaysUp).
 TEST(VisibilityVotes, OpenGroundAndAThinPartSayLittle) {
   test::SampleOptions o;
   o.count = 6000;

@@ -13,7 +13,8 @@ namespace {
 // A disc wider than this many voxels is marked this wide: a sample widened over a sparse
 // region (adaptive support, up to 128 h) would otherwise mark millions.
 constexpr float kWidestDisc = 32;
-// Voxels left round the samples' box, so that their discs fit.
+// Voxels left round the samples' box, so that the discs of the samples near its faces are
+// marked up to this far out (wider ones are cut there).
 constexpr int kMargin = 8;
 
 bool has_direction(vec3 n) {
@@ -58,8 +59,9 @@ void Occupancy::mark(vec3 p, vec3 normal, float r) {
   if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return;
   const auto set = [&](vec3 at) {
     const vec3 g = (at - lo_) / cell_;
-    const int x = int(std::floor(g.x)), y = int(std::floor(g.y)), z = int(std::floor(g.z));
-    if (x < 0 || y < 0 || z < 0 || x >= dims_[0] || y >= dims_[1] || z >= dims_[2]) return;
+    for (int a = 0; a < 3; ++a)
+      if (!(g[a] >= 0 && g[a] < float(dims_[a]))) return;  // outside the box, or not a number
+    const int x = int(g.x), y = int(g.y), z = int(g.z);
     const std::size_t bit = (std::size_t(z) * std::size_t(dims_[1]) + std::size_t(y)) * std::size_t(dims_[0]) +
                             std::size_t(x);
     __atomic_fetch_or(&bits_[bit / 64], std::uint64_t(1) << (bit % 64), __ATOMIC_RELAXED);
@@ -94,9 +96,8 @@ bool Occupancy::escapes(vec3 from, vec3 direction) const {
   int at[3], step[3];
   float next[3], delta[3];
   for (int a = 0; a < 3; ++a) {
-    if (!std::isfinite(g[a])) return true;
-    at[a] = int(std::floor(g[a]));
-    if (at[a] < 0 || at[a] >= dims_[a]) return true;
+    if (!(g[a] >= 0 && g[a] < float(dims_[a]))) return true;  // outside the box, or not a number
+    at[a] = int(g[a]);
     const float d = direction[a];
     step[a] = d > 0 ? 1 : -1;
     delta[a] = d != 0 ? std::abs(1.0f / d) : kInfinity;
@@ -140,6 +141,8 @@ std::vector<char> face_as_seen(std::span<const vec3> points, std::span<vec3> nor
                                std::span<const int> part_of, std::size_t parts, const SpanningTree& tree,
                                Progress* progress) {
   if (part_of.size() != points.size()) throw Error("visibility: one part per point is needed");
+  for (const int p : part_of)
+    if (p < 0 || std::size_t(p) >= parts) throw Error("visibility: a point's part is out of range");
   const std::vector<std::int8_t> votes = visibility_votes(points, normals, radius, progress);
   std::vector<std::int64_t> size(parts, 0), voting(parts, 0);
   for (std::size_t k = 0; k < points.size(); ++k) {
