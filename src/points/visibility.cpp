@@ -17,11 +17,6 @@ constexpr float kWidestDisc = 32;
 // marked up to this far out (wider ones are cut there).
 constexpr int kMargin = 8;
 
-bool has_direction(vec3 n) {
-  const float length2 = glm::dot(n, n);
-  return length2 > 0 && std::isfinite(length2);
-}
-
 // Two unit vectors that with n make an orthonormal basis.
 void tangents(vec3 n, vec3& u, vec3& w) {
   const vec3 other = std::abs(n.x) < 0.9f ? vec3(1, 0, 0) : vec3(0, 1, 0);
@@ -34,18 +29,16 @@ void tangents(vec3 n, vec3& u, vec3& w) {
 Occupancy::Occupancy(std::span<const vec3> points, std::span<const vec3> normals, std::span<const float> radius) {
   if (normals.size() != points.size() || radius.size() != points.size())
     throw Error("visibility: one normal and one radius per point are needed");
-  vec3 lo(kInfinity), hi(-kInfinity);
+  Aabb box;
   for (const vec3 p : points)
-    if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) {
-      lo = glm::min(lo, p);
-      hi = glm::max(hi, p);
-    }
-  if (!(lo.x <= hi.x)) return;  // no finite point: an empty box, every ray escapes
-  const float longest = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+    if (is_finite(p)) box.grow(p);
+  if (box.empty()) return;  // no finite point: every ray escapes
+  const vec3 extent = box.extent();
+  const float longest = std::max({extent.x, extent.y, extent.z});
   cell_ = longest > 0 ? longest / float(kVisibilityCells - 2 * kMargin) : 1.0f;
-  lo_ = lo - float(kMargin) * cell_;
+  lo_ = box.lo - float(kMargin) * cell_;
   for (int a = 0; a < 3; ++a)
-    dims_[a] = std::clamp(int(std::ceil((hi[a] - lo_[a]) / cell_)) + kMargin, 1, kVisibilityCells);
+    dims_[a] = std::clamp(int(std::ceil((box.hi[a] - lo_[a]) / cell_)) + kMargin, 1, kVisibilityCells);
   bits_.assign((std::size_t(dims_[0]) * std::size_t(dims_[1]) * std::size_t(dims_[2]) + 63) / 64, 0);
   cpu::parallel_for(std::int64_t(points.size()), [&](std::int64_t i) {
     const auto k = std::size_t(i);
@@ -56,15 +49,13 @@ Occupancy::Occupancy(std::span<const vec3> points, std::span<const vec3> normals
 // The disc sampled every half voxel in its plane, so that a ray crossing it meets a marked
 // voxel (sampled every two voxels, most rays slipped through between them).
 void Occupancy::mark(vec3 p, vec3 normal, float r) {
-  if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return;
+  if (!is_finite(p)) return;
   const auto set = [&](vec3 at) {
     const vec3 g = (at - lo_) / cell_;
     for (int a = 0; a < 3; ++a)
       if (!(g[a] >= 0 && g[a] < float(dims_[a]))) return;  // outside the box, or not a number
-    const int x = int(g.x), y = int(g.y), z = int(g.z);
-    const std::size_t bit = (std::size_t(z) * std::size_t(dims_[1]) + std::size_t(y)) * std::size_t(dims_[0]) +
-                            std::size_t(x);
-    __atomic_fetch_or(&bits_[bit / 64], std::uint64_t(1) << (bit % 64), __ATOMIC_RELAXED);
+    const std::size_t b = bit(int(g.x), int(g.y), int(g.z));
+    __atomic_fetch_or(&bits_[b / 64], std::uint64_t(1) << (b % 64), __ATOMIC_RELAXED);
   };
   if (!has_direction(normal) || !(r > 0)) {
     set(p);
@@ -83,10 +74,13 @@ void Occupancy::mark(vec3 p, vec3 normal, float r) {
     }
 }
 
+std::size_t Occupancy::bit(int x, int y, int z) const {
+  return (std::size_t(z) * std::size_t(dims_[1]) + std::size_t(y)) * std::size_t(dims_[0]) + std::size_t(x);
+}
+
 bool Occupancy::occupied(int x, int y, int z) const {
-  const std::size_t bit =
-      (std::size_t(z) * std::size_t(dims_[1]) + std::size_t(y)) * std::size_t(dims_[0]) + std::size_t(x);
-  return (bits_[bit / 64] >> (bit % 64)) & 1;
+  const std::size_t b = bit(x, y, z);
+  return (bits_[b / 64] >> (b % 64)) & 1;
 }
 
 // Amanatides and Woo's voxel walk.

@@ -20,6 +20,12 @@ PSS_INLINE float length2(vec3 v) { return glm::dot(v, v); }
 
 PSS_INLINE bool is_finite(vec3 v) { return is_finite(v.x) && is_finite(v.y) && is_finite(v.z); }
 
+// Whether a normal gives a direction: not zero, and finite.
+PSS_INLINE bool has_direction(vec3 normal) {
+  const float length = glm::length(normal);
+  return length > 0 && is_finite(length);
+}
+
 // Ray with unit direction; points are origin + t * dir.
 struct Ray {
   vec3 origin;

@@ -20,13 +20,6 @@ namespace pss {
 // Why the normals are what they are, for the summary line and --stats.
 enum class NormalsUsed : unsigned char { none, file, estimated };
 
-// Whether a file's normal gives a direction (not zero, finite): one that does not makes
-// file_normals leave them all out.
-inline bool has_direction(vec3 normal) {
-  const float length = glm::length(normal);
-  return length > 0 && std::isfinite(length);
-}
-
 // The file's normals of the grid's samples, in its sorted order, unit length, those that
 // contradict the points turned (turn_flipped_normals.hpp); empty when params.normals is
 // NormalSource::estimate, the cloud has none (`input_normals` empty; in its input order), one

@@ -40,6 +40,7 @@ class Occupancy {
 
  private:
   void mark(vec3 p, vec3 normal, float r);
+  std::size_t bit(int x, int y, int z) const;  // a voxel's place in bits_
   bool occupied(int x, int y, int z) const;
 
   vec3 lo_{0.0f};
