@@ -5,8 +5,9 @@ spacings), the mesh's vertices moved by Gaussian noise, with their faces' area-w
 as the file's, once as they are and once flipped on the half above the median x; `pss project`
 at its defaults; the normals it turned and its normals against the truth's.
 
-Usage: flipped_normals.py --pss PSS MESH [MESH ...] [--noise 0 0.5 1 2] [--seed 3] [--json OUT]
+Usage: flipped_normals.py --pss PSS MESH [MESH ...] [--noise 0 0.5 1 2] [--seed 3] [--ranks N] [--json OUT]
 MESH: a PLY with faces or an OFF (cloud_quality.py's readers), e.g. data/bun_zipper.ply.
+--ranks N runs `mpirun -np N pss project` (tile by tile) instead of one process (in core).
 """
 import argparse, json, os, subprocess, sys, tempfile
 import numpy as np
@@ -37,6 +38,11 @@ def median_spacing(v, rng):
     return float(np.median(np.sqrt(d2[:, 1])))
 
 
+def pss_command(pss, ranks):
+    """pss in one process, or over `ranks` MPI processes (tile by tile)."""
+    return (['mpirun', '--oversubscribe', '--bind-to', 'none', '-np', str(ranks)] if ranks > 1 else []) + [pss]
+
+
 def projected_normals(ply):
     with open(ply, 'rb') as f:
         names, count = [], 0
@@ -54,6 +60,7 @@ def main():
     ap.add_argument('meshes', nargs='+'); ap.add_argument('--pss', required=True)
     ap.add_argument('--noise', type=float, nargs='+', default=[0, 0.5, 1, 2])
     ap.add_argument('--seed', type=int, default=3)
+    ap.add_argument('--ranks', type=int, default=1)
     ap.add_argument('--json')
     a = ap.parse_args()
     rng = np.random.default_rng(a.seed)
@@ -69,7 +76,7 @@ def main():
                     given = np.where((v[:, 0] > np.median(v[:, 0]))[:, None] & flipped, -n, n)
                     cloud, out, stats = (os.path.join(tmp, x) for x in ('c.xyz', 'o.ply', 's.json'))
                     np.savetxt(cloud, np.hstack([moved, given]), fmt='%.7g')
-                    subprocess.run([a.pss, 'project', cloud, '-o', out, '--stats', stats], check=True,
+                    subprocess.run(pss_command(a.pss, a.ranks) + ['project', cloud, '-o', out, '--stats', stats], check=True,
                                    capture_output=True)
                     turned = json.load(open(stats))['normals_turned']
                     against = float(((projected_normals(out) * n).sum(1) < 0).mean() * 100)
@@ -77,7 +84,7 @@ def main():
                                  'turned': turned, 'against_percent': against})
                     print(f"{os.path.basename(mesh):<20} {noise:>6g} {str(flipped):>8} {turned:>8} {against:>10.1f}")
     if a.json:
-        json.dump({'seed': a.seed, 'rows': rows}, open(a.json, 'w'), indent=1)
+        json.dump({'seed': a.seed, 'ranks': a.ranks, 'rows': rows}, open(a.json, 'w'), indent=1)
 
 
 if __name__ == '__main__':

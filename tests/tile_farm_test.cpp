@@ -4,7 +4,9 @@
 // counted; a request that does not hold together is an error, not a read past its end.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstring>
 #include <vector>
 
@@ -101,7 +103,8 @@ TEST(TileWork, ARequestCutShortOrOfNoStepIsAnError) {
   const std::vector<vec3> normals(unit.size(), vec3(0, 0, 1));
   const std::vector<float> radius(unit.size(), 0.02f);
   const std::vector<std::uint64_t> id = {5, 6, 7, 8};
-  const std::vector<std::byte> orientation = orientation_request(unit, normals, radius, id);
+  const Occupancy occupancy(unit, normals, radius);
+  const std::vector<std::byte> orientation = orientation_request(unit, normals, radius, id, occupancy);
   EXPECT_EQ(outliers_result(tile_work(TileStep::outliers, outliers)).distance.size(), 2u);
   // Merged samples: a cube's first point out of the set is refused, not followed.
   const std::vector<int> into = {0, 0, 2, 9};
@@ -201,6 +204,64 @@ TEST(TileWork, AMeshPieceThatDoesNotHoldTogetherIsAnError) {
   EXPECT_EQ(mesh_result(piece(3, 2)).piece.mesh.triangles.size(), 1u);
   EXPECT_THROW(mesh_result(piece(2, 2)), Error) << "a key for each vertex";
   EXPECT_THROW(mesh_result(piece(3, 3)), Error) << "a triangle's corner past the vertices";
+}
+
+// A sphere whose normals face out above z = 0.15, in below z = −0.15, and turn smoothly in the
+// band between, so that a tile's tree carries their signs through the band and its lower cap
+// faces in. The tile's work gives the tree's signs and turns where the rays say otherwise: the
+// lower cap, whose rays along its normals all meet the sphere's far side. Each point's vote is
+// given as its normal faces after that turn, and a point that follows a merged sample takes
+// its sample's turn and casts no vote.
+TEST(TileWork, TheRaysTurnWhatATreeCarriedInwardAndSayHowTheyVote) {
+  const int count = 4000;
+  std::vector<vec3> points, normals;
+  for (int i = 0; i < count; ++i) {  // a Fibonacci sphere
+    const float z = 1 - 2 * (float(i) + 0.5f) / float(count), r = std::sqrt(1 - z * z), a = float(i) * 2.39996323f;
+    const vec3 p(r * std::cos(a), r * std::sin(a), z);
+    const float turn = 3.14159265f * std::clamp((0.15f - z) / 0.3f, 0.0f, 1.0f);
+    const vec3 up = glm::normalize(vec3(0, 0, 1) - z * p);  // along the meridian
+    points.push_back(p);
+    normals.push_back(std::cos(turn) * p + std::sin(turn) * up);
+  }
+  std::vector<int> sample(count, -1);
+  for (int k = 0; k < 400; ++k) {  // points that follow a sample, one in ten
+    points.push_back(points[std::size_t(10 * k)]);
+    normals.push_back(normals[std::size_t(10 * k)]);
+    sample.push_back(10 * k);
+  }
+  const std::vector<float> radius(points.size(), 0.2f);  // ρ: about 3.5 spacings
+  std::vector<std::uint64_t> id(points.size());
+  for (std::size_t i = 0; i < id.size(); ++i) id[i] = i;
+  const std::span<const vec3> on_sphere = std::span<const vec3>(points).first(count);
+  const std::vector<float> disc(count, 0.1f);  // ρ/2, as the tiles mark them
+  const Occupancy occupancy(on_sphere, std::span<const vec3>(normals).first(count), disc);
+  const TileOrientation o = orientation_result(
+      tile_work(TileStep::orientation, orientation_request(points, normals, radius, id, occupancy, sample)),
+      points.size());
+  std::size_t cap = 0, carried_in = 0, seen_out = 0, followers_turned = 0;
+  for (int i = 0; i < count; ++i) {
+    const vec3 p = points[std::size_t(i)], n = o.normals[std::size_t(i)];
+    if (p.z > -0.3f) continue;
+    ++cap;
+    carried_in += glm::dot(n, p) < 0;
+    seen_out += glm::dot(o.seen_turned[std::size_t(i)] ? -n : n, p) > 0;
+  }
+  EXPECT_GT(cap, 1000u);
+  EXPECT_EQ(carried_in, cap) << "the tree's signs";
+  EXPECT_GT(seen_out, cap * 99 / 100) << "the rays' signs";
+  // The votes as the rays' signs face: the votes along the tree's normals, turned with them.
+  const std::vector<std::int8_t> along_tree =
+      visibility_votes(occupancy, on_sphere, std::span<const vec3>(o.normals).first(count), disc);
+  for (std::size_t i = 0; i < std::size_t(count); ++i)
+    ASSERT_EQ(o.seen_votes[i], o.seen_turned[i] ? -along_tree[i] : along_tree[i]) << i;
+  for (std::size_t i = count; i < points.size(); ++i) {
+    const auto j = std::size_t(sample[i]);
+    EXPECT_EQ(o.seen_turned[i], o.seen_turned[j]) << i;
+    EXPECT_EQ(o.seen_votes[i], 0) << i;
+    EXPECT_GT(glm::dot(o.normals[i], o.normals[j]), 0.0f) << i;
+    followers_turned += o.seen_turned[i] != 0;
+  }
+  EXPECT_GT(followers_turned, 50u);
 }
 
 }  // namespace

@@ -116,13 +116,6 @@ std::vector<char> face_as_seen(const SupportGrid& grid, std::span<vec3> sorted, 
   return face_as_seen(grid.sorted_points(), sorted, radius, parts.of_point, parts.root.size(), tree, progress);
 }
 
-// A part whose file's normals the rays see facing in for fewer than this share of its samples
-// keeps them all: a file that faces out throughout lost 0.4–0.7 % of the dragon's normals to
-// the rays' errors (0 to 1 spacing of noise; 12 % of its merged samples at 2), while a
-// flipped half is half. So does a part whose file faces in for all but this share: a file
-// facing one way throughout keeps that way (an inward one, a room's walls seen from inside).
-constexpr double kFileAgainstShare = 0.15;
-
 std::vector<vec3> sorted_normals(const SupportGrid& grid, std::span<const vec3> normals) {
   const std::span<const int> original = grid.original_index();
   std::vector<vec3> sorted(original.size());
@@ -198,14 +191,22 @@ std::size_t face_file_normals_as_seen(const SupportGrid& grid, std::span<vec3> f
 }
 
 OrientedParts orient_normals_in_parts(std::span<const vec3> points, std::span<vec3> normals,
-                                      std::span<const float> radius, std::span<const std::uint64_t> id) {
+                                      std::span<const float> radius, std::span<const std::uint64_t> id,
+                                      SpanningTree* tree) {
   check_one_normal_per_point(points.size(), normals.size());
   if (id.size() != points.size()) throw Error("orient normals: one index per point is needed");
   const SupportGrid grid(points, radius, 1.0f);
   std::vector<vec3> sorted = sorted_normals(grid, normals);
   const std::span<const int> original = grid.original_index();
   const OrientedParts sorted_parts =
-      orient_sorted(grid, sorted, [&](int k) { return id[std::size_t(original[std::size_t(k)])]; }, nullptr);
+      orient_sorted(grid, sorted, [&](int k) { return id[std::size_t(original[std::size_t(k)])]; }, nullptr, tree);
+  if (tree) {  // from the grid's order to the points'
+    std::vector<int> parent(points.size(), -1);
+    for (std::size_t k = 0; k < parent.size(); ++k)
+      if (tree->parent[k] >= 0) parent[std::size_t(original[k])] = original[std::size_t(tree->parent[k])];
+    tree->parent = std::move(parent);
+    for (int& k : tree->order) k = original[std::size_t(k)];
+  }
   OrientedParts parts;
   parts.of_point.resize(points.size());
   for (std::size_t k = 0; k < sorted.size(); ++k) {

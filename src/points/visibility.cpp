@@ -26,13 +26,24 @@ void tangents(vec3 n, vec3& u, vec3& w) {
 
 }  // namespace
 
-Occupancy::Occupancy(std::span<const vec3> points, std::span<const vec3> normals, std::span<const float> radius) {
-  if (normals.size() != points.size() || radius.size() != points.size())
-    throw Error("visibility: one normal and one radius per point are needed");
+namespace {
+
+Aabb finite_box(std::span<const vec3> points) {
   Aabb box;
   for (const vec3 p : points)
     if (is_finite(p)) box.grow(p);
-  if (box.empty()) return;  // no finite point: every ray escapes
+  return box;
+}
+
+}  // namespace
+
+Occupancy::Occupancy(std::span<const vec3> points, std::span<const vec3> normals, std::span<const float> radius)
+    : Occupancy(finite_box(points)) {
+  mark(points, normals, radius);
+}
+
+Occupancy::Occupancy(const Aabb& box) : box_(box) {
+  if (box.empty() || !is_finite(box.lo) || !is_finite(box.hi)) return;  // no finite point: every ray escapes
   const vec3 extent = box.extent();
   const float longest = std::max({extent.x, extent.y, extent.z});
   cell_ = longest > 0 ? longest / float(kVisibilityCells - 2 * kMargin) : 1.0f;
@@ -40,10 +51,21 @@ Occupancy::Occupancy(std::span<const vec3> points, std::span<const vec3> normals
   for (int a = 0; a < 3; ++a)
     dims_[a] = std::clamp(int(std::ceil((box.hi[a] - lo_[a]) / cell_)) + kMargin, 1, kVisibilityCells);
   bits_.assign((std::size_t(dims_[0]) * std::size_t(dims_[1]) * std::size_t(dims_[2]) + 63) / 64, 0);
+}
+
+void Occupancy::mark(std::span<const vec3> points, std::span<const vec3> normals, std::span<const float> radius) {
+  if (normals.size() != points.size() || radius.size() != points.size())
+    throw Error("visibility: one normal and one radius per point are needed");
+  if (bits_.empty()) return;
   cpu::parallel_for(std::int64_t(points.size()), [&](std::int64_t i) {
     const auto k = std::size_t(i);
     mark(points[k], normals[k], radius[k]);
   });
+}
+
+void Occupancy::set_words(std::span<const std::uint64_t> words) {
+  if (words.size() != bits_.size()) throw Error("visibility: the occupancy's words do not fit its box");
+  std::copy(words.begin(), words.end(), bits_.begin());
 }
 
 // The disc sampled every half voxel in its plane, so that a ray crossing it meets a marked
@@ -109,7 +131,14 @@ bool Occupancy::escapes(vec3 from, vec3 direction) const {
 
 std::vector<std::int8_t> visibility_votes(std::span<const vec3> points, std::span<const vec3> normals,
                                           std::span<const float> radius, Progress* progress) {
-  const Occupancy occupancy(points, normals, radius);
+  return visibility_votes(Occupancy(points, normals, radius), points, normals, radius, progress);
+}
+
+std::vector<std::int8_t> visibility_votes(const Occupancy& occupancy, std::span<const vec3> points,
+                                          std::span<const vec3> normals, std::span<const float> radius,
+                                          Progress* progress) {
+  if (normals.size() != points.size() || radius.size() != points.size())
+    throw Error("visibility: one normal and one radius per point are needed");
   std::vector<std::int8_t> votes(points.size(), 0);
   const float past_voxels = 2.0f * occupancy.cell();
   cpu::parallel_for(std::int64_t(points.size()), [&](std::int64_t i) {
@@ -145,8 +174,7 @@ std::vector<char> face_as_seen(std::span<const vec3> points, std::span<vec3> nor
     voting[p] += votes[k] != 0;
   }
   std::vector<char> decided(parts, 0);
-  for (std::size_t p = 0; p < parts; ++p)
-    decided[p] = voting[p] >= kDecidingVoters && double(voting[p]) >= double(kDecidingShare) * double(size[p]);
+  for (std::size_t p = 0; p < parts; ++p) decided[p] = rays_decide(voting[p], size[p]);
   const std::vector<char> turned = signs_along_tree(tree, votes, kCutVotes);
   for (std::size_t k = 0; k < points.size(); ++k)
     if (turned[k] && decided[std::size_t(part_of[k])]) normals[k] = -normals[k];

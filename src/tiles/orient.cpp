@@ -5,33 +5,64 @@
 #include <limits>
 #include <numeric>
 
+#include "pss/core/connected_components.hpp"
 #include "pss/core/error.hpp"
+#include "pss/points/visibility.hpp"
 
 namespace pss {
 
-std::uint32_t PieceSigns::add_piece(float z, std::uint64_t root, const FacingVote& vote) {
+std::uint32_t PieceSigns::add_piece(float z, std::uint64_t root, const FacingVote& vote, const PieceRays& rays) {
   if (roots_.size() >= std::size_t(std::numeric_limits<std::uint32_t>::max()))
     throw Error("the normals' orientation has more than 2^32 pieces across its tiles");
   roots_.push_back({z, root});
   facing_.push_back(vote);
+  rays_.push_back(rays);
   return std::uint32_t(roots_.size() - 1);
 }
 
-void PieceSigns::vote(std::uint32_t a, std::uint32_t b, bool alike) {
+void PieceSigns::vote(std::uint32_t a, std::uint32_t b, bool alike, bool a_seen, bool b_seen) {
   if (a == b) return;
-  if (a > b) std::swap(a, b);
-  votes_[(std::uint64_t(a) << 32) | b] += alike ? 1 : -1;
+  if (a > b) {
+    std::swap(a, b);
+    std::swap(a_seen, b_seen);
+  }
+  std::array<std::int64_t, 4>& balance = votes_[(std::uint64_t(a) << 32) | b];
+  for (int rays = 0; rays < 4; ++rays) {
+    const bool turned = ((rays & 2) && a_seen) != ((rays & 1) && b_seen);
+    balance[std::size_t(rays)] += alike != turned ? 1 : -1;
+  }
 }
 
-std::vector<char> PieceSigns::turns() const {
+PieceTurns PieceSigns::turns() const {
+  const std::size_t n = roots_.size();
+  // The cloud's parts, as the pieces' shared points join them: where their samples' rays
+  // decide, every piece takes the rays' signs.
+  ConnectedComponents<std::uint32_t> parts(n);
+  for (const auto& [key, balance] : votes_) parts.join(std::uint32_t(key >> 32), std::uint32_t(key & 0xffffffffu));
+  std::vector<std::int64_t> points(n, 0), voters(n, 0);
+  for (std::uint32_t p = 0; p < n; ++p) {
+    points[parts.find(p)] += rays_[p].points;
+    voters[parts.find(p)] += rays_[p].voters;
+  }
+  PieceTurns out;
+  out.seen.resize(n);
+  out.part.resize(n);
+  for (std::uint32_t p = 0; p < n; ++p) {
+    out.part[p] = parts.find(p);
+    out.seen[p] = rays_decide(voters[out.part[p]], points[out.part[p]]);
+  }
   // The strongest agreements first, then by the pieces' numbers: the same forest every run.
-  std::vector<std::pair<std::uint64_t, std::int64_t>> votes(votes_.begin(), votes_.end());
+  std::vector<std::pair<std::uint64_t, std::int64_t>> votes;
+  votes.reserve(votes_.size());
+  for (const auto& [key, balance] : votes_) {
+    const auto a = std::size_t(key >> 32), b = std::size_t(key & 0xffffffffu);
+    votes.emplace_back(key, balance[std::size_t(2 * out.seen[a] + out.seen[b])]);
+  }
   std::sort(votes.begin(), votes.end(), [](const auto& x, const auto& y) {
     const std::int64_t sx = std::llabs(x.second), sy = std::llabs(y.second);
     return sx > sy || (sx == sy && x.first < y.first);
   });
   // Union-find with each piece's sign relative to its parent's.
-  const std::size_t n = roots_.size();
   std::vector<std::uint32_t> parent(n);
   std::iota(parent.begin(), parent.end(), 0u);
   std::vector<char> against(n, 0);
@@ -71,17 +102,21 @@ std::vector<char> PieceSigns::turns() const {
         (roots_[p].z == roots_[t].z && roots_[p].index < roots_[t].index))
       t = p;
   }
-  std::vector<char> turn(n);
+  std::vector<char>& turn = out.flip;
+  turn.resize(n);
   std::vector<FacingVote> facing(n);  // by each part's root in the forest
+  std::vector<std::int64_t> seen(n, 0);  // the rays' votes, where the part takes their signs
   for (std::uint32_t p = 0; p < n; ++p) {
     const std::uint32_t r = find(p);
     turn[p] = char(against[p] ^ against[top[r]]);
-    facing[r].add(facing_[p], turn[p]);
+    facing[r].add(out.seen[p] ? rays_[p].seen_facing : facing_[p], turn[p]);
+    seen[r] += turn[p] ? -rays_[p].seen_sum : rays_[p].seen_sum;
   }
-  std::vector<char> inward(n);  // by each part's root
-  for (std::uint32_t r = 0; r < n; ++r) inward[r] = facing[r].sign() < 0;
+  // Each part (by its root) faces as its rays' votes sum, where they decide; else as its heights vote.
+  std::vector<char> inward(n);
+  for (std::uint32_t r = 0; r < n; ++r) inward[r] = out.seen[r] && seen[r] != 0 ? seen[r] < 0 : facing[r].sign() < 0;
   for (std::uint32_t p = 0; p < n; ++p) turn[p] ^= inward[find(p)];
-  return turn;
+  return out;
 }
 
 }  // namespace pss

@@ -6,7 +6,7 @@
 #include "pss/core/error.hpp"
 #include "pss/core/progress.hpp"
 #include "pss/points/facing_vote.hpp"
-#include "pss/tiles/orient.hpp"
+#include "pss/points/visibility.hpp"
 #include "tile_bytes.hpp"
 #include "tile_works.hpp"
 
@@ -44,21 +44,42 @@ void vote(const BucketFile& ordered, std::uint64_t n, std::size_t window_points,
   for (int w = 0; w < ordered.buckets(); ++w) {
     const std::uint64_t first = std::uint64_t(w) * window_points;
     const std::size_t size = std::size_t(std::min<std::uint64_t>(window_points, n - first));
-    std::vector<vec3> normal(size);
-    std::vector<std::uint32_t> piece(size);
-    auto each = [&](bool own, auto&& f) {
+    std::vector<Oriented> own(size);
+    auto each = [&](bool is_own, auto&& f) {
       ordered.for_each_record<Oriented>(w, [&](const Oriented& r) {
-        if (r.own == own) f(r);
+        if (r.own == is_own) f(r);
       });
     };
-    each(true, [&](const Oriented& r) {
-      normal[r.index - first] = r.normal;
-      piece[r.index - first] = r.piece;
-    });
+    each(true, [&](const Oriented& r) { own[r.index - first] = r; });
     each(false, [&](const Oriented& r) {
-      signs.vote(r.piece, piece[r.index - first], glm::dot(r.normal, normal[r.index - first]) >= 0);
+      const Oriented& o = own[r.index - first];
+      signs.vote(r.piece, o.piece, glm::dot(r.normal, o.normal) >= 0, r.seen_turned, o.seen_turned);
     });
   }
+}
+
+// The whole cloud's samples' discs (visibility.hpp), marked tile by tile: those of the
+// records that stand for themselves, as the in-core tree's points are.
+Occupancy occupancy_of(const BucketFile& records, int tiles, Progress& progress) {
+  Aabb box;
+  for (int t = 0; t < tiles; ++t)
+    records.for_each_record<Projected>(t, [&](const Projected& r) {
+      if (r.stands_for_itself() && is_finite(r.point)) box.grow(r.point);
+    });
+  Occupancy occupancy(box);
+  for (int t = 0; t < tiles; ++t) {
+    std::vector<vec3> points, normals;
+    std::vector<float> radius;
+    records.for_each_record<Projected>(t, [&](const Projected& r) {
+      if (!r.stands_for_itself()) return;
+      points.push_back(r.point);
+      normals.push_back(r.normal);
+      radius.push_back(0.5f * r.radius);  // as in core: ρ_i/2
+    });
+    occupancy.mark(points, normals, radius);
+    progress.advance(std::int64_t(records.records(t)));
+  }
+  return occupancy;
 }
 
 struct Set {  // a tile's records and its halo's: its notes
@@ -82,7 +103,8 @@ OrientedInTiles orient_in_tiles(const OrientationInputs& in, std::size_t window_
   PieceSigns signs;
   std::uint64_t records = 0;  // each own record once: a point each, or a sample each
   for (int t = 0; t < cloud.tiles(); ++t) records += in.records.records(t);
-  Progress progress(label, std::int64_t(records));
+  Progress progress(label, 2 * std::int64_t(records));  // the discs marked, then the tiles oriented
+  const Occupancy occupancy = occupancy_of(in.records, cloud.tiles(), progress);
   const double farthest = in.moved.empty() ? 0.0 : *std::max_element(in.moved.begin(), in.moved.end());
   farm.run(
       TileStep::orientation, cloud.tiles_with_points(),
@@ -116,8 +138,9 @@ OrientedInTiles orient_in_tiles(const OrientationInputs& in, std::size_t window_
         ByteWriter notes;
         notes.put(std::uint64_t(set.own));
         notes.put_array(std::span<const Projected>(set.records));
-        return TileRequest{orientation_request(points, normals, radius, id, samples_in_set(set.records, in.merged)),
-                           notes.take()};
+        return TileRequest{
+            orientation_request(points, normals, radius, id, occupancy, samples_in_set(set.records, in.merged)),
+            notes.take()};
       },
       [&](int t, std::span<const std::byte> result, std::span<const std::byte> notes, int) {
         ByteReader read(notes);
@@ -131,22 +154,31 @@ OrientedInTiles orient_in_tiles(const OrientationInputs& in, std::size_t window_
         std::vector<int> size(parts.root.size(), 0);
         for (const int part : parts.of_point) ++size[std::size_t(part)];
         std::vector<FacingVote> vote(parts.root.size());
+        std::vector<PieceRays> rays(parts.root.size());
         for (std::size_t i = 0; i < set.own; ++i) {
           const Projected& r = set.records[i];
-          if (r.stands_for_itself())  // in core the tree's points vote
-            vote[std::size_t(parts.of_point[i])].add(r.point, oriented.normals[i], 1.0f / (r.radius * r.radius), r.status);
+          if (!r.stands_for_itself()) continue;  // in core the tree's points vote
+          const auto p = std::size_t(parts.of_point[i]);
+          const vec3 n = oriented.normals[i];
+          const float inv_rho2 = 1.0f / (r.radius * r.radius);
+          vote[p].add(r.point, n, inv_rho2, r.status);
+          rays[p].seen_facing.add(r.point, oriented.seen_turned[i] ? -n : n, inv_rho2, r.status);
+          const std::int8_t seen = oriented.seen_votes[i];  // with the rays' signs
+          rays[p].points += 1;
+          rays[p].voters += seen != 0;
+          rays[p].seen_sum += seen;
         }
         std::vector<std::uint32_t> piece(parts.root.size(), kNoPiece);
         for (std::size_t p = 0; p < piece.size(); ++p) {
           const Projected& root = set.records[std::size_t(parts.root[p])];
           if (size[p] > 1 || std::size_t(parts.root[p]) < set.own)
-            piece[p] = signs.add_piece(root.point.z, root.index, vote[p]);
+            piece[p] = signs.add_piece(root.point.z, root.index, vote[p], rays[p]);
         }
         for (std::size_t i = 0; i < set.records.size(); ++i) {
           const std::uint32_t p = piece[std::size_t(parts.of_point[i])];
           if (p == kNoPiece) continue;
           const Projected& r = set.records[i];
-          const Oriented o{r.index, r.point, oriented.normals[i], p, r.status, i < set.own};
+          const Oriented o{r.index, r.point, oriented.normals[i], p, r.status, i < set.own, oriented.seen_turned[i] != 0};
           out.ordered->append(int(r.index / window_points), &o);
           if (out.by_tile && o.own) out.by_tile->append(t, &o);
         }
@@ -155,7 +187,7 @@ OrientedInTiles orient_in_tiles(const OrientationInputs& in, std::size_t window_
   out.ordered->flush();
   if (out.by_tile) out.by_tile->flush();
   vote(*out.ordered, n, window_points, signs);
-  out.flip = signs.turns();
+  out.pieces = signs.turns();
   return out;
 }
 

@@ -14,6 +14,7 @@
 #include "pss/io/tiled_cloud.hpp"
 #include "pss/points/unit_frame.hpp"
 #include "pss/tiles/farm.hpp"
+#include "pss/tiles/orient.hpp"
 #include "tile_records.hpp"
 
 namespace pss {
@@ -30,9 +31,11 @@ struct OrientationInputs {
 struct OrientedInTiles {
   std::unique_ptr<BucketFile> ordered;  // Oriented, a bucket a window: each own record and halo votes
   std::unique_ptr<BucketFile> by_tile;  // Oriented, each tile's own records; empty unless asked
-  std::vector<char> flip;               // per piece, whether it turns
+  PieceTurns pieces;                    // per piece, whether it turns
   std::vector<char> seam;               // empty, or per point of the cloud: the seams' turn turns it
-  bool turned(const Oriented& r) const { return (flip[r.piece] != 0) != (!seam.empty() && seam[r.index] != 0); }
+  bool turned(const Oriented& r) const {
+    return pieces(r.piece, r.seen_turned) != (!seam.empty() && seam[r.index] != 0);
+  }
 };
 
 // The records oriented, in windows of `window_points` (and by tile, where `by_tile`), in

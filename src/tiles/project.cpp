@@ -122,7 +122,8 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
   release(merge);
   if (follows_samples) {
     ordered_->flush();
-    flip_.assign(kUnturned + 1, 0);
+    pieces_.flip.assign(kUnturned + 1, 0);
+    pieces_.seen.assign(kUnturned + 1, 0);
     return;
   }
   projected->flush();
@@ -132,7 +133,7 @@ TiledProjection::TiledProjection(const TiledCloud& cloud, const ProjectionParams
   const OrientationInputs in{cloud, frame_, *projected, moved, reach, widths_.merged_count > 0};
   OrientedInTiles oriented = orient_in_tiles(in, window_points_, false, folder, buffer_bytes, farm, "orient normals");
   ordered_ = std::move(oriented.ordered);
-  flip_ = std::move(oriented.flip);
+  pieces_ = std::move(oriented.pieces);
 }
 
 void TiledProjection::read_in_order(const std::function<void(ProjectedWindow&)>& f) const {
@@ -148,7 +149,7 @@ void TiledProjection::read_in_order(const std::function<void(ProjectedWindow&)>&
       if (!r.own) return;
       const std::size_t i = std::size_t(r.index - window.first);
       window.positions[i] = frame_.from_unit(r.point);
-      window.normals[i] = flip_[r.piece] ? -r.normal : r.normal;
+      window.normals[i] = pieces_(r.piece, r.seen_turned) ? -r.normal : r.normal;
       window.status[i] = r.status;
     });
     f(window);

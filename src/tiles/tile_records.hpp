@@ -37,7 +37,8 @@ struct Oriented {  // a point oriented, in its window's bucket: its own tile's, 
   std::uint32_t piece;
   ProjectionStatus status;
   bool own;
-  std::uint8_t unused[2] = {};
+  bool seen_turned = false;  // the rays' signs turn it in its piece (tiles/orient.hpp)
+  std::uint8_t unused = 0;
 };
 static_assert(sizeof(Oriented) == 40);
 

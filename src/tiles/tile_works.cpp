@@ -287,15 +287,40 @@ TileSampleNormals sample_normals_result(std::span<const std::byte> result) {
 
 std::vector<std::byte> orientation_request(std::span<const vec3> points, std::span<const vec3> normals,
                                            std::span<const float> radius, std::span<const std::uint64_t> id,
-                                           std::span<const int> sample) {
+                                           const Occupancy& occupancy, std::span<const int> sample) {
   ByteWriter out;
   out.put_array(points);
   out.put_array(normals);
   out.put_array(radius);
   out.put_array(id);
   out.put_array(sample);
+  out.put(occupancy.box());
+  out.put_array(occupancy.words());
   return out.take();
 }
+
+namespace {
+
+// The tree's signs turned where the rays through `occupancy` say otherwise (visibility.hpp),
+// in every part: the cloud's part, over the tiles, says whether they are taken. Per point,
+// whether they turn it and its vote, as its normal faces after them.
+struct SeenTurns {
+  std::vector<char> turned;
+  std::vector<std::int8_t> votes;
+};
+
+SeenTurns seen_turns(const Occupancy& occupancy, std::span<const vec3> points, std::span<const vec3> normals,
+                     std::span<const float> rho, const SpanningTree& tree) {
+  std::vector<float> radius(rho.size());
+  for (std::size_t i = 0; i < radius.size(); ++i) radius[i] = 0.5f * rho[i];  // as in core: ρ_i/2
+  SeenTurns seen{{}, visibility_votes(occupancy, points, normals, radius)};
+  seen.turned = signs_along_tree(tree, seen.votes, kCutVotes);
+  for (std::size_t i = 0; i < seen.votes.size(); ++i)
+    if (seen.turned[i]) seen.votes[i] = std::int8_t(-seen.votes[i]);
+  return seen;
+}
+
+}  // namespace
 
 std::vector<std::byte> work_orientation(std::span<const std::byte> request) {
   ByteReader in(request);
@@ -304,13 +329,18 @@ std::vector<std::byte> work_orientation(std::span<const std::byte> request) {
   const auto radius = in.get_array<float>();
   const auto id = in.get_array<std::uint64_t>();
   const auto sample = in.get_array<int>();
+  Occupancy occupancy(in.get<Aabb>());
+  occupancy.set_words(in.get_array<std::uint64_t>());
   const std::size_t m = points.size();
   bool whole = normals.size() == m && radius.size() == m && id.size() == m && (sample.empty() || sample.size() == m);
   for (const int j : sample) whole = whole && (j < 0 || (std::size_t(j) < m && sample[std::size_t(j)] < 0));
   if (!whole) throw Error("a tile's work does not hold together");
   OrientedParts parts;
+  SpanningTree tree;
+  SeenTurns seen;
   if (sample.empty()) {
-    parts = orient_normals_in_parts(points, normals, radius, id);
+    parts = orient_normals_in_parts(points, normals, radius, id, &tree);
+    seen = seen_turns(occupancy, points, normals, radius, tree);
   } else {  // the tree over the points that stand for themselves; the rest follow their samples'
     std::vector<int> nodes;
     for (std::size_t i = 0; i < m; ++i)
@@ -319,16 +349,21 @@ std::vector<std::byte> work_orientation(std::span<const std::byte> request) {
     std::vector<vec3> facing = gathered<vec3>(normals, nodes);
     const std::vector<float> rho = gathered<float>(radius, nodes);
     const std::vector<std::uint64_t> node_id = gathered<std::uint64_t>(id, nodes);
-    const OrientedParts node_parts = orient_normals_in_parts(at, facing, rho, node_id);
+    const OrientedParts node_parts = orient_normals_in_parts(at, facing, rho, node_id, &tree);
+    const SeenTurns node_seen = seen_turns(occupancy, at, facing, rho, tree);
     std::vector<int> node_of(m, -1);
     for (std::size_t k = 0; k < nodes.size(); ++k) {
       normals[std::size_t(nodes[k])] = facing[k];
       node_of[std::size_t(nodes[k])] = int(k);
     }
     parts.of_point.resize(m);
+    seen.turned.resize(m);
+    seen.votes.assign(m, 0);  // only the tree's points vote, as in core
     for (std::size_t i = 0; i < m; ++i) {
-      const int k = node_of[std::size_t(sample[i] < 0 ? int(i) : sample[i])];
-      parts.of_point[i] = node_parts.of_point[std::size_t(k)];
+      const auto k = std::size_t(node_of[std::size_t(sample[i] < 0 ? int(i) : sample[i])]);
+      parts.of_point[i] = node_parts.of_point[k];
+      seen.turned[i] = node_seen.turned[k];
+      if (sample[i] < 0) seen.votes[i] = node_seen.votes[k];
       if (sample[i] >= 0 && glm::dot(normals[i], normals[std::size_t(sample[i])]) < 0) normals[i] = -normals[i];
     }
     for (const int root : node_parts.root) parts.root.push_back(nodes[std::size_t(root)]);
@@ -337,13 +372,17 @@ std::vector<std::byte> work_orientation(std::span<const std::byte> request) {
   result.put_array<vec3>(normals);
   result.put_array<int>(parts.of_point);
   result.put_array<int>(parts.root);
+  result.put_array<char>(seen.turned);
+  result.put_array<std::int8_t>(seen.votes);
   return result.take();
 }
 
 TileOrientation orientation_result(std::span<const std::byte> result, std::size_t points) {
   ByteReader in(result);
-  TileOrientation o{in.get_array<vec3>(), {in.get_array<int>(), in.get_array<int>()}};
-  bool whole = o.normals.size() == points && o.parts.of_point.size() == points;
+  TileOrientation o{in.get_array<vec3>(), {in.get_array<int>(), in.get_array<int>()}, in.get_array<char>(),
+                    in.get_array<std::int8_t>()};
+  bool whole = o.normals.size() == points && o.parts.of_point.size() == points && o.seen_turned.size() == points &&
+               o.seen_votes.size() == points;
   for (const int part : o.parts.of_point) whole = whole && part >= 0 && std::size_t(part) < o.parts.root.size();
   for (const int root : o.parts.root) whole = whole && root >= 0 && std::size_t(root) < points;
   if (!whole) throw Error("a tile's orientation does not hold together");

@@ -15,6 +15,7 @@
 #include "pss/points/project_points.hpp"
 #include "pss/points/seam_turn.hpp"
 #include "pss/points/support_steps.hpp"
+#include "pss/points/visibility.hpp"
 #include "pss/spatial/support_layout.hpp"
 
 namespace pss {
@@ -94,13 +95,16 @@ TileFileNormals file_normals_result(std::span<const std::byte> result);
 // each point, the place in the set of the point its merged sample stands at, or −1 where it
 // stands for itself: the tree grows over those, and each other point takes its sample's side
 // and part, as in core (project_cloud.cpp); empty: every point stands for itself.
+// The set's rays go through `occupancy`, the whole cloud's samples' (points/visibility.hpp).
 std::vector<std::byte> orientation_request(std::span<const vec3> points, std::span<const vec3> normals,
                                            std::span<const float> radius, std::span<const std::uint64_t> id,
-                                           std::span<const int> sample = {});
+                                           const Occupancy& occupancy, std::span<const int> sample = {});
 std::vector<std::byte> work_orientation(std::span<const std::byte> request);
 struct TileOrientation {
-  std::vector<vec3> normals;  // oriented
+  std::vector<vec3> normals;  // oriented by the tree
   OrientedParts parts;
+  std::vector<char> seen_turned;        // per point, whether the rays' signs turn it (tiles/orient.hpp)
+  std::vector<std::int8_t> seen_votes;  // per point, its rays' vote with those signs; 0 where none
 };
 TileOrientation orientation_result(std::span<const std::byte> result, std::size_t points);
 

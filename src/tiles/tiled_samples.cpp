@@ -289,7 +289,7 @@ TiledSamples tiled_samples(const TiledCloud& cloud, const ProjectionParams& para
   if (params.normals == NormalSource::file) s.without_direction = cloud.normals_without_direction();
   if (cloud.has_normals() && params.normals == NormalSource::file) {
     ScopedPhase phase(stats, "file normals", false);  // its Progress shows it
-    FileNormalsInTiles file = file_normals_in_tiles(s.sets(cloud), folder, buffer_bytes, farm);
+    FileNormalsInTiles file = file_normals_in_tiles(s.sets(cloud), s.kappa, window_points, folder, buffer_bytes, farm);
     s.normals_turned = file.turned;
     s.file_normals_off = file.off_the_points;
     if (file.normals.by_tile) {

@@ -74,8 +74,9 @@ struct FileNormalsInTiles {
   std::size_t off_the_points = 0;       // where they were left out for that: how many samples' were off
   std::size_t turned = 0;
 };
-FileNormalsInTiles file_normals_in_tiles(const UnitSets& sets, const std::filesystem::path& folder,
-                                         std::size_t buffer_bytes, TileFarm& farm);
+FileNormalsInTiles file_normals_in_tiles(const UnitSets& sets, float kappa, std::size_t window_points,
+                                         const std::filesystem::path& folder, std::size_t buffer_bytes,
+                                         TileFarm& farm);
 
 struct TiledSamples {
   UnitFrame frame;

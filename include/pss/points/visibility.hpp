@@ -33,16 +33,27 @@ inline constexpr int kVisibilityCells = 256;
 class Occupancy {
  public:
   Occupancy(std::span<const vec3> points, std::span<const vec3> normals, std::span<const float> radius);
+  // The voxels over `box` (the samples' finite points' box), none occupied yet: tile by tile,
+  // each tile's samples are marked into the whole cloud's (tiles/orient_in_tiles.cpp).
+  explicit Occupancy(const Aabb& box);
+  // Marks these samples' discs.
+  void mark(std::span<const vec3> points, std::span<const vec3> normals, std::span<const float> radius);
   // Whether the ray from `from` along the unit `direction` leaves the box through no occupied
   // voxel (a start outside the box has left it: the box is convex).
   bool escapes(vec3 from, vec3 direction) const;
   float cell() const { return cell_; }
+  const Aabb& box() const { return box_; }
+  // The bitset, 64 voxels a word, to carry it to another process and set it there (after
+  // Occupancy(box) of the same box).
+  std::span<const std::uint64_t> words() const { return bits_; }
+  void set_words(std::span<const std::uint64_t> words);
 
  private:
   void mark(vec3 p, vec3 normal, float r);
   std::size_t bit(int x, int y, int z) const;  // a voxel's place in bits_
   bool occupied(int x, int y, int z) const;
 
+  Aabb box_;
   vec3 lo_{0.0f};
   float cell_ = 1;
   int dims_[3] = {1, 1, 1};
@@ -59,6 +70,10 @@ class Occupancy {
 // `progress`, where given, advances a step a point.
 std::vector<std::int8_t> visibility_votes(std::span<const vec3> points, std::span<const vec3> normals,
                                           std::span<const float> radius, Progress* progress = nullptr);
+// The same through a given occupancy (the whole cloud's, where a tile's samples vote).
+std::vector<std::int8_t> visibility_votes(const Occupancy& occupancy, std::span<const vec3> points,
+                                          std::span<const vec3> normals, std::span<const float> radius,
+                                          Progress* progress = nullptr);
 
 // Turns the normals (oriented along `tree`) where the rays say otherwise: in each part
 // (`part_of`, numbered 0 to parts − 1) whose rays decide, the signs that agree best with the
@@ -71,6 +86,9 @@ std::vector<std::int8_t> visibility_votes(std::span<const vec3> points, std::spa
 inline constexpr int kCutVotes = 64;
 inline constexpr float kDecidingShare = 0.25f;
 inline constexpr std::int64_t kDecidingVoters = 32;
+inline constexpr bool rays_decide(std::int64_t voters, std::int64_t points) {
+  return voters >= kDecidingVoters && double(voters) >= double(kDecidingShare) * double(points);
+}
 std::vector<char> face_as_seen(std::span<const vec3> points, std::span<vec3> normals, std::span<const float> radius,
                                std::span<const int> part_of, std::size_t parts, const SpanningTree& tree,
                                Progress* progress = nullptr);

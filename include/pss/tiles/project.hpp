@@ -25,6 +25,7 @@
 #include "pss/points/sample_normals.hpp"
 #include "pss/points/unit_frame.hpp"
 #include "pss/tiles/farm.hpp"
+#include "pss/tiles/orient.hpp"
 
 namespace pss {
 
@@ -65,7 +66,7 @@ class TiledProjection {
   UnitFrame frame_;
   std::size_t window_points_;
   std::unique_ptr<BucketFile> ordered_;  // the oriented results, a bucket a window
-  std::vector<char> flip_;               // per piece of a tile's orientation, whether it turns
+  PieceTurns pieces_;                    // per piece of a tile's orientation, whether it turns
   StatusCounts counts_;
   SupportWidths widths_;
   OutlierReport outliers_;
