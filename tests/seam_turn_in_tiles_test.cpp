@@ -50,7 +50,7 @@ TEST_F(SeamTurnInTiles, TilesTurnWhatTheInCoreTurnTurns) {
   // The given normals, as the orientation leaves them: by tile, one piece that does not turn.
   OrientedInTiles given;
   given.by_tile = std::make_unique<BucketFile>(dir_, cloud.tiles(), sizeof(Oriented), 1 << 16);
-  given.pieces = {{0}, {0}};
+  given.pieces = {{0}, {0}, {0}};
   std::vector<vec3> unit(points.size());
   for (int t = 0; t < cloud.tiles(); ++t) {
     const UnitSet set = sets.load(t);

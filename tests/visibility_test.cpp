@@ -75,6 +75,20 @@ TEST(Occupancy, OneNormalAndOneRadiusPerPointAreNeeded) {
   EXPECT_THROW(Occupancy(points, std::vector<vec3>(3), std::vector<float>(2, 1.0f)), Error);
 }
 
+// A box no cloud has (a tile's request from a hostile peer: inverted, or wider than a float)
+// holds no voxels: every ray escapes, and words for it are refused; so does a cloud whose
+// extent overflows a float.
+TEST(Occupancy, ABoxNoCloudHasHoldsNoVoxels) {
+  for (const Aabb box : {Aabb{vec3(0, 1e30f, 0), vec3(1, -1e30f, 1)}, Aabb{vec3(-3e38f), vec3(3e38f)}}) {
+    Occupancy occupancy(box);
+    EXPECT_TRUE(occupancy.words().empty());
+    EXPECT_TRUE(occupancy.escapes(vec3(0.5f), vec3(1, 0, 0)));
+    EXPECT_THROW(occupancy.set_words(std::vector<std::uint64_t>(4, ~0ull)), Error);
+  }
+  const std::vector<vec3> far = {vec3(-3e38f), vec3(3e38f)};
+  EXPECT_TRUE(Occupancy(far, std::vector<vec3>(2, vec3(0, 0, 1)), std::vector<float>(2, 1.0f)).words().empty());
+}
+
 // A closed surface: every sample votes, out where its normal faces out and in where it faces in.
 TEST(VisibilityVotes, ASpheresNormalsVoteAsTheyFace) {
   test::SampleOptions o;

@@ -43,13 +43,16 @@ Occupancy::Occupancy(std::span<const vec3> points, std::span<const vec3> normals
 }
 
 Occupancy::Occupancy(const Aabb& box) : box_(box) {
-  if (box.empty() || !is_finite(box.lo) || !is_finite(box.hi)) return;  // no finite point: every ray escapes
+  // No finite point, or a box no cloud has (inverted, or wider than a float: a hostile tile's
+  // request): no voxels, every ray escapes.
   const vec3 extent = box.extent();
+  if (!is_finite(box.lo) || !is_finite(box.hi) || !is_finite(extent) || !(glm::all(glm::greaterThanEqual(extent, vec3(0.0f)))))
+    return;
   const float longest = std::max({extent.x, extent.y, extent.z});
   cell_ = longest > 0 ? longest / float(kVisibilityCells - 2 * kMargin) : 1.0f;
   lo_ = box.lo - float(kMargin) * cell_;
-  for (int a = 0; a < 3; ++a)
-    dims_[a] = std::clamp(int(std::ceil((box.hi[a] - lo_[a]) / cell_)) + kMargin, 1, kVisibilityCells);
+  for (int a = 0; a < 3; ++a)  // clamped as a float, then cast
+    dims_[a] = int(std::clamp(std::ceil((box.hi[a] - lo_[a]) / cell_) + float(kMargin), 1.0f, float(kVisibilityCells)));
   bits_.assign((std::size_t(dims_[0]) * std::size_t(dims_[1]) * std::size_t(dims_[2]) + 63) / 64, 0);
 }
 
@@ -63,9 +66,9 @@ void Occupancy::mark(std::span<const vec3> points, std::span<const vec3> normals
   });
 }
 
-void Occupancy::set_words(std::span<const std::uint64_t> words) {
+void Occupancy::set_words(std::vector<std::uint64_t>&& words) {
   if (words.size() != bits_.size()) throw Error("visibility: the occupancy's words do not fit its box");
-  std::copy(words.begin(), words.end(), bits_.begin());
+  bits_ = std::move(words);
 }
 
 // The disc sampled every half voxel in its plane, so that a ray crossing it meets a marked

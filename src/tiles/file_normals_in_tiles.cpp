@@ -28,16 +28,18 @@ std::size_t face_as_seen_in_tiles(const UnitSets& sets, float kappa, std::span<c
                                   std::size_t buffer_bytes, TileFarm& farm, OrientedInTiles& file) {
   const TiledCloud& cloud = sets.cloud;
   const auto as_left = [&](const Oriented& r) { return file.turned(r) ? -r.normal : r.normal; };
-  BucketFile records(folder, cloud.tiles(), sizeof(Projected), buffer_bytes);
-  for (int t = 0; t < cloud.tiles(); ++t)
-    file.by_tile->for_each_record<Oriented>(t, [&](const Oriented& r) {
-      const Projected p{r.index, r.index, r.point, as_left(r), kappa * sets.h[std::size_t(r.index)],
-                        ProjectionStatus::converged};
-      records.append(t, &p);
-    });
-  records.flush();
-  const OrientationInputs in{cloud, sets.frame, records, moved, sets.reach, false};
-  OrientedInTiles along = orient_in_tiles(in, window_points, true, folder, buffer_bytes, farm, "orient file normals");
+  OrientedInTiles along = [&] {
+    BucketFile records(folder, cloud.tiles(), sizeof(Projected), buffer_bytes);
+    for (int t = 0; t < cloud.tiles(); ++t)
+      file.by_tile->for_each_record<Oriented>(t, [&](const Oriented& r) {
+        const Projected p{r.index, r.index, r.point, as_left(r), kappa * sets.h[std::size_t(r.index)],
+                          ProjectionStatus::converged};
+        records.append(t, &p);
+      });
+    records.flush();
+    const OrientationInputs in{cloud, sets.frame, records, moved, sets.reach, false};
+    return orient_in_tiles(in, window_points, true, folder, buffer_bytes, farm, "orient file normals");
+  }();
   along.ordered.reset();
   // Each sample's part, and whether the file's normal faces against the orientation there.
   const auto each_sample = [&](auto&& f) {
@@ -128,7 +130,7 @@ FileNormalsInTiles file_normals_in_tiles(const UnitSets& sets, float kappa, std:
     return out;
   }
   out.normals.by_tile = std::move(by_tile);
-  out.normals.pieces = {{0}, {0}};
+  out.normals.pieces = {{0}, {0}, {0}};
   out.turned = turn_seams_in_tiles(sets, out.normals, farm);
   if (face_as_seen_in_tiles(sets, kappa, moved, window_points, folder, buffer_bytes, farm, out.normals) > 0) {
     out.turned = 0;  // counted anew: those that face against the file's

@@ -26,11 +26,9 @@ void PieceSigns::vote(std::uint32_t a, std::uint32_t b, bool alike, bool a_seen,
     std::swap(a, b);
     std::swap(a_seen, b_seen);
   }
-  std::array<std::int64_t, 4>& balance = votes_[(std::uint64_t(a) << 32) | b];
-  for (int rays = 0; rays < 4; ++rays) {
-    const bool turned = ((rays & 2) && a_seen) != ((rays & 1) && b_seen);
-    balance[std::size_t(rays)] += alike != turned ? 1 : -1;
-  }
+  std::array<std::int64_t, 2>& balance = votes_[(std::uint64_t(a) << 32) | b];
+  balance[0] += alike ? 1 : -1;
+  balance[1] += alike != (a_seen != b_seen) ? 1 : -1;
 }
 
 PieceTurns PieceSigns::turns() const {
@@ -46,18 +44,12 @@ PieceTurns PieceSigns::turns() const {
   }
   PieceTurns out;
   out.seen.resize(n);
-  out.part.resize(n);
-  for (std::uint32_t p = 0; p < n; ++p) {
-    out.part[p] = parts.find(p);
-    out.seen[p] = rays_decide(voters[out.part[p]], points[out.part[p]]);
-  }
+  for (std::uint32_t p = 0; p < n; ++p) out.seen[p] = rays_decide(voters[parts.find(p)], points[parts.find(p)]);
   // The strongest agreements first, then by the pieces' numbers: the same forest every run.
   std::vector<std::pair<std::uint64_t, std::int64_t>> votes;
   votes.reserve(votes_.size());
-  for (const auto& [key, balance] : votes_) {
-    const auto a = std::size_t(key >> 32), b = std::size_t(key & 0xffffffffu);
-    votes.emplace_back(key, balance[std::size_t(2 * out.seen[a] + out.seen[b])]);
-  }
+  for (const auto& [key, balance] : votes_)  // a pair's two pieces lie in one part: both take its signs, or neither
+    votes.emplace_back(key, balance[out.seen[std::size_t(key >> 32)] ? 1 : 0]);
   std::sort(votes.begin(), votes.end(), [](const auto& x, const auto& y) {
     const std::int64_t sx = std::llabs(x.second), sy = std::llabs(y.second);
     return sx > sy || (sx == sy && x.first < y.first);
@@ -115,7 +107,11 @@ PieceTurns PieceSigns::turns() const {
   // Each part (by its root) faces as its rays' votes sum, where they decide; else as its heights vote.
   std::vector<char> inward(n);
   for (std::uint32_t r = 0; r < n; ++r) inward[r] = out.seen[r] && seen[r] != 0 ? seen[r] < 0 : facing[r].sign() < 0;
-  for (std::uint32_t p = 0; p < n; ++p) turn[p] ^= inward[find(p)];
+  out.part.resize(n);
+  for (std::uint32_t p = 0; p < n; ++p) {
+    out.part[p] = find(p);
+    turn[p] ^= inward[out.part[p]];
+  }
   return out;
 }
 

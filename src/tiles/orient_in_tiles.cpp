@@ -1,6 +1,7 @@
 #include "orient_in_tiles.hpp"
 
 #include <algorithm>
+#include <memory>
 #include <utility>
 
 #include "pss/core/error.hpp"
@@ -20,9 +21,9 @@ double box_distance(const Aabb& a, const Aabb& b) {
                               glm::dvec3(0.0)));
 }
 
-// Where samples were merged, each record's sample's place among the records, or −1 where it
-// stands for itself (tile_works.hpp: orientation_request); a point whose sample's point the
-// set lacks stands for itself. Empty where none were merged.
+// Where samples were merged, each record's sample's place among the records, −1 where it
+// stands for itself, or kSampleNotInSet where its sample's point the set lacks (tile_works.hpp:
+// orientation_request). Empty where none were merged.
 std::vector<int> samples_in_set(const std::vector<Projected>& records, bool merged) {
   if (!merged) return {};
   std::vector<std::pair<std::uint64_t, int>> place(records.size());
@@ -33,8 +34,9 @@ std::vector<int> samples_in_set(const std::vector<Projected>& records, bool merg
     const Projected& r = records[i];
     if (r.stands_for_itself()) continue;
     const auto at = std::lower_bound(place.begin(), place.end(), std::pair<std::uint64_t, int>(r.sample, -1));
-    if (at != place.end() && at->first == r.sample && records[std::size_t(at->second)].stands_for_itself())
-      sample[i] = at->second;
+    sample[i] = at != place.end() && at->first == r.sample && records[std::size_t(at->second)].stands_for_itself()
+                    ? at->second
+                    : kSampleNotInSet;
   }
   return sample;
 }
@@ -104,7 +106,7 @@ OrientedInTiles orient_in_tiles(const OrientationInputs& in, std::size_t window_
   std::uint64_t records = 0;  // each own record once: a point each, or a sample each
   for (int t = 0; t < cloud.tiles(); ++t) records += in.records.records(t);
   Progress progress(label, 2 * std::int64_t(records));  // the discs marked, then the tiles oriented
-  const Occupancy occupancy = occupancy_of(in.records, cloud.tiles(), progress);
+  auto occupancy = std::make_unique<const Occupancy>(occupancy_of(in.records, cloud.tiles(), progress));
   const double farthest = in.moved.empty() ? 0.0 : *std::max_element(in.moved.begin(), in.moved.end());
   farm.run(
       TileStep::orientation, cloud.tiles_with_points(),
@@ -139,7 +141,7 @@ OrientedInTiles orient_in_tiles(const OrientationInputs& in, std::size_t window_
         notes.put(std::uint64_t(set.own));
         notes.put_array(std::span<const Projected>(set.records));
         return TileRequest{
-            orientation_request(points, normals, radius, id, occupancy, samples_in_set(set.records, in.merged)),
+            orientation_request(points, normals, radius, id, *occupancy, samples_in_set(set.records, in.merged)),
             notes.take()};
       },
       [&](int t, std::span<const std::byte> result, std::span<const std::byte> notes, int) {
@@ -184,6 +186,7 @@ OrientedInTiles orient_in_tiles(const OrientationInputs& in, std::size_t window_
         }
         progress.advance(std::int64_t(set.own));
       });
+  occupancy.reset();
   out.ordered->flush();
   if (out.by_tile) out.by_tile->flush();
   vote(*out.ordered, n, window_points, signs);

@@ -303,17 +303,20 @@ namespace {
 
 // The tree's signs turned where the rays through `occupancy` say otherwise (visibility.hpp),
 // in every part: the cloud's part, over the tiles, says whether they are taken. Per point,
-// whether they turn it and its vote, as its normal faces after them.
+// whether they turn it and its vote, as its normal faces after them; the points `silent`
+// marks (where given) cast none.
 struct SeenTurns {
   std::vector<char> turned;
   std::vector<std::int8_t> votes;
 };
 
 SeenTurns seen_turns(const Occupancy& occupancy, std::span<const vec3> points, std::span<const vec3> normals,
-                     std::span<const float> rho, const SpanningTree& tree) {
+                     std::span<const float> rho, const SpanningTree& tree, std::span<const char> silent = {}) {
   std::vector<float> radius(rho.size());
   for (std::size_t i = 0; i < radius.size(); ++i) radius[i] = 0.5f * rho[i];  // as in core: ρ_i/2
   SeenTurns seen{{}, visibility_votes(occupancy, points, normals, radius)};
+  for (std::size_t i = 0; i < silent.size(); ++i)
+    if (silent[i]) seen.votes[i] = 0;
   seen.turned = signs_along_tree(tree, seen.votes, kCutVotes);
   for (std::size_t i = 0; i < seen.votes.size(); ++i)
     if (seen.turned[i]) seen.votes[i] = std::int8_t(-seen.votes[i]);
@@ -330,10 +333,11 @@ std::vector<std::byte> work_orientation(std::span<const std::byte> request) {
   const auto id = in.get_array<std::uint64_t>();
   const auto sample = in.get_array<int>();
   Occupancy occupancy(in.get<Aabb>());
-  occupancy.set_words(in.get_array<std::uint64_t>());
+  occupancy.set_words(in.get_array<std::uint64_t>());  // moved in: no copy beside the request's
   const std::size_t m = points.size();
   bool whole = normals.size() == m && radius.size() == m && id.size() == m && (sample.empty() || sample.size() == m);
-  for (const int j : sample) whole = whole && (j < 0 || (std::size_t(j) < m && sample[std::size_t(j)] < 0));
+  for (const int j : sample)
+    whole = whole && (j == -1 || j == kSampleNotInSet || (j >= 0 && std::size_t(j) < m && sample[std::size_t(j)] == -1));
   if (!whole) throw Error("a tile's work does not hold together");
   OrientedParts parts;
   SpanningTree tree;
@@ -350,7 +354,9 @@ std::vector<std::byte> work_orientation(std::span<const std::byte> request) {
     const std::vector<float> rho = gathered<float>(radius, nodes);
     const std::vector<std::uint64_t> node_id = gathered<std::uint64_t>(id, nodes);
     const OrientedParts node_parts = orient_normals_in_parts(at, facing, rho, node_id, &tree);
-    const SeenTurns node_seen = seen_turns(occupancy, at, facing, rho, tree);
+    std::vector<char> silent(nodes.size());  // a halo's point whose sample the set lacks: no node in core
+    for (std::size_t k = 0; k < nodes.size(); ++k) silent[k] = sample[std::size_t(nodes[k])] == kSampleNotInSet;
+    const SeenTurns node_seen = seen_turns(occupancy, at, facing, rho, tree, silent);
     std::vector<int> node_of(m, -1);
     for (std::size_t k = 0; k < nodes.size(); ++k) {
       normals[std::size_t(nodes[k])] = facing[k];
@@ -363,7 +369,7 @@ std::vector<std::byte> work_orientation(std::span<const std::byte> request) {
       const auto k = std::size_t(node_of[std::size_t(sample[i] < 0 ? int(i) : sample[i])]);
       parts.of_point[i] = node_parts.of_point[k];
       seen.turned[i] = node_seen.turned[k];
-      if (sample[i] < 0) seen.votes[i] = node_seen.votes[k];
+      if (sample[i] == -1) seen.votes[i] = node_seen.votes[k];
       if (sample[i] >= 0 && glm::dot(normals[i], normals[std::size_t(sample[i])]) < 0) normals[i] = -normals[i];
     }
     for (const int root : node_parts.root) parts.root.push_back(nodes[std::size_t(root)]);

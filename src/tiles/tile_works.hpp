@@ -94,7 +94,10 @@ TileFileNormals file_normals_result(std::span<const std::byte> result);
 // orient_normals_in_parts), in the unit frame. Where samples were merged, `sample` holds, for
 // each point, the place in the set of the point its merged sample stands at, or −1 where it
 // stands for itself: the tree grows over those, and each other point takes its sample's side
-// and part, as in core (project_cloud.cpp); empty: every point stands for itself.
+// and part, as in core (project_cloud.cpp); or kSampleNotInSet where the set lacks its sample's
+// point (in the halo): a node of the tile's tree then, but it casts no rays, as in core it is
+// no node. Empty: every point stands for itself.
+inline constexpr int kSampleNotInSet = -2;
 // The set's rays go through `occupancy`, the whole cloud's samples' (points/visibility.hpp).
 std::vector<std::byte> orientation_request(std::span<const vec3> points, std::span<const vec3> normals,
                                            std::span<const float> radius, std::span<const std::uint64_t> id,

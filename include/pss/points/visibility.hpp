@@ -46,7 +46,7 @@ class Occupancy {
   // The bitset, 64 voxels a word, to carry it to another process and set it there (after
   // Occupancy(box) of the same box).
   std::span<const std::uint64_t> words() const { return bits_; }
-  void set_words(std::span<const std::uint64_t> words);
+  void set_words(std::vector<std::uint64_t>&& words);
 
  private:
   void mark(vec3 p, vec3 normal, float r);

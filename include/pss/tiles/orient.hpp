@@ -33,8 +33,8 @@ struct PieceRays {
   FacingVote seen_facing;
 };
 
-// Per piece, whether its normals turn, whether they take the rays' signs first, and the
-// cloud's part it lies in (numbered by its least piece).
+// Per piece, whether its normals turn, whether they take the rays' signs first, and the part
+// of the cloud it faces with (the pieces joined by their votes: numbered by one of them).
 struct PieceTurns {
   std::vector<char> flip;
   std::vector<char> seen;
@@ -62,8 +62,8 @@ class PieceSigns {
   std::vector<Root> roots_;
   std::vector<FacingVote> facing_;
   std::vector<PieceRays> rays_;
-  // (a, b), a < b: alike minus not, by whether a and b take the rays' signs (2 a_rays + b_rays).
-  std::unordered_map<std::uint64_t, std::array<std::int64_t, 4>> votes_;
+  // (a, b), a < b: alike minus not, with the trees' signs and with the rays'.
+  std::unordered_map<std::uint64_t, std::array<std::int64_t, 2>> votes_;
 };
 
 }  // namespace pss
