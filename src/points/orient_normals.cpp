@@ -111,7 +111,7 @@ std::vector<char> face_as_seen(const SupportGrid& grid, std::span<vec3> sorted, 
                                const SpanningTree& tree, Progress* progress = nullptr) {
   const std::span<const float> inv_h2 = grid.inv_h2();
   std::vector<float> radius(inv_h2.size());
-  for (std::size_t k = 0; k < radius.size(); ++k) radius[k] = 0.5f * grid.kappa() / std::sqrt(inv_h2[k]);
+  for (std::size_t k = 0; k < radius.size(); ++k) radius[k] = visibility_radius(grid.kappa() / std::sqrt(inv_h2[k]));
   if (progress) progress->add_total(std::int64_t(sorted.size()));
   return face_as_seen(grid.sorted_points(), sorted, radius, parts.of_point, parts.root.size(), tree, progress);
 }

@@ -46,7 +46,8 @@ Occupancy::Occupancy(const Aabb& box) : box_(box) {
   // No finite point, or a box no cloud has (inverted, or wider than a float: a hostile tile's
   // request): no voxels, every ray escapes.
   const vec3 extent = box.extent();
-  if (!is_finite(box.lo) || !is_finite(box.hi) || !is_finite(extent) || !(glm::all(glm::greaterThanEqual(extent, vec3(0.0f)))))
+  if (!is_finite(box.lo) || !is_finite(box.hi) || !is_finite(extent) ||
+      !glm::all(glm::greaterThanEqual(extent, vec3(0.0f))))
     return;
   const float longest = std::max({extent.x, extent.y, extent.z});
   cell_ = longest > 0 ? longest / float(kVisibilityCells - 2 * kMargin) : 1.0f;

@@ -135,7 +135,8 @@ FileNormalsInTiles file_normals_in_tiles(const UnitSets& sets, float kappa, std:
   if (face_as_seen_in_tiles(sets, kappa, moved, window_points, folder, buffer_bytes, farm, out.normals) > 0) {
     out.turned = 0;  // counted anew: those that face against the file's
     for (int t = 0; t < cloud.tiles(); ++t)
-      out.normals.by_tile->for_each_record<Oriented>(t, [&](const Oriented& r) { out.turned += out.normals.turned(r); });
+      out.normals.by_tile->for_each_record<Oriented>(t,
+                                                     [&](const Oriented& r) { out.turned += out.normals.turned(r); });
   }
   return out;
 }

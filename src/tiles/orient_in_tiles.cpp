@@ -76,7 +76,7 @@ Occupancy occupancy_of(const BucketFile& records, int tiles, Progress& progress)
       if (!r.stands_for_itself()) return;
       points.push_back(r.point);
       normals.push_back(r.normal);
-      radius.push_back(0.5f * r.radius);  // as in core: ρ_i/2
+      radius.push_back(visibility_radius(r.radius));
     });
     occupancy.mark(points, normals, radius);
     progress.advance(std::int64_t(records.records(t)));
@@ -180,7 +180,8 @@ OrientedInTiles orient_in_tiles(const OrientationInputs& in, std::size_t window_
           const std::uint32_t p = piece[std::size_t(parts.of_point[i])];
           if (p == kNoPiece) continue;
           const Projected& r = set.records[i];
-          const Oriented o{r.index, r.point, oriented.normals[i], p, r.status, i < set.own, oriented.seen_turned[i] != 0};
+          const Oriented o{r.index, r.point, oriented.normals[i], p, r.status, i < set.own,
+                           oriented.seen_turned[i] != 0};
           out.ordered->append(int(r.index / window_points), &o);
           if (out.by_tile && o.own) out.by_tile->append(t, &o);
         }

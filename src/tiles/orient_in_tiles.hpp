@@ -32,7 +32,7 @@ struct OrientedInTiles {
   std::unique_ptr<BucketFile> ordered;  // Oriented, a bucket a window: each own record and halo votes
   std::unique_ptr<BucketFile> by_tile;  // Oriented, each tile's own records; empty unless asked
   PieceTurns pieces;                    // per piece, whether it turns
-  std::vector<char> seam;               // empty, or per point of the cloud: the seams' turn (or the rays' of a file's) turns it
+  std::vector<char> seam;  // empty, or per point of the cloud: the seams' turn (or the rays', of a file's) turns it
   bool turned(const Oriented& r) const {
     return pieces(r.piece, r.seen_turned) != (!seam.empty() && seam[r.index] != 0);
   }

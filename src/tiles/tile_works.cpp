@@ -313,7 +313,7 @@ struct SeenTurns {
 SeenTurns seen_turns(const Occupancy& occupancy, std::span<const vec3> points, std::span<const vec3> normals,
                      std::span<const float> rho, const SpanningTree& tree, std::span<const char> silent = {}) {
   std::vector<float> radius(rho.size());
-  for (std::size_t i = 0; i < radius.size(); ++i) radius[i] = 0.5f * rho[i];  // as in core: ρ_i/2
+  for (std::size_t i = 0; i < radius.size(); ++i) radius[i] = visibility_radius(rho[i]);
   SeenTurns seen{{}, visibility_votes(occupancy, points, normals, radius)};
   for (std::size_t i = 0; i < silent.size(); ++i)
     if (silent[i]) seen.votes[i] = 0;
@@ -337,7 +337,8 @@ std::vector<std::byte> work_orientation(std::span<const std::byte> request) {
   const std::size_t m = points.size();
   bool whole = normals.size() == m && radius.size() == m && id.size() == m && (sample.empty() || sample.size() == m);
   for (const int j : sample)
-    whole = whole && (j == -1 || j == kSampleNotInSet || (j >= 0 && std::size_t(j) < m && sample[std::size_t(j)] == -1));
+    whole = whole &&
+            (j == -1 || j == kSampleNotInSet || (j >= 0 && std::size_t(j) < m && sample[std::size_t(j)] == -1));
   if (!whole) throw Error("a tile's work does not hold together");
   OrientedParts parts;
   SpanningTree tree;

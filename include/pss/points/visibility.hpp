@@ -60,6 +60,10 @@ class Occupancy {
   std::vector<std::uint64_t> bits_;
 };
 
+// A sample's disc in the occupancy, whose rays begin past it: half its support ρ_i, in core
+// and tile by tile alike.
+inline float visibility_radius(float rho) { return 0.5f * rho; }
+
 // Per point: where every ray on the side opposite its normal meets the surface, how many of
 // those on its normal's side escape; where every ray on its normal's side meets it, minus how
 // many of the others escape; else 0. From −kVisibilityPairs to kVisibilityPairs: positive where
